@@ -1,0 +1,110 @@
+// Buffer layouts shared by the C++ host and the GLSL shaders (std430 rules).
+// Each struct is written once, here. Rules that keep the two views identical:
+// a vec3 is always followed by a 4-byte scalar (std430 aligns vec3 to 16 bytes,
+// glm to 4), and every struct is a multiple of 16 bytes. The C++ side checks
+// sizes and offsets with static_assert (renderer/gpu_layout.h); the layout
+// probe test checks them against the GLSL compiler's view.
+#ifndef OCTRACE_SHARED_H
+#define OCTRACE_SHARED_H
+
+#ifdef __cplusplus
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+namespace octrace::gpu {
+using uint = uint32_t;
+using vec3 = glm::vec3;
+using vec4 = glm::vec4;
+#define OCT_CONST(type, name, value) inline constexpr type name = value
+#else
+#define OCT_CONST(type, name, value) const type name = value
+#endif
+
+OCT_CONST(uint, MAT_LAMBERTIAN, 0u);
+OCT_CONST(uint, MAT_METAL, 1u);
+OCT_CONST(uint, MAT_DIELECTRIC, 2u);
+OCT_CONST(uint, MAT_EMISSIVE, 3u);
+
+OCT_CONST(uint, SKY_GRADIENT, 0u);
+OCT_CONST(uint, SKY_UNIFORM, 1u);
+OCT_CONST(uint, SKY_NONE, 2u);
+
+OCT_CONST(uint, WORKGROUP_SIZE, 8u);  // 8x8 invocations per workgroup
+
+// Descriptor bindings of the path-tracing pipeline (set 0).
+OCT_CONST(uint, BINDING_FRAME, 0u);
+OCT_CONST(uint, BINDING_SPHERES, 1u);
+OCT_CONST(uint, BINDING_SPHERE_MATERIALS, 2u);
+OCT_CONST(uint, BINDING_MATERIALS, 3u);
+OCT_CONST(uint, BINDING_ACCUM, 4u);
+OCT_CONST(uint, BINDING_STATS, 5u);
+OCT_CONST(uint, BINDING_COUNT, 6u);
+
+// 16 bytes. Sphere i's material index is sphere_materials[i] (a separate array,
+// so the intersection loop reads only centres and radii).
+struct GpuSphere {
+  vec3 center;
+  float radius;
+};
+
+// 32 bytes. `color` is the albedo (lambertian, metal) or the radiance (emissive).
+struct GpuMaterial {
+  vec3 color;
+  uint type;   // MAT_*
+  float fuzz;  // metal
+  float ior;   // dielectric
+  uint pad0;
+  uint pad1;
+};
+
+// 48 bytes per pixel: the accumulation state of one pixel, in fp32.
+// sum.rgb: Kahan-compensated sum of the samples; sum.w: number of samples added
+// (exact as a float up to 2^24). comp.rgb: the Kahan compensation terms.
+// sum_sq.rgb: sum of squared samples (for per-pixel variance: golden tests).
+struct AccumPixel {
+  vec4 sum;
+  vec4 comp;
+  vec4 sum_sq;
+};
+
+// 16 bytes. Counters the passes update with atomics.
+struct RenderStats {
+  uint nonfinite_samples;  // samples that were NaN or Inf and were not added
+  uint pad0;
+  uint pad1;
+  uint pad2;
+};
+
+// 128 bytes. Everything a pass needs besides the scene arrays. The camera is
+// precomputed on the host: a pixel (x, y) (top row first) maps to the point
+// pixel00 + x*pixel_du + y*pixel_dv on the focus plane.
+struct FrameParams {
+  vec3 cam_origin;
+  float lens_radius;  // aperture / 2
+  vec3 lens_u;        // unit camera right
+  uint width;
+  vec3 lens_v;        // unit camera up
+  uint height;
+  vec3 pixel00;       // top-left corner of the focus-plane viewport
+  uint max_depth;
+  vec3 pixel_du;
+  uint sample_seed;
+  vec3 pixel_dv;
+  uint sphere_count;
+  vec3 sky_a;         // gradient: down; uniform: radiance
+  uint sky_type;      // SKY_*
+  vec3 sky_b;         // gradient: up
+  uint pad0;
+};
+
+// Push constants: the index of the sample this dispatch adds to every pixel.
+struct PassConstants {
+  uint sample_index;
+};
+
+#ifdef __cplusplus
+}  // namespace octrace::gpu
+#undef OCT_CONST
+#endif
+
+#endif  // OCTRACE_SHARED_H
