@@ -19,12 +19,16 @@ struct Material {
   float fuzz = 0.0f;         // metal
   float ior = 1.5f;          // dielectric
   glm::vec3 radiance{0.0f};  // emissive
+
+  bool operator==(const Material&) const = default;
 };
 
 struct Sphere {
   glm::vec3 center{0.0f};
   float radius = 1.0f;
   uint32_t material = 0;  // index into Scene::materials
+
+  bool operator==(const Sphere&) const = default;
 };
 
 struct Camera {
@@ -34,6 +38,8 @@ struct Camera {
   float vfov = 30.0f;        // degrees, vertical
   float aperture = 0.1f;     // lens diameter; 0 = pinhole
   float focus_dist = 10.0f;
+
+  bool operator==(const Camera&) const = default;
 };
 
 // Values match the SKY_* constants in shaders/shared.h.
@@ -44,6 +50,8 @@ struct Sky {
   glm::vec3 down{1.0f, 1.0f, 1.0f};    // gradient: colour at dir.y = -1
   glm::vec3 up{0.5f, 0.7f, 1.0f};      // gradient: colour at dir.y = +1
   glm::vec3 radiance{1.0f};            // uniform
+
+  bool operator==(const Sky&) const = default;
 };
 
 struct Scene {
@@ -51,6 +59,9 @@ struct Scene {
   Sky sky;
   std::vector<Material> materials;
   std::vector<Sphere> spheres;
+
+  // Field by field with float ==, so -0 equals 0; tests that need bit-exactness compare bits.
+  bool operator==(const Scene&) const = default;
 };
 
 struct RtiowParams {

@@ -36,9 +36,17 @@ OCT_CONST(uint, BINDING_FRAME, 0u);
 OCT_CONST(uint, BINDING_SPHERES, 1u);
 OCT_CONST(uint, BINDING_SPHERE_MATERIALS, 2u);
 OCT_CONST(uint, BINDING_MATERIALS, 3u);
-OCT_CONST(uint, BINDING_ACCUM, 4u);
-OCT_CONST(uint, BINDING_STATS, 5u);
-OCT_CONST(uint, BINDING_COUNT, 6u);
+OCT_CONST(uint, BINDING_ACCUM_SUM, 4u);
+OCT_CONST(uint, BINDING_ACCUM_COMP, 5u);
+OCT_CONST(uint, BINDING_ACCUM_SQ, 6u);
+OCT_CONST(uint, BINDING_STATS, 7u);
+OCT_CONST(uint, BINDING_OCTREE_NODES, 8u);
+OCT_CONST(uint, BINDING_OCTREE_REFS, 9u);
+OCT_CONST(uint, BINDING_COUNT, 10u);
+
+// Acceleration structures (specialization constant ACCEL).
+OCT_CONST(uint, ACCEL_BRUTE, 0u);
+OCT_CONST(uint, ACCEL_OCTREE, 1u);
 
 // 16 bytes. Sphere i's material index is sphere_materials[i] (a separate array,
 // so the intersection loop reads only centres and radii).
@@ -57,15 +65,31 @@ struct GpuMaterial {
   uint pad1;
 };
 
-// 48 bytes per pixel: the accumulation state of one pixel, in fp32.
-// sum.rgb: Kahan-compensated sum of the samples; sum.w: number of samples added
-// (exact as a float up to 2^24). comp.rgb: the Kahan compensation terms.
-// sum_sq.rgb: sum of squared samples (for per-pixel variance: golden tests).
-struct AccumPixel {
-  vec4 sum;
-  vec4 comp;
-  vec4 sum_sq;
+// The accumulation state is three arrays of one vec4 per pixel, in fp32 (three
+// arrays rather than one struct so that each stays under a device's largest
+// storage buffer for 4K images on lavapipe's 128 MiB):
+//   accum_sum.rgb: Kahan-compensated sum of the samples; accum_sum.w: number of
+//     samples added (exact as a float up to 2^24);
+//   accum_comp.rgb: the Kahan compensation terms;
+//   accum_sq.rgb: sum of squared deviations from the mean (Welford's M2), for
+//     the per-pixel variance the golden tests use.
+
+// 32 bytes. One octree node; nodes[0] is the root. The octree is described in
+// renderer/octree.h (encoding, drawing, why).
+//   lo, hi: the node's box: its cell clipped to the bounds of what it holds.
+//   Internal node: `count_or_mask` = OCTREE_INTERNAL | child mask (bit k set =
+//     octant k present; octant k = (x >= mid) | (y >= mid) << 1 | (z >= mid) << 2);
+//     `first` = index of the first present child; present children are stored
+//     consecutively in octant order.
+//   Leaf: `count_or_mask` = number of sphere references (< OCTREE_INTERNAL),
+//     `first` = index of the first reference in the refs array.
+struct GpuOctreeNode {
+  vec3 lo;
+  uint first;
+  vec3 hi;
+  uint count_or_mask;
 };
+OCT_CONST(uint, OCTREE_INTERNAL, 0x80000000u);
 
 // 16 bytes. Counters the passes update with atomics.
 struct RenderStats {
@@ -94,7 +118,7 @@ struct FrameParams {
   vec3 sky_a;         // gradient: down; uniform: radiance
   uint sky_type;      // SKY_*
   vec3 sky_b;         // gradient: up
-  uint pad0;
+  uint big_count;     // octree: refs[0, big_count) are spheres tested before traversal
 };
 
 // Push constants: the index of the sample this dispatch adds to every pixel.

@@ -1,0 +1,302 @@
+// octrace: command-line front end. Parses arguments, calls the renderer
+// library, prints results. Errors from the library arrive as exceptions and
+// leave as one line: exit 2 for bad input, 1 for a runtime failure.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "image.h"
+#include "path_tracer.h"
+#include "scene.h"
+#include "vk_context.h"
+
+using namespace octrace;
+using json = nlohmann::json;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Flags that choose and describe the scene, shared by every command that renders.
+struct SceneOptions {
+  std::string scene_file;
+  uint64_t spheres = RtiowParams{}.spheres;
+  float radius = RtiowParams{}.radius;
+  uint64_t seed = RtiowParams{}.seed;
+  std::string dump_scene;
+
+  void add_to(CLI::App& cmd) {
+    auto* file = cmd.add_option("--scene", scene_file, "Scene JSON file (default: the built-in rtiow scene)");
+    cmd.add_option("--spheres", spheres, "rtiow: number of small spheres")->capture_default_str()->excludes(file);
+    cmd.add_option("--radius", radius, "rtiow: radius of the small spheres")->capture_default_str()->excludes(file);
+    cmd.add_option("--seed", seed, "rtiow: scene generator seed")->capture_default_str()->excludes(file);
+    cmd.add_option("--dump-scene", dump_scene, "Write the scene as JSON to this file");
+  }
+
+  std::string describe() const {
+    if (!scene_file.empty()) return scene_file;
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "rtiow, %llu spheres of radius %g, seed %llu", (unsigned long long)spheres,
+                  radius, (unsigned long long)seed);
+    return buf;
+  }
+
+  Scene load() const {
+    Scene scene = scene_file.empty() ? make_rtiow_scene({spheres, radius, seed}) : load_scene_json(scene_file);
+    if (!dump_scene.empty()) save_scene_json(scene, dump_scene);
+    return scene;
+  }
+};
+
+// Parses "WxH".
+void parse_size(const std::string& text, RenderSettings& s) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' ||
+      text.find_first_not_of("0123456789x") != std::string::npos || text.size() > 12)
+    throw InputError("--size: expected WIDTHxHEIGHT (e.g. 1200x800), got \"" + text + "\"");
+  s.width = w;
+  s.height = h;
+}
+
+struct RenderOptions {
+  std::string size = "1200x800";
+  RenderSettings settings;
+  std::string device = "auto";
+  bool validation = false;
+
+  void add_to(CLI::App& cmd) {
+    cmd.add_option("--size", size, "Image size WIDTHxHEIGHT")->capture_default_str();
+    cmd.add_option("--spp", settings.spp, "Samples (passes) per pixel")->capture_default_str();
+    cmd.add_option("--depth", settings.max_depth, "Bounce limit; a path that reaches it contributes 0")
+        ->capture_default_str();
+    cmd.add_option("--sample-seed", settings.sample_seed, "Seed of the sampler (independent noise)")
+        ->capture_default_str();
+    cmd.add_option("--device", device, "auto | cpu | gpu | INDEX (see `octrace devices`)")->capture_default_str();
+    cmd.add_flag("--validation", validation, "Enable the Khronos validation layer (also OCTRACE_VALIDATION=1)");
+  }
+
+  RenderSettings parsed() const {
+    RenderSettings s = settings;
+    parse_size(size, s);
+    validate_settings(s);
+    return s;
+  }
+};
+
+json device_json(const DeviceInfo& d) {
+  return {{"index", d.index},           {"name", d.name},
+          {"type", d.type},             {"driver", d.driver},
+          {"api_version", d.api_version}, {"software", d.software},
+          {"shader_float16", d.shader_float16}, {"storage_buffer_16bit_access", d.storage_16bit},
+          {"fp16_variant", d.supports_fp16()}};
+}
+
+// A progress line on stderr, rewritten in place on a terminal and printed at
+// most every few seconds otherwise; silent for renders under about a second.
+class Progress {
+ public:
+  explicit Progress(bool enabled) : enabled_(enabled), tty_(isatty(STDERR_FILENO)) {}
+
+  void update(uint32_t done, uint32_t total) {
+    if (!enabled_) return;
+    double elapsed = ms_since(start_) / 1000.0;
+    double eta = done ? elapsed * (total - done) / done : 0.0;
+    // Show only renders that take, or will take, more than about a second.
+    if (elapsed + eta < 1.0 && !shown_) return;
+    if (!tty_ && done < total && elapsed - last_ < 5.0 && shown_) return;
+    last_ = elapsed;
+    shown_ = true;
+    std::fprintf(stderr, "%srender: %u/%u passes  %.1f s elapsed  ETA %.1f s%s", tty_ ? "\r" : "", done, total,
+                 elapsed, eta, tty_ ? "\033[K" : "\n");
+    if (tty_ && done == total) std::fputc('\n', stderr);
+    std::fflush(stderr);
+  }
+
+ private:
+  bool enabled_, tty_;
+  bool shown_ = false;
+  double last_ = 0;
+  Clock::time_point start_ = Clock::now();
+};
+
+int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts, std::vector<std::string> outputs,
+               bool as_json, bool quiet) {
+  // Everything the user typed is checked before the (possibly long) render.
+  RenderSettings settings = render_opts.parsed();
+  if (outputs.empty() && scene_opts.dump_scene.empty()) outputs.push_back("out.png");
+  for (const auto& o : outputs) check_image_path(o);
+
+  auto start = Clock::now();
+  Scene scene = scene_opts.load();
+  double scene_ms = ms_since(start);
+  if (outputs.empty()) return 0;  // only --dump-scene
+
+  start = Clock::now();
+  VulkanContext ctx;
+  create_context(ctx, {render_opts.device, false, render_opts.validation});
+  double device_ms = ms_since(start);
+  if (ctx.info.software && !quiet && !as_json)
+    std::fprintf(stderr, "octrace: rendering on %s, a CPU (software) Vulkan device: its timings are not a GPU's\n",
+                 ctx.info.name.c_str());
+
+  Progress progress(!quiet);
+  RenderResult result = render(ctx, scene, settings, [&](uint32_t d, uint32_t t) { progress.update(d, t); });
+
+  start = Clock::now();
+  for (const auto& o : outputs) write_image(result.mean, o);
+  double write_ms = ms_since(start);
+
+  const RenderTimings& t = result.timings;
+  double paths = double(settings.width) * settings.height * settings.spp;
+  double paths_per_s = t.render_device_ms > 0 ? paths / (t.render_device_ms / 1000.0) : 0.0;
+  if (as_json) {
+    json j = {{"device", device_json(ctx.info)},
+              {"scene", {{"source", scene_opts.describe()},
+                         {"spheres", scene.spheres.size()},
+                         {"materials", scene.materials.size()}}},
+              {"width", settings.width},
+              {"height", settings.height},
+              {"spp", settings.spp},
+              {"depth", settings.max_depth},
+              {"sample_seed", settings.sample_seed},
+              {"times_ms", {{"scene", scene_ms},
+                            {"device_init", device_ms},
+                            {"upload", t.upload_ms},
+                            {"pipeline", t.pipeline_ms},
+                            {"render", t.render_device_ms},
+                            {"render_wall", t.render_wall_ms},
+                            {"readback", t.readback_ms},
+                            {"write", write_ms}}},
+              {"paths_per_second", paths_per_s},
+              {"nonfinite_samples", result.nonfinite_samples},
+              {"outputs", outputs}};
+    std::cout << j.dump(2) << "\n";
+  } else if (!quiet) {
+    std::printf("device    %s (%s)\n", ctx.info.name.c_str(), ctx.info.type.c_str());
+    std::printf("scene     %s: %zu spheres, %zu materials\n", scene_opts.describe().c_str(), scene.spheres.size(),
+                scene.materials.size());
+    std::printf("image     %dx%d, %u spp, depth %u, sample seed %u\n", settings.width, settings.height,
+                settings.spp, settings.max_depth, settings.sample_seed);
+    std::printf("times     scene %.1f ms, upload %.1f ms, pipeline %.1f ms, render %.1f ms (device)\n", scene_ms,
+                t.upload_ms, t.pipeline_ms, t.render_device_ms);
+    std::printf("speed     %.3g paths/s\n", paths_per_s);
+    if (result.nonfinite_samples)
+      std::printf("warning   %llu NaN/Inf samples were rejected\n", (unsigned long long)result.nonfinite_samples);
+    for (const auto& o : outputs) std::printf("wrote     %s\n", o.c_str());
+  }
+  return 0;
+}
+
+int cmd_devices(bool as_json) {
+  auto devices = list_devices();
+  if (as_json) {
+    json j = json::array();
+    for (const auto& d : devices) j.push_back(device_json(d));
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+  if (devices.empty()) {
+    std::printf("no Vulkan devices (install mesa-vulkan-drivers for the CPU device)\n");
+    return 1;
+  }
+  for (const auto& d : devices) {
+    std::printf("%u  %s\n", d.index, d.name.c_str());
+    std::printf("   type      %s%s\n", d.type.c_str(), d.software ? " (software: timings are not a GPU's)" : "");
+    std::printf("   driver    %s, Vulkan %s\n", d.driver.c_str(), d.api_version.c_str());
+    std::printf("   fp16      %s (shaderFloat16 %s, storageBuffer16BitAccess %s)\n",
+                d.supports_fp16() ? "yes" : "no", d.shader_float16 ? "yes" : "no", d.storage_16bit ? "yes" : "no");
+  }
+  return 0;
+}
+
+int cmd_compare(const std::string& a, const std::string& b, bool as_json) {
+  Image test = read_image(a);
+  Image reference = read_image(b);
+  ErrorMetrics m = compare_images(test, reference);
+  if (as_json) {
+    // JSON has no infinity: identical images report psnr null.
+    json j = {{"rmse", m.rmse}, {"rel_mse", m.rel_mse}, {"ssim", m.ssim}};
+    j["psnr"] = std::isfinite(m.psnr) ? json(m.psnr) : json(nullptr);
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::printf("rmse     %.6g\nrel_mse  %.6g\npsnr     %.2f dB\nssim     %.6f\n", m.rmse, m.rel_mse, m.psnr,
+                m.ssim);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"octrace: a Vulkan compute path tracer for sphere scenes"};
+  app.require_subcommand(1);
+  // A flag given twice takes its last value, as scripts that append flags expect.
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+
+  SceneOptions scene_opts;
+  RenderOptions render_opts;
+  std::vector<std::string> outputs;
+  bool as_json = false, quiet = false;
+
+  auto* render_cmd = app.add_subcommand("render", "Render headless to PNG (sRGB), PFM or EXR (linear)");
+  scene_opts.add_to(*render_cmd);
+  render_opts.add_to(*render_cmd);
+  render_cmd->add_option("--out,-o", outputs, "Output image(s), format by extension: .png .pfm .exr (default out.png)");
+  render_cmd->add_flag("--json", as_json, "Print a machine-readable summary on stdout");
+  render_cmd->add_flag("--quiet,-q", quiet, "No progress or summary");
+
+  auto* devices_cmd = app.add_subcommand("devices", "List Vulkan devices and their fp16 support");
+  devices_cmd->add_flag("--json", as_json, "Machine-readable output");
+
+  std::string compare_a, compare_b;
+  auto* compare_cmd = app.add_subcommand("compare", "Image error between a test image and a reference");
+  compare_cmd->add_option("test", compare_a, "Test image (.png .pfm .exr)")->required();
+  compare_cmd->add_option("reference", compare_b, "Reference image")->required();
+  compare_cmd->add_flag("--json", as_json, "Machine-readable output");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "octrace: error: %s (see --help)\n", e.what());
+    return 2;
+  }
+
+  int code = 0;
+  try {
+    if (*render_cmd) code = cmd_render(scene_opts, render_opts, outputs, as_json, quiet);
+    else if (*devices_cmd) code = cmd_devices(as_json);
+    else if (*compare_cmd) code = cmd_compare(compare_a, compare_b, as_json);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "octrace: error: %s\n", e.what());
+    return 2;
+  } catch (const RuntimeError& e) {
+    std::fprintf(stderr, "octrace: error: %s\n", e.what());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "octrace: error: out of host memory\n");
+    return 1;
+  }
+  if (uint32_t n = validation_message_count()) {
+    std::fprintf(stderr, "octrace: error: the Vulkan validation layer reported %u message(s)\n", n);
+    return 1;
+  }
+  return code;
+}

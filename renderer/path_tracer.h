@@ -1,0 +1,75 @@
+// Renders a Scene on a VulkanContext: uploads the scene, runs one compute
+// dispatch per sample pass into fp32 accumulation buffers, reads the mean back.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "image.h"
+#include "scene.h"
+#include "vk_context.h"
+
+namespace octrace {
+
+struct RenderSettings {
+  int width = 1200;
+  int height = 800;
+  uint32_t spp = 10;
+  uint32_t max_depth = 50;
+  uint32_t sample_seed = 1;
+};
+
+// Checks sizes and counts before anything is allocated; throws InputError
+// naming the flag ("--size 0x10: width and height must be >= 1").
+void validate_settings(const RenderSettings& settings);
+
+struct RenderTimings {
+  double upload_ms = 0;        // buffer creation and scene upload (wall)
+  double pipeline_ms = 0;      // compute pipeline creation (wall)
+  double render_device_ms = 0; // path-tracing passes, timestamp queries (device)
+  double render_wall_ms = 0;   // the same passes, wall clock incl. submission
+  double readback_ms = 0;      // accumulation download and resolve (wall)
+};
+
+// The accumulation state: what a render *is*.
+struct RenderResult {
+  Image mean;              // linear mean radiance per pixel
+  Image variance_of_mean;  // per pixel and channel: sample variance / count
+  uint32_t min_samples = 0;       // smallest per-pixel sample count
+  uint64_t nonfinite_samples = 0; // NaN/Inf samples rejected (0 for a clean render)
+  RenderTimings timings;
+};
+
+// Called after each batch of passes: passes done, total passes.
+using ProgressFn = std::function<void(uint32_t done, uint32_t total)>;
+
+// A scene uploaded to a device with its pipeline, ready to run passes; reusable
+// for several renders (benchmarks, the preview window).
+class PathTracer {
+ public:
+  PathTracer(const VulkanContext& ctx, const Scene& scene, const RenderSettings& settings);
+  ~PathTracer();
+  PathTracer(const PathTracer&) = delete;
+  PathTracer& operator=(const PathTracer&) = delete;
+
+  // Clears the accumulation buffers and the statistics.
+  void reset();
+  // Adds passes [first_sample, first_sample + count) in one submission and
+  // waits; returns their device time in milliseconds.
+  double run_passes(uint32_t first_sample, uint32_t count);
+  RenderResult read_result();
+  const RenderTimings& setup_timings() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+// The whole render: set-up, settings.spp passes in batches sized to about a
+// quarter second each (progress after each), read-back.
+RenderResult render(const VulkanContext& ctx, const Scene& scene, const RenderSettings& settings,
+                    const ProgressFn& progress = {});
+
+}  // namespace octrace

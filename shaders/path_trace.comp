@@ -1,0 +1,153 @@
+// One path-tracing pass: one sample per pixel, added to the accumulation
+// buffers. Materials follow "Ray Tracing in One Weekend" v4 (see DESIGN.md).
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "shared.h"
+
+layout(local_size_x = WORKGROUP_SIZE, local_size_y = WORKGROUP_SIZE) in;
+
+layout(std430, binding = BINDING_FRAME) readonly buffer FrameBuf { FrameParams params; };
+layout(std430, binding = BINDING_SPHERES) readonly buffer SphereBuf { GpuSphere spheres[]; };
+layout(std430, binding = BINDING_SPHERE_MATERIALS) readonly buffer SphereMatBuf { uint sphere_materials[]; };
+layout(std430, binding = BINDING_MATERIALS) readonly buffer MaterialBuf { GpuMaterial materials[]; };
+layout(std430, binding = BINDING_ACCUM_SUM) buffer AccumSumBuf { vec4 accum_sum[]; };
+layout(std430, binding = BINDING_ACCUM_COMP) buffer AccumCompBuf { vec4 accum_comp[]; };
+layout(std430, binding = BINDING_ACCUM_SQ) buffer AccumSqBuf { vec4 accum_sq[]; };
+layout(std430, binding = BINDING_STATS) buffer StatsBuf { RenderStats stats; };
+
+layout(push_constant) uniform Push { PassConstants pass; };
+
+#include "rng.glsl"
+#include "geometry.glsl"
+#include "scene_hit.glsl"
+
+// A direction uniform on the unit sphere (z uniform in [-1,1], phi uniform):
+// the distribution the book's rejection-sampled random_unit_vector has, from
+// a fixed count of two numbers.
+vec3 random_unit_vector(inout Rng rng) {
+  float z = 1.0 - 2.0 * rng_next(rng);
+  float phi = 2.0 * PI * rng_next(rng);
+  float r = sqrt(max(0.0, 1.0 - z * z));
+  return vec3(r * cos(phi), r * sin(phi), z);
+}
+
+vec2 random_in_unit_disk(inout Rng rng) {
+  float r = sqrt(rng_next(rng));
+  float phi = 2.0 * PI * rng_next(rng);
+  return r * vec2(cos(phi), sin(phi));
+}
+
+vec3 sky_radiance(vec3 dir) {
+  if (params.sky_type == SKY_GRADIENT) {
+    float t = 0.5 * (dir.y + 1.0);
+    return (1.0 - t) * params.sky_a + t * params.sky_b;
+  }
+  if (params.sky_type == SKY_UNIFORM) return params.sky_a;
+  return vec3(0.0);
+}
+
+// Schlick's approximation of the Fresnel reflectance.
+float schlick(float cosine, float eta) {
+  float r0 = (1.0 - eta) / (1.0 + eta);
+  r0 = r0 * r0;
+  return r0 + (1.0 - r0) * pow(1.0 - cosine, 5.0);
+}
+
+Ray camera_ray(uvec2 pixel, uint pixel_index) {
+  Rng rng = rng_init(params.sample_seed, pixel_index, pass.sample_index, CAMERA_BOUNCE);
+  vec2 jitter = vec2(rng_next(rng), rng_next(rng));
+  vec2 lens = random_in_unit_disk(rng) * params.lens_radius;
+  vec3 origin = params.cam_origin + lens.x * params.lens_u + lens.y * params.lens_v;
+  vec3 target = params.pixel00 + (float(pixel.x) + jitter.x) * params.pixel_du +
+                (float(pixel.y) + jitter.y) * params.pixel_dv;
+  return Ray(origin, normalize(target - origin));
+}
+
+vec3 trace_path(Ray ray, uint pixel_index) {
+  vec3 radiance = vec3(0.0);
+  vec3 throughput = vec3(1.0);
+  uint from_sphere = NO_SPHERE;
+  bool into_from = false;
+  for (uint bounce = 0; bounce < params.max_depth; ++bounce) {
+    Hit hit;
+    if (!closest_hit(ray, from_sphere, into_from, hit)) {
+      radiance += throughput * sky_radiance(ray.dir);
+      break;
+    }
+    GpuSphere s = spheres[hit.sphere];
+    GpuMaterial m = materials[sphere_materials[hit.sphere]];
+    vec3 p = ray.origin + hit.t * ray.dir;
+    vec3 outward = safe_normalize(p - s.center, -ray.dir);
+    bool front_face = dot(ray.dir, outward) < 0.0;
+    vec3 n = front_face ? outward : -outward;
+
+    if (m.type == MAT_EMISSIVE) {
+      radiance += throughput * m.color;
+      break;
+    }
+
+    Rng rng = rng_init(params.sample_seed, pixel_index, pass.sample_index, bounce);
+    vec3 dir;
+    if (m.type == MAT_LAMBERTIAN) {
+      // Cosine-weighted: normal + uniform unit vector (book v4); the rare sum
+      // that cancels to zero falls back to the normal.
+      dir = safe_normalize(n + random_unit_vector(rng), n);
+      throughput *= m.color;
+    } else if (m.type == MAT_METAL) {
+      vec3 fuzz = random_unit_vector(rng);
+      dir = reflect(ray.dir, n) + m.fuzz * fuzz;
+      // A fuzzed direction below the surface is absorbed (book v4).
+      if (dot(dir, n) <= 0.0) break;
+      dir = normalize(dir);
+      throughput *= m.color;
+    } else {
+      float eta = front_face ? 1.0 / m.ior : m.ior;
+      float cos_theta = min(dot(-ray.dir, n), 1.0);
+      float sin_theta = sqrt(max(0.0, 1.0 - cos_theta * cos_theta));
+      float u = rng_next(rng);
+      // Past the critical angle refraction is impossible: reflect (TIR).
+      if (eta * sin_theta > 1.0 || schlick(cos_theta, eta) > u) {
+        dir = reflect(ray.dir, n);
+      } else {
+        dir = refract(ray.dir, n, eta);
+      }
+      dir = safe_normalize(dir, reflect(ray.dir, n));
+    }
+    // The new ray leaves into the side its direction points to.
+    bool inward = dot(dir, outward) < 0.0;
+    ray = Ray(offset_ray_origin(p, inward ? -outward : outward), dir);
+    from_sphere = hit.sphere;
+    into_from = inward;
+  }
+  return radiance;
+}
+
+void main() {
+  uvec2 pixel = gl_GlobalInvocationID.xy;
+  if (pixel.x >= params.width || pixel.y >= params.height) return;
+  uint index = pixel.y * params.width + pixel.x;
+
+  vec3 value = trace_path(camera_ray(pixel, index), index);
+
+  // A NaN or Inf sample is counted, never added: one would poison the pixel.
+  if (any(isnan(value)) || any(isinf(value))) {
+    atomicAdd(stats.nonfinite_samples, 1u);
+    return;
+  }
+  // Kahan summation keeps the mean unbiased over millions of samples; `precise`
+  // stops the compiler from reassociating the compensation away.
+  vec4 acc = accum_sum[index];
+  precise vec3 comp = accum_comp[index].rgb;
+  precise vec3 y = value - comp;
+  precise vec3 t = acc.rgb + y;
+  float n = acc.w;
+  vec3 mean_old = n > 0.0 ? (acc.rgb - comp) / n : vec3(0.0);
+  comp = (t - acc.rgb) - y;
+  vec3 mean_new = (t - comp) / (n + 1.0);
+  accum_comp[index].rgb = comp;
+  accum_sum[index] = vec4(t, n + 1.0);
+  // Welford's update of the sum of squared deviations (M2): no cancellation of
+  // two large sums, so a pixel with tiny variance keeps an accurate one.
+  accum_sq[index].rgb += (value - mean_old) * (value - mean_new);
+}

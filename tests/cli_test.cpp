@@ -1,0 +1,161 @@
+// The command line as a user meets it: bad input gives one clear line naming
+// what is wrong, a non-zero exit, and no output file.
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int code;
+  std::string output;  // stdout and stderr together
+};
+
+RunResult run_octrace(const std::string& args) {
+  std::string cmd = std::string(OCTRACE_BIN) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  RunResult r{-1, ""};
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.output.append(buf, n);
+  int status = pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string tmp(const std::string& name) { return std::string(OCTRACE_TEST_TMP) + "/cli_" + name; }
+
+std::string write_file(const std::string& name, const std::string& text) {
+  std::string path = tmp(name);
+  std::ofstream(path) << text;
+  return path;
+}
+
+const char* VALID_SCENE = R"({
+  "camera": {"lookfrom": [0,0,5], "lookat": [0,0,0], "vup": [0,1,0], "vfov": 40, "aperture": 0, "focus_dist": 5},
+  "sky": {"type": "uniform", "radiance": [1,1,1]},
+  "materials": [{"type": "lambertian", "albedo": [0.5,0.5,0.5]}],
+  "spheres": [{"center": [0,0,0], "radius": 1, "material": 0}]
+})";
+
+// A bad-input case: the arguments, a substring the error must contain, the
+// expected exit code.
+struct BadInput {
+  const char* label;
+  std::string args;
+  std::string message;
+  int code = 2;
+};
+
+class BadInputTest : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(BadInputTest, ClearMessageNonZeroExitNoOutput) {
+  const BadInput& c = GetParam();
+  std::string out = tmp(std::string(c.label) + ".png");
+  fs::remove(out);
+  RunResult r = run_octrace("render --size 8x8 --spp 1 --quiet " + c.args + " --out " + out);
+  EXPECT_EQ(r.code, c.code) << r.output;
+  EXPECT_NE(r.output.find(c.message), std::string::npos) << "expected \"" << c.message << "\" in: " << r.output;
+  // One line: the message, nothing else (no stack trace, no usage dump).
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_FALSE(fs::exists(out)) << "an output file was created";
+}
+
+std::string scene_with(const std::string& name, const std::string& text) {
+  return "--scene " + write_file(name + ".json", text);
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  text.replace(text.find(from), from.size(), to);
+  return text;
+}
+
+const BadInput BAD_INPUTS[] = {
+    {"size_zero", "--size 0x10", "--size 0x10: width and height must be >= 1"},
+    {"size_format", "--size big", "--size: expected WIDTHxHEIGHT"},
+    {"size_negative", "--size -5x10", "--size: expected WIDTHxHEIGHT"},
+    {"size_absurd", "--size 200000x200000", "--size 200000x200000"},
+    {"size_unallocatable", "--size 100000x100000", "the accumulation buffers need"},
+    {"spp_zero", "--spp 0", "--spp: must be >= 1"},
+    {"spp_text", "--spp many", "--spp"},
+    {"depth_zero", "--depth 0", "--depth: must be >= 1"},
+    {"radius_negative", "--radius -1", "--radius"},
+    {"radius_nan", "--radius nan", "--radius"},
+    {"spheres_negative", "--spheres -3", "--spheres"},
+    {"device_unknown", "--device banana", "--device"},
+    {"device_index", "--device 99", "--device: index 99 out of range"},
+    {"unknown_flag", "--frobnicate", "frobnicate"},
+    {"scene_and_spheres", "--scene x.json --spheres 5", "excludes"},
+    {"scene_missing", "--scene /nonexistent/s.json", "/nonexistent/s.json"},
+    {"json_syntax", scene_with("syntax", "{\"camera\": "), "syntax.json"},
+    {"json_missing_radius", scene_with("missing", replaced(VALID_SCENE, "\"radius\": 1, ", "")),
+     "spheres[0].radius"},
+    {"json_wrong_type", scene_with("type", replaced(VALID_SCENE, "\"radius\": 1", "\"radius\": \"big\"")),
+     "spheres[0].radius"},
+    {"json_negative_radius", scene_with("negr", replaced(VALID_SCENE, "\"radius\": 1", "\"radius\": -1")),
+     "spheres[0].radius"},
+    {"json_huge_number", scene_with("inf", replaced(VALID_SCENE, "\"radius\": 1", "\"radius\": 1e999")),
+     "spheres[0].radius"},
+    {"json_material_index", scene_with("matidx", replaced(VALID_SCENE, "\"material\": 0", "\"material\": 3")),
+     "spheres[0].material"},
+    {"json_sky_type", scene_with("sky", replaced(VALID_SCENE, "\"uniform\"", "\"plaid\"")), "sky.type"},
+    {"json_material_type", scene_with("mtype", replaced(VALID_SCENE, "\"lambertian\"", "\"velvet\"")),
+     "materials[0].type"},
+    {"json_camera_vfov", scene_with("vfov", replaced(VALID_SCENE, "\"vfov\": 40", "\"vfov\": -40")),
+     "camera.vfov"},
+    {"out_extension", "--out " + tmp("img.bmp"), "unknown image format"},
+    {"out_folder", "--out /nonexistent/dir/x.png", "/nonexistent/dir/x.png"},
+};
+
+INSTANTIATE_TEST_SUITE_P(Cli, BadInputTest, ::testing::ValuesIn(BAD_INPUTS),
+                         [](const auto& info) { return std::string(info.param.label); });
+
+TEST(Cli, ValidSceneRendersAndDumpRoundTrips) {
+  std::string scene = write_file("valid.json", VALID_SCENE);
+  std::string a = tmp("valid_a.pfm"), b = tmp("valid_b.pfm"), dumped = tmp("dumped.json");
+  RunResult r = run_octrace("render --size 16x8 --spp 2 --quiet --scene " + scene + " --out " + a + " --dump-scene " +
+                      dumped);
+  ASSERT_EQ(r.code, 0) << r.output;
+  r = run_octrace("render --size 16x8 --spp 2 --quiet --scene " + dumped + " --out " + b);
+  ASSERT_EQ(r.code, 0) << r.output;
+  r = run_octrace("compare " + a + " " + b + " --json");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("\"rmse\": 0.0"), std::string::npos) << r.output;
+}
+
+TEST(Cli, JsonSummaryHasTimingsAndDevice) {
+  RunResult r = run_octrace("render --size 16x8 --spp 2 --spheres 10 --json --out " + tmp("summary.png"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* key : {"\"device\"", "\"render\"", "\"pipeline\"", "\"upload\"", "\"scene\"",
+                          "\"paths_per_second\"", "\"nonfinite_samples\": 0", "\"spp\": 2", "\"depth\": 50"})
+    EXPECT_NE(r.output.find(key), std::string::npos) << key << " missing in " << r.output;
+}
+
+TEST(Cli, CompareRejectsSizeMismatchAndMissingFiles) {
+  std::string a = tmp("cmp_a.pfm"), b = tmp("cmp_b.pfm");
+  ASSERT_EQ(run_octrace("render --size 16x8 --spp 1 --quiet --spheres 5 --out " + a).code, 0);
+  ASSERT_EQ(run_octrace("render --size 8x8 --spp 1 --quiet --spheres 5 --out " + b).code, 0);
+  RunResult r = run_octrace("compare " + a + " " + b);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("16x8"), std::string::npos) << r.output;
+  r = run_octrace("compare " + a + " " + tmp("nope.pfm"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("nope.pfm"), std::string::npos) << r.output;
+}
+
+TEST(Cli, DevicesListsLavapipeWithFp16Support) {
+  RunResult r = run_octrace("devices");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("llvmpipe"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("shaderFloat16"), std::string::npos) << r.output;
+}
+
+}  // namespace

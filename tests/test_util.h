@@ -1,0 +1,52 @@
+// Helpers shared by the tests: one Vulkan context per test binary (created
+// with the validation layer when OCTRACE_VALIDATION=1, as ctest sets it), and
+// a check after every test that the layer stayed silent.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "path_tracer.h"
+#include "vk_context.h"
+
+namespace octrace::test {
+
+inline VulkanContext& shared_context() {
+  static std::unique_ptr<VulkanContext> ctx = [] {
+    auto c = std::make_unique<VulkanContext>();
+    create_context(*c, {"cpu", false, false});
+    return c;
+  }();
+  return *ctx;
+}
+
+// Fails the current test if the validation layer reported anything during it.
+class VulkanTest : public ::testing::Test {
+ protected:
+  void SetUp() override { messages_before_ = validation_message_count(); }
+  void TearDown() override {
+    EXPECT_EQ(validation_message_count(), messages_before_) << "the validation layer reported messages";
+  }
+
+ private:
+  uint32_t messages_before_ = 0;
+};
+
+inline std::string tmp_path(const std::string& name) { return std::string(OCTRACE_TEST_TMP) + "/" + name; }
+
+// A scene of `spheres` under a uniform sky, camera looking at the origin.
+inline Scene furnace_scene() {
+  Scene s;
+  s.sky.type = SkyType::Uniform;
+  s.sky.radiance = glm::vec3(1.0f);
+  s.camera.lookfrom = {0, 0, 6};
+  s.camera.lookat = {0, 0, 0};
+  s.camera.vfov = 40;
+  s.camera.aperture = 0;
+  s.camera.focus_dist = 6;
+  return s;
+}
+
+}  // namespace octrace::test
