@@ -9,11 +9,13 @@
 #include <string>
 #include <vector>
 
+#include <stdlib.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "bench.h"
 #include "image.h"
 #include "path_tracer.h"
 #include "scene.h"
@@ -61,24 +63,38 @@ struct SceneOptions {
   }
 };
 
-// Parses "WxH".
+// Parses "WxH": two decimal integers; values beyond int range are reported
+// as too large rather than wrapped.
 void parse_size(const std::string& text, RenderSettings& s) {
-  int w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' ||
-      text.find_first_not_of("0123456789x") != std::string::npos || text.size() > 12)
-    throw InputError("--size: expected WIDTHxHEIGHT (e.g. 1200x800), got \"" + text + "\"");
-  s.width = w;
-  s.height = h;
+  auto x = text.find('x');
+  auto digits = [](const std::string& t) { return !t.empty() && t.size() <= 9 && t.find_first_not_of("0123456789") == std::string::npos; };
+  if (x == std::string::npos || !digits(text.substr(0, x)) || !digits(text.substr(x + 1)))
+    throw InputError("--size: expected WIDTHxHEIGHT with each side at most 9 digits (e.g. 1200x800), got \"" +
+                     text + "\"");
+  s.width = std::stoi(text.substr(0, x));
+  s.height = std::stoi(text.substr(x + 1));
 }
+
+Accel parse_accel(const std::string& name) {
+  if (name == "octree") return Accel::Octree;
+  if (name == "brute") return Accel::Brute;
+  throw InputError("--accel: expected octree or brute, got \"" + name + "\"");
+}
+
+const char* accel_name(Accel a) { return a == Accel::Octree ? "octree" : "brute"; }
 
 struct RenderOptions {
   std::string size = "1200x800";
+  std::string accel = "octree";
   RenderSettings settings;
   std::string device = "auto";
   bool validation = false;
 
   void add_to(CLI::App& cmd) {
+    cmd.add_option("--accel", accel, "Acceleration structure: octree | brute")->capture_default_str();
+    cmd.add_option("--octree-leaf", settings.octree.leaf_size, "Octree: split cells holding more spheres than this")
+        ->capture_default_str();
+    cmd.add_option("--octree-depth", settings.octree.max_depth, "Octree: maximum depth")->capture_default_str();
     cmd.add_option("--size", size, "Image size WIDTHxHEIGHT")->capture_default_str();
     cmd.add_option("--spp", settings.spp, "Samples (passes) per pixel")->capture_default_str();
     cmd.add_option("--depth", settings.max_depth, "Bounce limit; a path that reaches it contributes 0")
@@ -91,6 +107,7 @@ struct RenderOptions {
 
   RenderSettings parsed() const {
     RenderSettings s = settings;
+    s.accel = parse_accel(accel);
     parse_size(size, s);
     validate_settings(s);
     return s;
@@ -173,8 +190,10 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
               {"spp", settings.spp},
               {"depth", settings.max_depth},
               {"sample_seed", settings.sample_seed},
+              {"accel", accel_name(settings.accel)},
               {"times_ms", {{"scene", scene_ms},
                             {"device_init", device_ms},
+                            {"accel_build", t.accel_build_ms},
                             {"upload", t.upload_ms},
                             {"pipeline", t.pipeline_ms},
                             {"render", t.render_device_ms},
@@ -184,6 +203,15 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
               {"paths_per_second", paths_per_s},
               {"nonfinite_samples", result.nonfinite_samples},
               {"outputs", outputs}};
+    if (settings.accel == Accel::Octree) {
+      const OctreeStats& o = result.octree;
+      j["octree"] = {{"leaf_size", settings.octree.leaf_size}, {"max_depth", settings.octree.max_depth},
+                     {"build_ms", o.build_ms},         {"nodes", o.nodes},
+                     {"leaves", o.leaves},             {"depth_reached", o.max_depth_reached},
+                     {"refs", o.refs},                 {"big_spheres", o.big_spheres},
+                     {"refs_per_sphere", o.refs_per_sphere}, {"bytes", o.bytes},
+                     {"bytes_per_sphere", o.bytes_per_sphere}};
+    }
     std::cout << j.dump(2) << "\n";
   } else if (!quiet) {
     std::printf("device    %s (%s)\n", ctx.info.name.c_str(), ctx.info.type.c_str());
@@ -191,14 +219,25 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
                 scene.materials.size());
     std::printf("image     %dx%d, %u spp, depth %u, sample seed %u\n", settings.width, settings.height,
                 settings.spp, settings.max_depth, settings.sample_seed);
-    std::printf("times     scene %.1f ms, upload %.1f ms, pipeline %.1f ms, render %.1f ms (device)\n", scene_ms,
-                t.upload_ms, t.pipeline_ms, t.render_device_ms);
+    if (settings.accel == Accel::Octree)
+      std::printf("octree    %u nodes, %u leaves, depth %u, %.2f refs/sphere, %.1f bytes/sphere, %u big spheres\n",
+                  result.octree.nodes, result.octree.leaves, result.octree.max_depth_reached,
+                  result.octree.refs_per_sphere, result.octree.bytes_per_sphere, result.octree.big_spheres);
+    std::printf("times     scene %.1f ms, %s build %.1f ms, upload %.1f ms, pipeline %.1f ms, render %.1f ms (device)\n",
+                scene_ms, accel_name(settings.accel), t.accel_build_ms, t.upload_ms, t.pipeline_ms,
+                t.render_device_ms);
     std::printf("speed     %.3g paths/s\n", paths_per_s);
     if (result.nonfinite_samples)
       std::printf("warning   %llu NaN/Inf samples were rejected\n", (unsigned long long)result.nonfinite_samples);
     for (const auto& o : outputs) std::printf("wrote     %s\n", o.c_str());
   }
   return 0;
+}
+
+void check_csv_path(const std::string& path) {
+  std::string folder = path.substr(0, path.find_last_of('/') + 1);
+  if (!folder.empty() && access(folder.c_str(), W_OK) != 0)
+    throw InputError(path + ": folder does not exist or is not writable");
 }
 
 int cmd_devices(bool as_json) {
@@ -242,6 +281,9 @@ int cmd_compare(const std::string& a, const std::string& b, bool as_json) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Mesa's lavapipe warns on every start when XDG_RUNTIME_DIR is unset (as
+  // in containers and CI); it needs only a writable folder.
+  setenv("XDG_RUNTIME_DIR", "/tmp", 0);
   CLI::App app{"octrace: a Vulkan compute path tracer for sphere scenes"};
   app.require_subcommand(1);
   // A flag given twice takes its last value, as scripts that append flags expect.
@@ -268,6 +310,35 @@ int main(int argc, char** argv) {
   compare_cmd->add_option("reference", compare_b, "Reference image")->required();
   compare_cmd->add_flag("--json", as_json, "Machine-readable output");
 
+  BenchOptions bench;
+  std::vector<uint64_t> bench_spheres{488, 1000, 2000, 4000, 8000, 32000, 128000, 1000000};
+  std::vector<float> bench_radii{0.1f};
+  std::vector<std::string> bench_accels{"octree", "brute"}, bench_precisions{"fp32"};
+  std::string bench_size;
+  auto* bench_cmd = app.add_subcommand("bench", "Render time against sphere count per accel (the study's experiment)");
+  bench_cmd->add_option("--spheres", bench_spheres, "Sphere counts (comma-separated)")->delimiter(',')
+      ->capture_default_str();
+  bench_cmd->add_option("--radius", bench_radii, "Radii of the small spheres (comma-separated)")->delimiter(',')
+      ->capture_default_str();
+  bench_cmd->add_option("--accel", bench_accels, "octree,brute")->delimiter(',')->capture_default_str();
+  bench_cmd->add_option("--precision", bench_precisions, "Precisions (comma-separated)")->delimiter(',')
+      ->capture_default_str();
+  bench_cmd->add_option("--size", bench_size, "Image size (default 1200x800 on a GPU, 400x225 on a CPU device)");
+  bench_cmd->add_option("--spp", bench.settings.spp, "Samples per pixel")->capture_default_str();
+  bench_cmd->add_option("--depth", bench.settings.max_depth, "Bounce limit")->capture_default_str();
+  bench_cmd->add_option("--octree-leaf", bench.settings.octree.leaf_size, "Octree leaf size")->capture_default_str();
+  bench_cmd->add_option("--octree-depth", bench.settings.octree.max_depth, "Octree maximum depth")
+      ->capture_default_str();
+  bench_cmd->add_option("--repeat", bench.repeat, "Timed runs per configuration, after one warm-up")
+      ->capture_default_str();
+  bench_cmd->add_option("--budget", bench.budget_s, "Skip brute force predicted to take longer (seconds)")
+      ->capture_default_str();
+  bench_cmd->add_option("--seed", bench.seed, "Scene generator seed")->capture_default_str();
+  bench_cmd->add_option("--device", bench.device, "auto | cpu | gpu | INDEX")->capture_default_str();
+  bench_cmd->add_option("--csv", bench.csv, "Also write the results as CSV");
+  bench_cmd->add_flag("--validation", bench.validation, "Enable the Khronos validation layer");
+  bench_cmd->add_flag("--quiet,-q", bench.quiet, "No progress on stderr");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -284,6 +355,21 @@ int main(int argc, char** argv) {
     if (*render_cmd) code = cmd_render(scene_opts, render_opts, outputs, as_json, quiet);
     else if (*devices_cmd) code = cmd_devices(as_json);
     else if (*compare_cmd) code = cmd_compare(compare_a, compare_b, as_json);
+    else if (*bench_cmd) {
+      bench.spheres = bench_spheres;
+      bench.radii = bench_radii;
+      for (const auto& a : bench_accels) bench.accels.push_back(parse_accel(a));
+      bench.precisions = bench_precisions;
+      if (!bench_size.empty()) {
+        parse_size(bench_size, bench.settings);
+        bench.size_given = true;
+      }
+      if (bench.repeat < 1) throw InputError("--repeat: must be >= 1");
+      for (float r : bench.radii)
+        if (!(r > 0) || !std::isfinite(r)) throw InputError("--radius: must be finite numbers > 0");
+      if (!bench.csv.empty()) check_csv_path(bench.csv);
+      code = run_bench(bench);
+    }
   } catch (const InputError& e) {
     std::fprintf(stderr, "octrace: error: %s\n", e.what());
     return 2;

@@ -78,7 +78,8 @@ struct PathTracer::State {
   RenderSettings settings;
   RenderTimings timings;
   uint64_t pixels = 0;
-  Buffer frame, spheres, sphere_materials, materials, accum_sum, accum_comp, accum_sq, stats;
+  OctreeStats octree;
+  Buffer frame, spheres, sphere_materials, materials, accum_sum, accum_comp, accum_sq, stats, nodes, refs;
   ComputePipeline pipeline;
   VkQueryPool queries = VK_NULL_HANDLE;
 
@@ -109,6 +110,20 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
                      ", the device allows " + mib_string(limit) + " per buffer");
 
   auto start = Clock::now();
+  Octree octree;
+  if (settings.accel == Accel::Octree) {
+    octree = build_octree(scene.spheres, settings.octree);
+    s.octree = octree.stats;
+    s.timings.accel_build_ms = ms_since(start);
+    const uint64_t node_bytes = octree.nodes.size() * sizeof(gpu::GpuOctreeNode);
+    const uint64_t ref_bytes = octree.refs.size() * sizeof(uint32_t);
+    if (std::max(node_bytes, ref_bytes) > limit)
+      throw InputError("the octree of " + std::to_string(scene.spheres.size()) + " spheres needs " +
+                       mib_string(std::max(node_bytes, ref_bytes)) + " in one buffer, the device allows " +
+                       mib_string(limit) + " (try a larger --octree-leaf)");
+  }
+
+  start = Clock::now();
   std::vector<gpu::GpuSphere> spheres(scene.spheres.size());
   std::vector<uint32_t> sphere_materials(scene.spheres.size());
   for (size_t i = 0; i < scene.spheres.size(); ++i) {
@@ -132,6 +147,7 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
   frame.max_depth = settings.max_depth;
   frame.sample_seed = settings.sample_seed;
   frame.sphere_count = uint32_t(scene.spheres.size());
+  frame.big_count = octree.big_count;
 
   create_buffer(s.frame, ctx, sizeof(frame), false, "frame parameters");
   create_buffer(s.spheres, ctx, sphere_bytes, false, "sphere buffer");
@@ -141,6 +157,10 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
   create_buffer(s.accum_comp, ctx, accum_bytes, false, "accumulation buffer");
   create_buffer(s.accum_sq, ctx, accum_bytes, false, "accumulation buffer");
   create_buffer(s.stats, ctx, sizeof(gpu::RenderStats), false, "statistics buffer");
+  create_buffer(s.nodes, ctx, octree.nodes.size() * sizeof(gpu::GpuOctreeNode), false, "octree node buffer");
+  create_buffer(s.refs, ctx, octree.refs.size() * sizeof(uint32_t), false, "octree reference buffer");
+  upload_buffer(ctx, s.nodes, octree.nodes.data(), octree.nodes.size() * sizeof(gpu::GpuOctreeNode));
+  upload_buffer(ctx, s.refs, octree.refs.data(), octree.refs.size() * sizeof(uint32_t));
   upload_buffer(ctx, s.frame, &frame, sizeof(frame));
   upload_buffer(ctx, s.spheres, spheres.data(), sphere_bytes);
   upload_buffer(ctx, s.sphere_materials, sphere_materials.data(), sphere_materials.size() * 4);
@@ -148,10 +168,11 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
   s.timings.upload_ms = ms_since(start);
 
   start = Clock::now();
+  const uint32_t accel = settings.accel == Accel::Octree ? gpu::ACCEL_OCTREE : gpu::ACCEL_BRUTE;
   create_compute_pipeline(s.pipeline, ctx, path_trace_fp32_spv, sizeof(path_trace_fp32_spv), gpu::BINDING_COUNT,
-                          sizeof(gpu::PassConstants));
+                          sizeof(gpu::PassConstants), {{0, accel}});
   bind_buffers(s.pipeline, {&s.frame, &s.spheres, &s.sphere_materials, &s.materials, &s.accum_sum,
-                            &s.accum_comp, &s.accum_sq, &s.stats});
+                            &s.accum_comp, &s.accum_sq, &s.stats, &s.nodes, &s.refs});
   s.timings.pipeline_ms = ms_since(start);
 
   VkQueryPoolCreateInfo query_info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
@@ -164,6 +185,7 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
 PathTracer::~PathTracer() = default;
 
 const RenderTimings& PathTracer::setup_timings() const { return state_->timings; }
+const OctreeStats& PathTracer::octree_stats() const { return state_->octree; }
 
 void PathTracer::reset() {
   State& s = *state_;
@@ -231,6 +253,7 @@ RenderResult PathTracer::read_result() {
   if (s.pixels == 0) r.min_samples = 0;
   s.timings.readback_ms = ms_since(start);
   r.timings = s.timings;
+  r.octree = s.octree;
   return r;
 }
 

@@ -8,12 +8,17 @@
 #include <string>
 
 #include "image.h"
+#include "octree.h"
 #include "scene.h"
 #include "vk_context.h"
 
 namespace octrace {
 
+enum class Accel { Brute, Octree };
+
 struct RenderSettings {
+  Accel accel = Accel::Octree;
+  OctreeParams octree;
   int width = 1200;
   int height = 800;
   uint32_t spp = 10;
@@ -26,6 +31,7 @@ struct RenderSettings {
 void validate_settings(const RenderSettings& settings);
 
 struct RenderTimings {
+  double accel_build_ms = 0;   // octree build on the CPU (wall)
   double upload_ms = 0;        // buffer creation and scene upload (wall)
   double pipeline_ms = 0;      // compute pipeline creation (wall)
   double render_device_ms = 0; // path-tracing passes, timestamp queries (device)
@@ -40,6 +46,7 @@ struct RenderResult {
   uint32_t min_samples = 0;       // smallest per-pixel sample count
   uint64_t nonfinite_samples = 0; // NaN/Inf samples rejected (0 for a clean render)
   RenderTimings timings;
+  OctreeStats octree;             // zeros for --accel brute
 };
 
 // Called after each batch of passes: passes done, total passes.
@@ -61,6 +68,7 @@ class PathTracer {
   double run_passes(uint32_t first_sample, uint32_t count);
   RenderResult read_result();
   const RenderTimings& setup_timings() const;
+  const OctreeStats& octree_stats() const;
 
  private:
   struct State;

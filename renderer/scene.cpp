@@ -265,7 +265,8 @@ void validate_scene(const Scene& scene, const std::string& source) {
     if (!(std::isfinite(s.radius) && s.radius > 0.0f)) check_positive(s.radius, source, path("radius"));
     if (s.material >= scene.materials.size())
       invalid(source, path("material"), "index " + std::to_string(s.material) + " out of range (" +
-                                            std::to_string(scene.materials.size()) + " materials)");
+                                            std::to_string(scene.materials.size()) +
+                                            (scene.materials.size() == 1 ? " material)" : " materials)"));
   }
 }
 

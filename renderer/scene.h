@@ -70,7 +70,9 @@ struct RtiowParams {
   uint64_t seed = 1;       // seeds the generator (not the sampler)
 };
 
-// The "Ray Tracing in One Weekend" final scene, generalised to any sphere count.
+// The "Ray Tracing in One Weekend" final scene, generalised to any sphere count
+// (up to 100,000,000). Small spheres overlap neither each other nor the big ones
+// unless there is no room for that many of that radius (scene.cpp says how).
 // Throws InputError for parameters that cannot make a scene (radius <= 0, ...).
 Scene make_rtiow_scene(const RtiowParams& params);
 

@@ -337,9 +337,11 @@ void append(std::string& out, const std::vector<T>& items) {
 }  // namespace
 
 Scene parse_scene_json(const std::string& text, const std::string& source) {
-  // Spheres are converted as the parser finishes each one and then dropped from
-  // the document, so that a million spheres never exist as a JSON tree (~400
-  // bytes each) next to the Scene (20 bytes each). `open` follows the parser's
+  // The elements of "materials" and "spheres" are converted as the parser
+  // finishes each one and then dropped from the document: a million spheres never
+  // exist as a JSON tree (~400 bytes each) next to the Scene (20 bytes each), and
+  // nlohmann's callback parser, which scans an array from its start at every
+  // object end, has only the one element to scan. `open` follows the parser's
   // position: one entry per open object or array, with the current key or index.
   struct Open {
     bool is_array;
@@ -347,23 +349,26 @@ Scene parse_scene_json(const std::string& text, const std::string& source) {
     std::string key{};
   };
   std::vector<Open> open;
-  const auto in_spheres = [&] {
-    return open.size() == 2 && !open[0].is_array && open[0].key == "spheres" && open[1].is_array;
+  // The top-level list the parser is in: 0 none, 1 materials, 2 spheres (the
+  // indices of `lists` and `seen`).
+  const auto list = [&]() -> int {
+    if (open.size() != 2 || open[0].is_array || !open[1].is_array) return 0;
+    return open[0].key == "materials" ? 1 : open[0].key == "spheres" ? 2 : 0;
   };
   const Node root_path{nullptr, &source};
-  const Node spheres_path = root_path.member("spheres", nullptr);
-  std::vector<Sphere> spheres;
-  bool spheres_seen = false;
+  const Node lists[3] = {root_path, root_path.member("materials", nullptr), root_path.member("spheres", nullptr)};
+  bool seen[3] = {};
+  Scene scene;
   using Event = Json::parse_event_t;
   const auto on_event = [&](int, Event event, Json& parsed) {
     switch (event) {
       case Event::object_start:
       case Event::array_start:
         open.push_back({event == Event::array_start});
-        if (in_spheres()) {
-          // nlohmann keeps the last of duplicate keys; here both would be read, so refuse.
-          if (spheres_seen) spheres_path.fail("appears twice");
-          spheres_seen = true;
+        // nlohmann keeps the last of duplicate keys; here both lists would be read, so refuse.
+        if (const int l = list()) {
+          if (seen[l]) lists[l].fail("appears twice");
+          seen[l] = true;
         }
         return true;
       case Event::key:
@@ -379,9 +384,15 @@ Scene parse_scene_json(const std::string& text, const std::string& source) {
     // A value is complete.
     if (open.empty() || !open.back().is_array) return true;
     const size_t index = open.back().index++;
-    if (!in_spheres()) return true;
-    spheres.push_back(read_sphere(spheres_path.element(index, &parsed)));
-    return false;
+    switch (list()) {
+      case 1:
+        scene.materials.push_back(read_material(lists[1].element(index, &parsed)));
+        return false;
+      case 2:
+        scene.spheres.push_back(read_sphere(lists[2].element(index, &parsed)));
+        return false;
+    }
+    return true;
   };
 
   Json doc;
@@ -401,21 +412,17 @@ Scene parse_scene_json(const std::string& text, const std::string& source) {
     const std::string what = e.what();
     const size_t quote = what.find('\'');
     const std::string got = quote == std::string::npos ? "" : ", got " + what.substr(quote + 1, what.size() - quote - 2);
-    throw InputError(source + ": " + path + ": number out of range of a 32-bit float" + got);
+    throw InputError(source + ": " + (path.empty() ? "" : path + ": ") + "number out of range of a 32-bit float" + got);
   }
 
   const Node root{&doc, &source};
   if (!doc.is_object()) root.fail("expected a JSON object at the top level, got " + describe(doc));
   check_keys(root, {"camera", "sky", "materials", "spheres"});
-  Scene scene;
   if (const std::optional<Node> camera = root.find("camera")) scene.camera = read_camera(*camera);
   if (const std::optional<Node> sky = root.find("sky")) scene.sky = read_sky(*sky);
-  const Node materials = root.require("materials");
-  require_array(materials);
-  scene.materials.reserve(materials.value->size());
-  for (size_t i = 0; i < materials.value->size(); ++i) scene.materials.push_back(read_material(materials.element(i)));
-  require_array(root.require("spheres"));  // if it is one, the parser has emptied it into `spheres`
-  scene.spheres = std::move(spheres);
+  // If they are arrays, the parser has already moved their elements into `scene`.
+  require_array(root.require("materials"));
+  require_array(root.require("spheres"));
   validate_scene(scene, source);
   return scene;
 }

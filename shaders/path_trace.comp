@@ -15,6 +15,8 @@ layout(std430, binding = BINDING_ACCUM_SUM) buffer AccumSumBuf { vec4 accum_sum[
 layout(std430, binding = BINDING_ACCUM_COMP) buffer AccumCompBuf { vec4 accum_comp[]; };
 layout(std430, binding = BINDING_ACCUM_SQ) buffer AccumSqBuf { vec4 accum_sq[]; };
 layout(std430, binding = BINDING_STATS) buffer StatsBuf { RenderStats stats; };
+layout(std430, binding = BINDING_OCTREE_NODES) readonly buffer NodeBuf { GpuOctreeNode octree_nodes[]; };
+layout(std430, binding = BINDING_OCTREE_REFS) readonly buffer RefBuf { uint octree_refs[]; };
 
 layout(push_constant) uniform Push { PassConstants pass; };
 

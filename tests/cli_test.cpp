@@ -48,12 +48,17 @@ const char* VALID_SCENE = R"({
 
 // A bad-input case: the arguments, a substring the error must contain, the
 // expected exit code.
+// `scene`, when set, is written to a file of the test's own (the test binary
+// runs its cases as parallel processes) and passed as --scene.
 struct BadInput {
   const char* label;
   std::string args;
   std::string message;
+  std::string scene = "";
   int code = 2;
 };
+
+void PrintTo(const BadInput& c, std::ostream* os) { *os << c.label; }
 
 class BadInputTest : public ::testing::TestWithParam<BadInput> {};
 
@@ -61,16 +66,14 @@ TEST_P(BadInputTest, ClearMessageNonZeroExitNoOutput) {
   const BadInput& c = GetParam();
   std::string out = tmp(std::string(c.label) + ".png");
   fs::remove(out);
-  RunResult r = run_octrace("render --size 8x8 --spp 1 --quiet " + c.args + " --out " + out);
+  std::string args = c.args;
+  if (!c.scene.empty()) args += " --scene " + write_file(std::string(c.label) + ".json", c.scene);
+  RunResult r = run_octrace("render --size 8x8 --spp 1 --quiet " + args + " --out " + out);
   EXPECT_EQ(r.code, c.code) << r.output;
   EXPECT_NE(r.output.find(c.message), std::string::npos) << "expected \"" << c.message << "\" in: " << r.output;
   // One line: the message, nothing else (no stack trace, no usage dump).
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   EXPECT_FALSE(fs::exists(out)) << "an output file was created";
-}
-
-std::string scene_with(const std::string& name, const std::string& text) {
-  return "--scene " + write_file(name + ".json", text);
 }
 
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
@@ -95,22 +98,15 @@ const BadInput BAD_INPUTS[] = {
     {"unknown_flag", "--frobnicate", "frobnicate"},
     {"scene_and_spheres", "--scene x.json --spheres 5", "excludes"},
     {"scene_missing", "--scene /nonexistent/s.json", "/nonexistent/s.json"},
-    {"json_syntax", scene_with("syntax", "{\"camera\": "), "syntax.json"},
-    {"json_missing_radius", scene_with("missing", replaced(VALID_SCENE, "\"radius\": 1, ", "")),
-     "spheres[0].radius"},
-    {"json_wrong_type", scene_with("type", replaced(VALID_SCENE, "\"radius\": 1", "\"radius\": \"big\"")),
-     "spheres[0].radius"},
-    {"json_negative_radius", scene_with("negr", replaced(VALID_SCENE, "\"radius\": 1", "\"radius\": -1")),
-     "spheres[0].radius"},
-    {"json_huge_number", scene_with("inf", replaced(VALID_SCENE, "\"radius\": 1", "\"radius\": 1e999")),
-     "spheres[0].radius"},
-    {"json_material_index", scene_with("matidx", replaced(VALID_SCENE, "\"material\": 0", "\"material\": 3")),
-     "spheres[0].material"},
-    {"json_sky_type", scene_with("sky", replaced(VALID_SCENE, "\"uniform\"", "\"plaid\"")), "sky.type"},
-    {"json_material_type", scene_with("mtype", replaced(VALID_SCENE, "\"lambertian\"", "\"velvet\"")),
-     "materials[0].type"},
-    {"json_camera_vfov", scene_with("vfov", replaced(VALID_SCENE, "\"vfov\": 40", "\"vfov\": -40")),
-     "camera.vfov"},
+    {"json_syntax", "", "json_syntax.json", "{\"camera\": "},
+    {"json_missing_radius", "", "spheres[0].radius", replaced(VALID_SCENE, "\"radius\": 1, ", "")},
+    {"json_wrong_type", "", "spheres[0].radius", replaced(VALID_SCENE, "\"radius\": 1", "\"radius\": \"big\"")},
+    {"json_negative_radius", "", "spheres[0].radius", replaced(VALID_SCENE, "\"radius\": 1", "\"radius\": -1")},
+    {"json_huge_number", "", "spheres[0].radius", replaced(VALID_SCENE, "\"radius\": 1", "\"radius\": 1e999")},
+    {"json_material_index", "", "spheres[0].material", replaced(VALID_SCENE, "\"material\": 0", "\"material\": 3")},
+    {"json_sky_type", "", "sky.type", replaced(VALID_SCENE, "\"uniform\"", "\"plaid\"")},
+    {"json_material_type", "", "materials[0].type", replaced(VALID_SCENE, "\"lambertian\"", "\"velvet\"")},
+    {"json_camera_vfov", "", "camera.vfov", replaced(VALID_SCENE, "\"vfov\": 40", "\"vfov\": -40")},
     {"out_extension", "--out " + tmp("img.bmp"), "unknown image format"},
     {"out_folder", "--out /nonexistent/dir/x.png", "/nonexistent/dir/x.png"},
 };

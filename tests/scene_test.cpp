@@ -377,6 +377,8 @@ TEST(JsonErrors, WrongType) {
   EXPECT_EQ(parse_error(one_sphere("[1, 2, 3]")), "scene.json: spheres[0]: expected an object, got [1,2,3]");
   EXPECT_EQ(parse_error(one_sphere("7")), "scene.json: spheres[0]: expected an object, got 7");
   EXPECT_EQ(parse_error(R"({"materials": {}, "spheres": []})"), "scene.json: materials: expected an array, got {}");
+  EXPECT_EQ(parse_error(R"({"materials": [{"type": "lambertian", "albedo": [1, 1, 1]}, "red"], "spheres": []})"),
+            "scene.json: materials[1]: expected an object, got \"red\"");
   EXPECT_EQ(parse_error(R"({"materials": [], "spheres": 3})"), "scene.json: spheres: expected an array, got 3");
   EXPECT_EQ(parse_error("[]"), "scene.json: expected a JSON object at the top level, got []");
 }
@@ -397,7 +399,7 @@ TEST(JsonErrors, ValuesOutOfRange) {
   EXPECT_EQ(parse_error(one_sphere(many + R"({"center": [0, 0, 0], "radius": -1, "material": 0})")),
             "scene.json: spheres[12].radius: must be a finite number > 0, got -1");
   EXPECT_EQ(parse_error(one_sphere(R"({"center": [0, 0, 0], "radius": 1, "material": 7})")),
-            "scene.json: spheres[0].material: index 7 out of range (1 materials)");
+            "scene.json: spheres[0].material: index 7 out of range (1 material)");
   EXPECT_EQ(parse_error(R"({"materials": [{"type": "metal", "albedo": [1, 1, 1], "fuzz": 2}], "spheres": []})"),
             "scene.json: materials[0].fuzz: must be a number in [0, 1], got 2");
   EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "camera": {"vfov": 200}})"),
@@ -424,6 +426,7 @@ TEST(JsonErrors, UnknownKeys) {
   EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "lights": []})"),
             "scene.json: lights: unknown key (expected camera, sky, materials, spheres)");
   EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "spheres": []})"), "scene.json: spheres: appears twice");
+  EXPECT_EQ(parse_error(R"({"materials": [], "materials": [], "spheres": []})"), "scene.json: materials: appears twice");
 }
 
 TEST(JsonErrors, SyntaxErrorsGiveLineAndColumn) {

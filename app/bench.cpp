@@ -1,0 +1,166 @@
+#include "bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <optional>
+
+#include "vk_context.h"
+
+namespace octrace {
+
+namespace {
+
+struct Row {
+  uint64_t spheres;
+  float radius;
+  Accel accel;
+  std::string precision;
+  bool skipped = false;
+  std::string skip_reason;
+  double median_ms = 0, min_ms = 0, max_ms = 0;
+  double build_ms = 0, bytes_per_sphere = 0, refs_per_sphere = 0;
+  std::optional<double> speedup;  // brute median / octree median, same spheres, radius, precision
+};
+
+const char* accel_label(Accel a) { return a == Accel::Octree ? "octree" : "brute"; }
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+}  // namespace
+
+int run_bench(const BenchOptions& o) {
+  VulkanContext ctx;
+  create_context(ctx, {o.device, false, o.validation});
+  RenderSettings settings = o.settings;
+  if (!o.size_given) {
+    settings.width = ctx.info.software ? 400 : 1200;
+    settings.height = ctx.info.software ? 225 : 800;
+  }
+  validate_settings(settings);
+  for (const auto& p : o.precisions)
+    if (p != "fp32") throw InputError("--precision: expected fp32, got \"" + p + "\"");
+
+  if (!o.quiet)
+    std::fprintf(stderr, "bench on %s (%s): %dx%d, %u spp, depth %u, %u repeats after a warm-up\n",
+                 ctx.info.name.c_str(), ctx.info.type.c_str(), settings.width, settings.height, settings.spp,
+                 settings.max_depth, o.repeat);
+
+  std::vector<Row> rows;
+  // Last measured median per (accel, radius, precision) and its sphere count:
+  // brute force grows linearly with N, so the next size's time is predicted
+  // from it and skipped when the prediction exceeds the budget.
+  std::map<std::tuple<int, float, std::string>, std::pair<uint64_t, double>> last;
+  for (float radius : o.radii) {
+    for (uint64_t n : o.spheres) {
+      Scene scene = make_rtiow_scene({n, radius, o.seed});
+      for (const auto& precision : o.precisions) {
+        for (Accel accel : o.accels) {
+          Row row{n, radius, accel, precision};
+          auto key = std::make_tuple(int(accel), radius, precision);
+          if (accel == Accel::Brute && last.count(key)) {
+            auto [prev_n, prev_ms] = last[key];
+            double predicted_s = prev_ms * double(n + 4) / double(prev_n + 4) * (o.repeat + 1) / 1000.0;
+            if (predicted_s > o.budget_s) {
+              row.skipped = true;
+              row.skip_reason = "predicted " + fmt("%.0f", predicted_s) + " s > budget " +
+                                fmt("%.0f", o.budget_s) + " s (--budget)";
+              rows.push_back(row);
+              if (!o.quiet)
+                std::fprintf(stderr, "  %8llu spheres r=%g %-6s %s: skipped, %s\n", (unsigned long long)n, radius,
+                             accel_label(accel), precision.c_str(), row.skip_reason.c_str());
+              continue;
+            }
+          }
+          RenderSettings s = settings;
+          s.accel = accel;
+          PathTracer tracer(ctx, scene, s);
+          std::vector<double> times;
+          for (uint32_t rep = 0; rep <= o.repeat; ++rep) {
+            tracer.reset();
+            double ms = tracer.run_passes(0, s.spp);
+            if (rep > 0) times.push_back(ms);  // repetition 0 is the warm-up
+          }
+          row.median_ms = median(times);
+          row.min_ms = *std::min_element(times.begin(), times.end());
+          row.max_ms = *std::max_element(times.begin(), times.end());
+          row.build_ms = tracer.setup_timings().accel_build_ms;
+          row.bytes_per_sphere = tracer.octree_stats().bytes_per_sphere;
+          row.refs_per_sphere = tracer.octree_stats().refs_per_sphere;
+          last[key] = {n, row.median_ms};
+          if (!o.quiet)
+            std::fprintf(stderr, "  %8llu spheres r=%g %-6s %s: %.2f ms (min %.2f, max %.2f)\n",
+                         (unsigned long long)n, radius, accel_label(accel), precision.c_str(), row.median_ms,
+                         row.min_ms, row.max_ms);
+          rows.push_back(row);
+        }
+      }
+    }
+  }
+  for (Row& r : rows) {
+    if (r.accel != Accel::Octree || r.skipped) continue;
+    for (const Row& b : rows)
+      if (b.accel == Accel::Brute && !b.skipped && b.spheres == r.spheres && b.radius == r.radius &&
+          b.precision == r.precision)
+        r.speedup = b.median_ms / r.median_ms;
+  }
+
+  std::printf("Device: %s (%s, %s). Image %dx%d, %u spp, depth %u; render = device time of the passes "
+              "(timestamp queries), median of %u runs after a warm-up.\n\n",
+              ctx.info.name.c_str(), ctx.info.type.c_str(), ctx.info.driver.c_str(), settings.width,
+              settings.height, settings.spp, settings.max_depth, o.repeat);
+  std::printf("| spheres | radius | accel | precision | render ms (median) | min | max | speedup vs brute | "
+              "octree build ms | octree bytes/sphere |\n");
+  std::printf("|---:|---:|---|---|---:|---:|---:|---:|---:|---:|\n");
+  for (const Row& r : rows) {
+    std::printf("| %llu | %g | %s | %s | ", (unsigned long long)r.spheres, r.radius, accel_label(r.accel),
+                r.precision.c_str());
+    if (r.skipped) {
+      std::printf("skipped: %s | | | | | |\n", r.skip_reason.c_str());
+      continue;
+    }
+    std::printf("%.2f | %.2f | %.2f | %s | %s | %s |\n", r.median_ms, r.min_ms, r.max_ms,
+                r.speedup ? fmt("%.1fx", *r.speedup).c_str() : "",
+                r.accel == Accel::Octree ? fmt("%.1f", r.build_ms).c_str() : "",
+                r.accel == Accel::Octree ? fmt("%.1f", r.bytes_per_sphere).c_str() : "");
+  }
+
+  if (!o.csv.empty()) {
+    std::string tmp = o.csv + ".tmp";
+    {
+      std::ofstream f(tmp);
+      if (!f) throw RuntimeError(o.csv + ": cannot write");
+      f << "device,software,width,height,spp,depth,repeat,spheres,radius,accel,precision,skipped,median_ms,min_ms,"
+           "max_ms,speedup,build_ms,bytes_per_sphere,refs_per_sphere\n";
+      for (const Row& r : rows) {
+        f << '"' << ctx.info.name << "\"," << (ctx.info.software ? 1 : 0) << ',' << settings.width << ','
+          << settings.height << ',' << settings.spp << ',' << settings.max_depth << ',' << o.repeat << ','
+          << r.spheres << ',' << r.radius << ',' << accel_label(r.accel) << ',' << r.precision << ','
+          << (r.skipped ? 1 : 0) << ',';
+        if (r.skipped) {
+          f << ",,,,,,\n";
+          continue;
+        }
+        f << r.median_ms << ',' << r.min_ms << ',' << r.max_ms << ',' << (r.speedup ? *r.speedup : 0.0) << ','
+          << r.build_ms << ',' << r.bytes_per_sphere << ',' << r.refs_per_sphere << '\n';
+      }
+      if (!f) throw RuntimeError(o.csv + ": cannot write");
+    }
+    if (std::rename(tmp.c_str(), o.csv.c_str()) != 0) throw RuntimeError(o.csv + ": cannot write");
+  }
+  return 0;
+}
+
+}  // namespace octrace

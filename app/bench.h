@@ -1,0 +1,30 @@
+// `octrace bench`: the study's experiment (render time against sphere count
+// for each acceleration structure), repeated, with medians and spread.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "path_tracer.h"
+
+namespace octrace {
+
+struct BenchOptions {
+  std::vector<uint64_t> spheres;
+  std::vector<float> radii;
+  std::vector<Accel> accels;
+  std::vector<std::string> precisions;
+  RenderSettings settings;   // size, spp, depth, octree parameters
+  bool size_given = false;   // else 1200x800 on a GPU, 400x225 on a CPU device
+  uint32_t repeat = 5;
+  double budget_s = 60;      // skip a configuration predicted to take longer (all repeats)
+  uint64_t seed = 1;
+  std::string device = "auto";
+  bool validation = false;
+  std::string csv;
+  bool quiet = false;
+};
+
+int run_bench(const BenchOptions& options);
+
+}  // namespace octrace
