@@ -22,8 +22,12 @@ const uint NO_SPHERE = 0xffffffffu;
 void test_sphere(Ray ray, uint i, uint from_sphere, bool into_from, inout Hit hit) {
   bool self = i == from_sphere;
   GpuSphere s = spheres[i];
-  float t = intersect_sphere(ray, s.center, s.radius, hit.t, self && into_from, self && !into_from);
-  if (t < hit.t) {
+  // t_max is hit.t widened by one ulp so that a sphere at exactly the same
+  // distance is seen; the tie then goes to the lower index. The result is
+  // independent of the order spheres are tested in (octree == brute force).
+  float t = intersect_sphere(ray, s.center, s.radius, uintBitsToFloat(floatBitsToUint(hit.t) + 1u),
+                             self && into_from, self && !into_from);
+  if (t < hit.t || (t == hit.t && t != INF && i < hit.sphere)) {
     hit.t = t;
     hit.sphere = i;
   }

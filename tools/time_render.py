@@ -1,0 +1,50 @@
+#!/usr/bin/env python3
+"""Times `octrace render` the way the README reports it: one warm-up run, then
+N runs; prints the median, min and max of the device render time (timestamp
+queries, from --json) and of the whole process's wall time.
+
+  tools/time_render.py [--runs 5] [--octrace build/app/octrace] -- RENDER FLAGS...
+"""
+import argparse
+import json
+import statistics
+import subprocess
+import sys
+import time
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--runs", type=int, default=5)
+    ap.add_argument("--octrace", default="build/app/octrace")
+    ap.add_argument("flags", nargs=argparse.REMAINDER)
+    args = ap.parse_args()
+    flags = [f for f in args.flags if f != "--"]
+    cmd = [args.octrace, "render", "--json", "--quiet", "--out", "/tmp/octrace_time_render.pfm"] + flags
+    device_ms, wall_ms = [], []
+    summary = None
+    for i in range(args.runs + 1):
+        start = time.perf_counter()
+        out = subprocess.run(cmd, capture_output=True, text=True)
+        wall = (time.perf_counter() - start) * 1000
+        if out.returncode != 0:
+            sys.exit(f"time_render: {' '.join(cmd)} failed: {out.stderr.strip()}")
+        summary = json.loads(out.stdout)
+        if i == 0:
+            continue  # warm-up
+        device_ms.append(summary["times_ms"]["render"])
+        wall_ms.append(wall)
+
+    def line(name, xs):
+        return (f"{name:<22} median {statistics.median(xs):9.1f} ms  "
+                f"min {min(xs):9.1f}  max {max(xs):9.1f}  (n={len(xs)})")
+
+    d = summary["device"]
+    print(f"device: {d['name']} ({d['type']}); {summary['width']}x{summary['height']}, {summary['spp']} spp, "
+          f"depth {summary['depth']}, accel {summary['accel']}, scene {summary['scene']['source']}")
+    print(line("render (device time)", device_ms))
+    print(line("whole process (wall)", wall_ms))
+
+
+if __name__ == "__main__":
+    main()
