@@ -61,20 +61,48 @@ struct Split {
   size_t total = 0;  // references in all children together
 };
 
-// Decides whether the node (references `refs`, box `box`) splits (octree.h
+// The cost of visiting a node in sphere tests: a box test costs about what a
+// sphere test does, and a node is twice a sphere's bytes. With 1 instead, the
+// 1M-sphere rtiow field is cut to leaves of 4 copies of the same few spheres
+// (58 bytes per sphere instead of 21).
+constexpr double kNodeCost = 2.0;
+
+// Along any path from the root, the product of the duplication factors of the
+// splits (child references / node references) stays within this.
+constexpr double kMaxDuplication = 8.0;
+
+// What a node's split depends on besides its references. `budget` bounds the
+// references its subtree's leaves may hold: the root has kMaxDuplication times
+// its references; a split shares its budget among the children in proportion
+// to their references, and may not produce more references than the budget.
+struct Node {
+  Box box;
+  uint32_t depth;
+  double budget;
+};
+
+Node child_node(const Node& parent, const Split& split, int k) {
+  return {split.box[k], parent.depth + 1, parent.budget * split.count[k] / static_cast<double>(split.total)};
+}
+
+// Decides whether the node (references `refs`, box and depth in `node`) splits (octree.h
 // "How it is built"). If it does, fills `split` and the octant set of each
 // reference in `octants`.
-bool plan_split(const Ref* refs, size_t n, const Box& box, uint32_t depth, const OctreeParams& params,
-                uint8_t* octants, Split& split) {
-  if (n <= params.leaf_size || depth >= params.max_depth) return false;
+bool plan_split(const Ref* refs, size_t n, const Node& node, const OctreeParams& params, uint8_t* octants,
+                Split& split) {
+  if (n <= params.leaf_size || node.depth >= params.max_depth) return false;
+  const Box& box = node.box;
   const glm::vec3 extent = box.hi - box.lo;
   const float largest = std::max({extent.x, extent.y, extent.z});
-  glm::vec3 mid;
+  glm::vec3 mid = box.lo + 0.5f * extent;
+  size_t straddling[3] = {};
+  for (size_t i = 0; i < n; ++i)
+    for (int a = 0; a < 3; ++a) straddling[a] += refs[i].lo[a] < mid[a] && refs[i].hi[a] >= mid[a];
   bool any = false;
   for (int a = 0; a < 3; ++a) {
-    mid[a] = box.lo[a] + 0.5f * extent[a];
     // An axis not split gets mid = +inf: every reference is on its low side.
-    const bool split_axis = extent[a] >= 0.5f * largest && box.lo[a] < mid[a] && mid[a] < box.hi[a];
+    const bool split_axis = extent[a] >= 0.5f * largest && box.lo[a] < mid[a] && mid[a] < box.hi[a] &&
+                            straddling[a] < n;
     if (!split_axis) mid[a] = std::numeric_limits<float>::infinity();
     any |= split_axis;
   }
@@ -106,11 +134,12 @@ bool plan_split(const Ref* refs, size_t n, const Box& box, uint32_t depth, const
   }
   // Surface area heuristic (MacDonald and Booth 1990): a ray that meets the
   // node meets child k with probability area_k / area. Split only if that
-  // lowers the expected work, counting a child's box test like a sphere test.
+  // lowers the expected work.
   double split_cost = 0.0;
   for (int k = 0; k < 8; ++k)
-    if (split.count[k] != 0) split_cost += half_area(split.box[k]) * (split.count[k] + 1.0);
-  return split_cost < half_area(box) * static_cast<double>(n);
+    if (split.count[k] != 0) split_cost += half_area(split.box[k]) * (split.count[k] + kNodeCost);
+  return split_cost < half_area(box) * static_cast<double>(n) &&
+         static_cast<double>(split.total) <= node.budget;
 }
 
 // Copies each reference into the ranges of its octants, keeping their order
@@ -145,12 +174,12 @@ class SubtreeBuilder {
  public:
   explicit SubtreeBuilder(const OctreeParams& params) : params_(params) {}
 
-  Subtree build(const std::vector<Ref>& refs, const Box& box, uint32_t depth) {
+  Subtree build(const std::vector<Ref>& refs, const Node& root) {
     out_ = {};
-    out_.nodes.push_back(make_node(box));
+    out_.nodes.push_back(make_node(root.box));
     reserve(refs.size());
     std::copy(refs.begin(), refs.end(), scratch_.begin());
-    build_node(0, 0, refs.size(), refs.size(), box, depth);
+    build_node(0, 0, refs.size(), refs.size(), root);
     return std::move(out_);
   }
 
@@ -161,14 +190,14 @@ class SubtreeBuilder {
   }
 
   // The node's references are scratch_[begin, end); scratch_ from `top` on is free.
-  void build_node(uint32_t node, size_t begin, size_t end, size_t top, const Box& box, uint32_t depth) {
+  void build_node(uint32_t index, size_t begin, size_t end, size_t top, const Node& node) {
     const size_t n = end - begin;
-    out_.max_depth = std::max(out_.max_depth, depth);
+    out_.max_depth = std::max(out_.max_depth, node.depth);
     reserve(n);
     Split split;
-    if (!plan_split(scratch_.data() + begin, n, box, depth, params_, octants_.data(), split)) {
-      out_.nodes[node].first = static_cast<uint32_t>(out_.refs.size());
-      out_.nodes[node].count_or_mask = static_cast<uint32_t>(n);
+    if (!plan_split(scratch_.data() + begin, n, node, params_, octants_.data(), split)) {
+      out_.nodes[index].first = static_cast<uint32_t>(out_.refs.size());
+      out_.nodes[index].count_or_mask = static_cast<uint32_t>(n);
       for (size_t i = begin; i < end; ++i) out_.refs.push_back(scratch_[i].sphere);
       ++out_.leaves;
       return;
@@ -177,15 +206,15 @@ class SubtreeBuilder {
     scatter(scratch_.data() + begin, n, octants_.data(), split, scratch_.data() + top);
 
     const uint32_t first = static_cast<uint32_t>(out_.nodes.size());
-    out_.nodes[node].first = first;
-    out_.nodes[node].count_or_mask = gpu::OCTREE_INTERNAL | split.mask;
+    out_.nodes[index].first = first;
+    out_.nodes[index].count_or_mask = gpu::OCTREE_INTERNAL | split.mask;
     for (int k = 0; k < 8; ++k)
       if (split.count[k] != 0) out_.nodes.push_back(make_node(split.box[k]));
     uint32_t child = first;
     size_t child_begin = top;
     for (int k = 0; k < 8; ++k) {
       if (split.count[k] == 0) continue;
-      build_node(child++, child_begin, child_begin + split.count[k], top + split.total, split.box[k], depth + 1);
+      build_node(child++, child_begin, child_begin + split.count[k], top + split.total, child_node(node, split, k));
       child_begin += split.count[k];
     }
   }
@@ -198,10 +227,9 @@ class SubtreeBuilder {
 
 // A node of the top of the tree whose subtree is still to be built.
 struct Pending {
-  uint32_t node;  // index in the top nodes
+  uint32_t index;  // in the top nodes
   std::vector<Ref> refs;
-  Box box;
-  uint32_t depth;
+  Node node;
   bool splittable = true;
 };
 
@@ -251,7 +279,7 @@ Octree build_octree(const std::vector<Sphere>& spheres, const OctreeParams& para
   tree.refs = big;
   tree.big_count = static_cast<uint32_t>(big.size());
 
-  Pending root{0, {}, {}, 0};
+  Pending root{0, {}, {}};
   root.refs.reserve(spheres.size() - big.size());
   for (uint32_t i = 0, b = 0; i < spheres.size(); ++i) {
     if (b < big.size() && big[b] == i) {
@@ -260,10 +288,11 @@ Octree build_octree(const std::vector<Sphere>& spheres, const OctreeParams& para
     }
     const Box box = sphere_box(spheres[i]);
     root.refs.push_back({box.lo, box.hi, i});
-    root.box.extend(box);
+    root.node.box.extend(box);
   }
-  if (root.refs.empty()) root.box = {glm::vec3(0.0f), glm::vec3(0.0f)};
-  tree.nodes.push_back(make_node(root.box));
+  if (root.refs.empty()) root.node.box = {glm::vec3(0.0f), glm::vec3(0.0f)};
+  root.node.budget = kMaxDuplication * static_cast<double>(root.refs.size());
+  tree.nodes.push_back(make_node(root.node.box));
 
   // Top of the tree: split the largest pending subtree until every one is small
   // enough to share out. The threshold depends on the input only.
@@ -282,23 +311,23 @@ Octree build_octree(const std::vector<Sphere>& spheres, const OctreeParams& para
     Pending& p = pending[largest];
     octants.resize(p.refs.size());
     Split split;
-    if (!plan_split(p.refs.data(), p.refs.size(), p.box, p.depth, params, octants.data(), split)) {
+    if (!plan_split(p.refs.data(), p.refs.size(), p.node, params, octants.data(), split)) {
       p.splittable = false;
       continue;
     }
     std::vector<Ref> children(split.total);
     scatter(p.refs.data(), p.refs.size(), octants.data(), split, children.data());
     const uint32_t first = static_cast<uint32_t>(tree.nodes.size());
-    tree.nodes[p.node].first = first;
-    tree.nodes[p.node].count_or_mask = gpu::OCTREE_INTERNAL | split.mask;
+    tree.nodes[p.index].first = first;
+    tree.nodes[p.index].count_or_mask = gpu::OCTREE_INTERNAL | split.mask;
     std::vector<Pending> replacement;
     size_t at = 0;
     for (int k = 0; k < 8; ++k) {
       if (split.count[k] == 0) continue;
-      const uint32_t node = static_cast<uint32_t>(tree.nodes.size());
+      const uint32_t index = static_cast<uint32_t>(tree.nodes.size());
       tree.nodes.push_back(make_node(split.box[k]));
-      replacement.push_back({node, {children.begin() + at, children.begin() + at + split.count[k]},
-                             split.box[k], p.depth + 1});
+      replacement.push_back({index, {children.begin() + at, children.begin() + at + split.count[k]},
+                             child_node(p.node, split, k)});
       at += split.count[k];
     }
     pending.erase(pending.begin() + largest);
@@ -317,7 +346,7 @@ Octree build_octree(const std::vector<Sphere>& spheres, const OctreeParams& para
     SubtreeBuilder builder(params);
     for (size_t i; (i = next++) < schedule.size();) {
       const Pending& p = pending[schedule[i]];
-      subtrees[schedule[i]] = builder.build(p.refs, p.box, p.depth);
+      subtrees[schedule[i]] = builder.build(p.refs, p.node);
     }
   };
   const size_t threads = std::min<size_t>(std::max(1u, std::thread::hardware_concurrency()), pending.size());
@@ -338,7 +367,7 @@ Octree build_octree(const std::vector<Sphere>& spheres, const OctreeParams& para
       n.first += static_cast<uint32_t>((n.count_or_mask & gpu::OCTREE_INTERNAL) ? node_base : ref_base);
       return n;
     };
-    tree.nodes[pending[i].node] = fix(s.nodes[0]);
+    tree.nodes[pending[i].index] = fix(s.nodes[0]);
     for (size_t j = 1; j < s.nodes.size(); ++j) tree.nodes.push_back(fix(s.nodes[j]));
     tree.refs.insert(tree.refs.end(), s.refs.begin(), s.refs.end());
     tree.stats.leaves += s.leaves;

@@ -45,7 +45,8 @@ struct OctreeStats {
 //                   octant k has a child; octant k = (x >= mid.x)
 //                   | (y >= mid.y) << 1 | (z >= mid.z) << 2.
 //                   leaf: the number of references (< OCTREE_INTERNAL; 0 only
-//                   for the root of a tree with no spheres in it).
+//                   for the root of a tree with no spheres in it, whose box
+//                   is then the point lo = hi = 0).
 //   first           internal node: index of its first child in `nodes`; the
 //                   present children follow consecutively in octant order.
 //                   leaf: index of its first reference in `refs`.
@@ -81,22 +82,28 @@ struct OctreeStats {
 // traversal"), because the siblings' boxes lie on their own side of the planes.
 //
 // How it is built. The root's cell is the AABB of the non-big spheres (from the
-// scene, no constants). A node splits at the midpoint of its box, on each axis
-// whose box extent is at least half the largest one (so a flat field of spheres
-// is split like a quadtree, and a zero extent never), into the octants its
-// references' AABBs overlap: the low half [lo, mid] takes a sphere whose AABB
-// has lo < mid, the high half [mid, hi] one whose AABB has hi >= mid (so every
-// point of a sphere's AABB lies in a child that holds it). Splitting at the box
-// rather than the cell midpoint skips the empty levels above a small cluster.
+// scene, no constants). A node splits at the midpoint of its box into the
+// octants its references' AABBs overlap: the low half [lo, mid] takes a sphere
+// whose AABB has lo < mid, the high half [mid, hi] one whose AABB has hi >= mid
+// (so every point of a sphere's AABB lies in a child that holds it). Splitting
+// at the box rather than the cell midpoint skips the empty levels above a small
+// cluster. An axis is split only if its box extent is at least half the largest
+// one (a flat field of spheres is split like a quadtree; a zero extent never)
+// and not every reference straddles its midpoint (that would only copy them).
 // A node splits while it holds more than leaf_size references and its depth is
-// below max_depth, and only if the split lowers the expected cost of a ray that
-// meets the node: sum over children of area_k * (count_k + 1) < area * count
-// (surface area heuristic, MacDonald and Booth 1990; the +1 is the child's box
-// test). This is what stops splits that make no progress: if every child holds
-// all the references (coincident spheres), the children's areas add up to at
-// least the node's, and a split that mostly duplicates references costs more
-// than it saves; without it a dense field of spheres that touch their
-// neighbours would be cut into leaves holding copies of the same spheres.
+// below max_depth, and only if
+//   - the split lowers the expected cost of a ray that meets the node:
+//     sum over children of area_k * (count_k + 2) < area * count (surface area
+//     heuristic, MacDonald and Booth 1990; 2 = a node visit in sphere tests).
+//     This is what stops a split that makes no progress: when every child holds
+//     all the references (coincident spheres) the children's areas add up to at
+//     least the node's; and
+//   - the references it creates stay within its budget: along any path from the
+//     root the product of the splits' duplication factors (child references /
+//     node references) is at most 8, so the references never exceed 8 per
+//     sphere, whatever the input (a hard bound, where the heuristic is not).
+// The top levels are split on the calling thread, the subtrees below them in
+// parallel; the result depends only on the input.
 //
 // Big spheres. Sort by radius, descending (ties by index). Sphere i of that
 // order is big when its diameter exceeds half the largest extent of the AABB of

@@ -48,18 +48,21 @@ vec3 safe_inverse(vec3 d) {
 // "Robust Ray-Bounds Intersections"): the rounding of (plane - origin) * inv
 // could otherwise make a ray that grazes a face miss the box. Returns whether
 // the ray meets the box before t_max, and where it enters (>= 0).
+// The same widening applies to comparisons of an entry distance with the
+// nearest hit: the computed entry may lie a few ulps past the true one.
+const float WIDEN = 1.0 + 2.0 * (3.0 * 5.96046448e-8) / (1.0 - 3.0 * 5.96046448e-8);
+
 bool hit_box(vec3 lo, vec3 hi, vec3 origin, vec3 inv_dir, float t_max, out float t_entry) {
-  const float WIDEN = 1.0 + 2.0 * (3.0 * 5.96046448e-8) / (1.0 - 3.0 * 5.96046448e-8);
   vec3 t0 = (lo - origin) * inv_dir;
   vec3 t1 = (hi - origin) * inv_dir;
   vec3 near_t = min(t0, t1);
   vec3 far_t = max(t0, t1);
   t_entry = max(max(near_t.x, near_t.y), max(near_t.z, 0.0));
   float t_exit = min(min(far_t.x, far_t.y), far_t.z) * WIDEN;
-  return t_entry <= t_exit && t_entry < t_max;
+  return t_entry <= t_exit && t_entry <= t_max * WIDEN;
 }
 
-// Octree traversal, front to back with a stack of node indices. Children are
+// Octree traversal, front to back with a stack of (node, entry distance). Children are
 // visited in octant order XOR the ray's sign mask: for the disjoint boxes of
 // one node's children this is an order in which no child can be entered
 // after one listed later (Revelles et al. 2000, "An efficient parametric
@@ -87,17 +90,23 @@ bool closest_hit(Ray ray, uint from_sphere, bool into_from, out Hit hit) {
   vec3 inv_dir = safe_inverse(ray.dir);
   uint sign_mask = (floatBitsToUint(ray.dir.x) >> 31) | ((floatBitsToUint(ray.dir.y) >> 31) << 1) |
                    ((floatBitsToUint(ray.dir.z) >> 31) << 2);
-  uint stack[STACK_SIZE];
+  uint stack_node[STACK_SIZE];
+  float stack_entry[STACK_SIZE];  // where the ray enters the node's box
   uint sp = 0;
   float t_entry;
   GpuOctreeNode root = octree_nodes[0];
-  if (hit_box(root.lo, root.hi, ray.origin, inv_dir, hit.t, t_entry)) stack[sp++] = 0u;
+  if (hit_box(root.lo, root.hi, ray.origin, inv_dir, hit.t, t_entry)) {
+    stack_node[0] = 0u;
+    stack_entry[0] = t_entry;
+    sp = 1;
+  }
 
   while (sp > 0) {
-    GpuOctreeNode node = octree_nodes[stack[--sp]];
+    --sp;
     // The node was pushed when its box was met before the nearest hit of that
-    // moment; a nearer hit found since may rule it out.
-    if (!hit_box(node.lo, node.hi, ray.origin, inv_dir, hit.t, t_entry)) continue;
+    // moment; a nearer hit found since rules it out (the early exit).
+    if (stack_entry[sp] > hit.t * WIDEN) continue;
+    GpuOctreeNode node = octree_nodes[stack_node[sp]];
     if (node.count_or_mask < OCTREE_INTERNAL) {
       for (uint k = node.first; k < node.first + node.count_or_mask; ++k)
         test_sphere(ray, octree_refs[k], from_sphere, into_from, hit);
@@ -110,7 +119,11 @@ bool closest_hit(Ray ray, uint from_sphere, bool into_from, out Hit hit) {
       if ((mask & (1u << octant)) == 0u) continue;
       uint child = node.first + bitCount(mask & ((1u << octant) - 1u));
       GpuOctreeNode c = octree_nodes[child];
-      if (hit_box(c.lo, c.hi, ray.origin, inv_dir, hit.t, t_entry)) stack[sp++] = child;
+      if (hit_box(c.lo, c.hi, ray.origin, inv_dir, hit.t, t_entry)) {
+        stack_node[sp] = child;
+        stack_entry[sp] = t_entry;
+        ++sp;
+      }
     }
   }
   return hit.sphere != NO_SPHERE;

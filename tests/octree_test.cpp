@@ -439,6 +439,21 @@ TEST(Octree, HugeCoordinates) {
   expect_correct_octree(spheres, {1, 20});
 }
 
+TEST(Octree, ReferencesStayWithinEightPerSphere) {
+  // Overlapping spheres far smaller than a float step at 1e5 in x: the box is
+  // flat in x, and every sphere straddles the z midpoint. Once, this doubled
+  // the references at every level.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<float> u(-5e-6f, 5e-6f);
+  std::vector<Sphere> line(10000);
+  for (Sphere& s : line) s = {{1e5f + u(rng), u(rng), 0.0f}, 1e-7f, 0};
+  for (const OctreeParams params : {OctreeParams{}, OctreeParams{1, 20}}) {
+    const Octree tree = build_octree(line, params);
+    EXPECT_LE(tree.refs.size(), 8 * line.size());
+    expect_correct_octree(line, params, 500);
+  }
+}
+
 TEST(Octree, SameInputSameOutput) {
   // Large enough to be built by several threads.
   const auto spheres = rtiow(300000, 0.02f);
@@ -452,7 +467,8 @@ TEST(Octree, SameInputSameOutput) {
   }
   const uint32_t deepest = expect_valid_structure(a, spheres, {});
   expect_consistent_stats(a, spheres, deepest);
-  expect_same_hits(a, spheres, 200);
+  expect_spheres_findable(a, spheres);
+  expect_same_hits(a, spheres, 500);
 }
 
 TEST(Octree, AtMost64BytesPerSphere) {
