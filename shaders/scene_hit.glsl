@@ -113,10 +113,18 @@ bool closest_hit(Ray ray, uint from_sphere, bool into_from, out Hit hit) {
       continue;
     }
     uint mask = node.count_or_mask & 0xffu;
-    // Push far children first so the nearest is popped next.
-    for (int j = 7; j >= 0; --j) {
-      uint octant = uint(j) ^ sign_mask;
-      if ((mask & (1u << octant)) == 0u) continue;
+    // Visit order j = octant XOR sign_mask. Permute the child mask into that
+    // order (XOR of the index by the sign bits swaps bits, pairs and nibbles),
+    // then walk only the present children, farthest first so the nearest is
+    // pushed last and popped next: a loop of as many trips as children, not 8.
+    uint ordered = mask;
+    if ((sign_mask & 1u) != 0u) ordered = ((ordered & 0x55u) << 1) | ((ordered >> 1) & 0x55u);
+    if ((sign_mask & 2u) != 0u) ordered = ((ordered & 0x33u) << 2) | ((ordered >> 2) & 0x33u);
+    if ((sign_mask & 4u) != 0u) ordered = ((ordered & 0x0fu) << 4) | ((ordered >> 4) & 0x0fu);
+    while (ordered != 0u) {
+      uint j = uint(findMSB(ordered));
+      ordered ^= 1u << j;
+      uint octant = j ^ sign_mask;
       uint child = node.first + bitCount(mask & ((1u << octant) - 1u));
       GpuOctreeNode c = octree_nodes[child];
       if (hit_box(c.lo, c.hi, ray.origin, inv_dir, hit.t, t_entry)) {
