@@ -17,7 +17,7 @@ struct Row {
   uint64_t spheres;
   float radius;
   Accel accel;
-  std::string precision;
+  Precision precision;
   bool skipped = false;
   std::string skip_reason;
   double median_ms = 0, min_ms = 0, max_ms = 0;
@@ -43,15 +43,15 @@ std::string fmt(const char* f, double v) {
 
 int run_bench(const BenchOptions& o) {
   VulkanContext ctx;
-  create_context(ctx, {o.device, false, o.validation});
+  bool need_fp16 = false;
+  for (Precision p : o.precisions) need_fp16 |= p != Precision::FP32;
+  create_context(ctx, {o.device, need_fp16, o.validation});
   RenderSettings settings = o.settings;
   if (!o.size_given) {
     settings.width = ctx.info.software ? 400 : 1200;
     settings.height = ctx.info.software ? 225 : 800;
   }
   validate_settings(settings);
-  for (const auto& p : o.precisions)
-    if (p != "fp32") throw InputError("--precision: expected fp32, got \"" + p + "\"");
 
   if (!o.quiet)
     std::fprintf(stderr, "bench on %s (%s): %dx%d, %u spp, depth %u, %u repeats after a warm-up\n",
@@ -62,11 +62,11 @@ int run_bench(const BenchOptions& o) {
   // Last measured median per (accel, radius, precision) and its sphere count:
   // brute force grows linearly with N, so the next size's time is predicted
   // from it and skipped when the prediction exceeds the budget.
-  std::map<std::tuple<int, float, std::string>, std::pair<uint64_t, double>> last;
+  std::map<std::tuple<int, float, Precision>, std::pair<uint64_t, double>> last;
   for (float radius : o.radii) {
     for (uint64_t n : o.spheres) {
       Scene scene = make_rtiow_scene({n, radius, o.seed});
-      for (const auto& precision : o.precisions) {
+      for (Precision precision : o.precisions) {
         for (Accel accel : o.accels) {
           Row row{n, radius, accel, precision};
           auto key = std::make_tuple(int(accel), radius, precision);
@@ -80,12 +80,13 @@ int run_bench(const BenchOptions& o) {
               rows.push_back(row);
               if (!o.quiet)
                 std::fprintf(stderr, "  %8llu spheres r=%g %-6s %s: skipped, %s\n", (unsigned long long)n, radius,
-                             accel_label(accel), precision.c_str(), row.skip_reason.c_str());
+                             accel_label(accel), precision_name(precision), row.skip_reason.c_str());
               continue;
             }
           }
           RenderSettings s = settings;
           s.accel = accel;
+          s.precision = precision;
           PathTracer tracer(ctx, scene, s);
           std::vector<double> times;
           for (uint32_t rep = 0; rep <= o.repeat; ++rep) {
@@ -102,7 +103,7 @@ int run_bench(const BenchOptions& o) {
           last[key] = {n, row.median_ms};
           if (!o.quiet)
             std::fprintf(stderr, "  %8llu spheres r=%g %-6s %s: %.2f ms (min %.2f, max %.2f)\n",
-                         (unsigned long long)n, radius, accel_label(accel), precision.c_str(), row.median_ms,
+                         (unsigned long long)n, radius, accel_label(accel), precision_name(precision), row.median_ms,
                          row.min_ms, row.max_ms);
           rows.push_back(row);
         }
@@ -126,7 +127,7 @@ int run_bench(const BenchOptions& o) {
   std::printf("|---:|---:|---|---|---:|---:|---:|---:|---:|---:|\n");
   for (const Row& r : rows) {
     std::printf("| %llu | %g | %s | %s | ", (unsigned long long)r.spheres, r.radius, accel_label(r.accel),
-                r.precision.c_str());
+                precision_name(r.precision));
     if (r.skipped) {
       std::printf("skipped: %s | | | | | |\n", r.skip_reason.c_str());
       continue;
@@ -147,7 +148,7 @@ int run_bench(const BenchOptions& o) {
       for (const Row& r : rows) {
         f << '"' << ctx.info.name << "\"," << (ctx.info.software ? 1 : 0) << ',' << settings.width << ','
           << settings.height << ',' << settings.spp << ',' << settings.max_depth << ',' << o.repeat << ','
-          << r.spheres << ',' << r.radius << ',' << accel_label(r.accel) << ',' << r.precision << ','
+          << r.spheres << ',' << r.radius << ',' << accel_label(r.accel) << ',' << precision_name(r.precision) << ','
           << (r.skipped ? 1 : 0) << ',';
         if (r.skipped) {
           f << ",,,,,,\n";

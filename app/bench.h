@@ -13,7 +13,7 @@ struct BenchOptions {
   std::vector<uint64_t> spheres;
   std::vector<float> radii;
   std::vector<Accel> accels;
-  std::vector<std::string> precisions;
+  std::vector<Precision> precisions;
   RenderSettings settings;   // size, spp, depth, octree parameters
   bool size_given = false;   // else 1200x800 on a GPU, 400x225 on a CPU device
   uint32_t repeat = 5;

@@ -19,6 +19,7 @@
 #include "image.h"
 #include "path_tracer.h"
 #include "scene.h"
+#include "view.h"
 #include "vk_context.h"
 
 using namespace octrace;
@@ -86,12 +87,15 @@ const char* accel_name(Accel a) { return a == Accel::Octree ? "octree" : "brute"
 struct RenderOptions {
   std::string size = "1200x800";
   std::string accel = "octree";
+  std::string precision = "fp32";
   RenderSettings settings;
   std::string device = "auto";
   bool validation = false;
 
   void add_to(CLI::App& cmd) {
     cmd.add_option("--accel", accel, "Acceleration structure: octree | brute")->capture_default_str();
+    cmd.add_option("--precision", precision, "Shading precision: fp32 | fp16 | fp16-all (see README)")
+        ->capture_default_str();
     cmd.add_option("--octree-leaf", settings.octree.leaf_size, "Octree: split cells holding more spheres than this")
         ->capture_default_str();
     cmd.add_option("--octree-depth", settings.octree.max_depth, "Octree: maximum depth")->capture_default_str();
@@ -108,6 +112,7 @@ struct RenderOptions {
   RenderSettings parsed() const {
     RenderSettings s = settings;
     s.accel = parse_accel(accel);
+    s.precision = parse_precision(precision);
     parse_size(size, s);
     validate_settings(s);
     return s;
@@ -164,7 +169,7 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
 
   start = Clock::now();
   VulkanContext ctx;
-  create_context(ctx, {render_opts.device, false, render_opts.validation});
+  create_context(ctx, {render_opts.device, settings.precision != Precision::FP32, render_opts.validation});
   double device_ms = ms_since(start);
   if (ctx.info.software && !quiet && !as_json)
     std::fprintf(stderr, "octrace: rendering on %s, a CPU (software) Vulkan device: its timings are not a GPU's\n",
@@ -191,6 +196,7 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
               {"depth", settings.max_depth},
               {"sample_seed", settings.sample_seed},
               {"accel", accel_name(settings.accel)},
+              {"precision", precision_name(settings.precision)},
               {"times_ms", {{"scene", scene_ms},
                             {"device_init", device_ms},
                             {"accel_build", t.accel_build_ms},
@@ -217,8 +223,8 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
     std::printf("device    %s (%s)\n", ctx.info.name.c_str(), ctx.info.type.c_str());
     std::printf("scene     %s: %zu spheres, %zu materials\n", scene_opts.describe().c_str(), scene.spheres.size(),
                 scene.materials.size());
-    std::printf("image     %dx%d, %u spp, depth %u, sample seed %u\n", settings.width, settings.height,
-                settings.spp, settings.max_depth, settings.sample_seed);
+    std::printf("image     %dx%d, %u spp, depth %u, sample seed %u, %s\n", settings.width, settings.height,
+                settings.spp, settings.max_depth, settings.sample_seed, precision_name(settings.precision));
     if (settings.accel == Accel::Octree)
       std::printf("octree    %u nodes, %u leaves, depth %u, %.2f refs/sphere, %.1f bytes/sphere, %u big spheres\n",
                   result.octree.nodes, result.octree.leaves, result.octree.max_depth_reached,
@@ -301,6 +307,13 @@ int main(int argc, char** argv) {
   render_cmd->add_flag("--json", as_json, "Print a machine-readable summary on stdout");
   render_cmd->add_flag("--quiet,-q", quiet, "No progress or summary");
 
+  ViewOptions view_opts;
+  auto* view_cmd = app.add_subcommand("view", "Open a window that shows the image converge, pass by pass");
+  scene_opts.add_to(*view_cmd);
+  render_opts.add_to(*view_cmd);
+  view_cmd->remove_option(view_cmd->get_option("--spp"));  // the window accumulates until --max-spp
+  view_opts.add_to(*view_cmd);
+
   auto* devices_cmd = app.add_subcommand("devices", "List Vulkan devices and their fp16 support");
   devices_cmd->add_flag("--json", as_json, "Machine-readable output");
 
@@ -353,13 +366,23 @@ int main(int argc, char** argv) {
   int code = 0;
   try {
     if (*render_cmd) code = cmd_render(scene_opts, render_opts, outputs, as_json, quiet);
-    else if (*devices_cmd) code = cmd_devices(as_json);
+    else if (*view_cmd) {
+#ifdef OCTRACE_WINDOW
+      view_opts.scene_file = scene_opts.scene_file;
+      view_opts.device = render_opts.device;
+      view_opts.validation = render_opts.validation;
+      RenderSettings settings = render_opts.parsed();
+      code = run_view(scene_opts.load(), settings, view_opts);
+#else
+      throw RuntimeError("this build has no window support (configure with -DOCTRACE_WINDOW=ON and libglfw3-dev)");
+#endif
+    } else if (*devices_cmd) code = cmd_devices(as_json);
     else if (*compare_cmd) code = cmd_compare(compare_a, compare_b, as_json);
     else if (*bench_cmd) {
       bench.spheres = bench_spheres;
       bench.radii = bench_radii;
       for (const auto& a : bench_accels) bench.accels.push_back(parse_accel(a));
-      bench.precisions = bench_precisions;
+      for (const auto& p : bench_precisions) bench.precisions.push_back(parse_precision(p));
       if (!bench_size.empty()) {
         parse_size(bench_size, bench.settings);
         bench.size_given = true;

@@ -18,6 +18,9 @@ static_assert(offsetof(GpuMaterial, ior) == 20);
 
 static_assert(sizeof(RenderStats) == 16);
 
+static_assert(sizeof(GpuMaterialHalf) == 16);
+static_assert(offsetof(GpuMaterialHalf, params) == 8);
+
 static_assert(sizeof(GpuOctreeNode) == 32);
 static_assert(offsetof(GpuOctreeNode, first) == 12);
 static_assert(offsetof(GpuOctreeNode, hi) == 16);

@@ -9,6 +9,10 @@
 #include <glm/trigonometric.hpp>
 
 #include "gpu_layout.h"
+#include <glm/gtc/packing.hpp>
+
+#include "path_trace_fp16.h"
+#include "path_trace_fp16_all.h"
 #include "path_trace_fp32.h"
 #include "vk_resources.h"
 
@@ -56,6 +60,20 @@ void set_sky(gpu::FrameParams& f, const Sky& sky) {
 }
 
 }  // namespace
+
+const char* precision_name(Precision p) {
+  switch (p) {
+    case Precision::FP16: return "fp16";
+    case Precision::FP16All: return "fp16-all";
+    default: return "fp32";
+  }
+}
+
+Precision parse_precision(const std::string& name) {
+  for (Precision p : {Precision::FP32, Precision::FP16, Precision::FP16All})
+    if (name == precision_name(p)) return p;
+  throw InputError("--precision: expected fp32, fp16 or fp16-all, got \"" + name + "\"");
+}
 
 void validate_settings(const RenderSettings& s) {
   if (s.width < 1 || s.height < 1)
@@ -130,7 +148,12 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
     spheres[i] = {scene.spheres[i].center, scene.spheres[i].radius};
     sphere_materials[i] = scene.spheres[i].material;
   }
+  const bool half = settings.precision != Precision::FP32;
+  if (half && !ctx.fp16_enabled)
+    throw InputError(std::string("--precision ") + precision_name(settings.precision) + ": the device " +
+                     ctx.info.name + " lacks " + (ctx.info.shader_float16 ? "storageBuffer16BitAccess" : "shaderFloat16"));
   std::vector<gpu::GpuMaterial> materials(scene.materials.size());
+  std::vector<gpu::GpuMaterialHalf> materials_half(scene.materials.size());
   for (size_t i = 0; i < scene.materials.size(); ++i) {
     const Material& m = scene.materials[i];
     gpu::GpuMaterial& g = materials[i];
@@ -138,6 +161,13 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
     g.color = m.type == MaterialType::Emissive ? m.radiance : m.albedo;
     g.fuzz = m.fuzz;
     g.ior = m.ior;
+    // Half's largest value is 65504: a brighter emitter would become inf.
+    if (half && (g.color.r > 65504.0f || g.color.g > 65504.0f || g.color.b > 65504.0f))
+      throw InputError("materials[" + std::to_string(i) + "]: radiance above 65504 does not fit --precision " +
+                       precision_name(settings.precision));
+    materials_half[i].color_type = {glm::packHalf1x16(g.color.r), glm::packHalf1x16(g.color.g),
+                                    glm::packHalf1x16(g.color.b), glm::packHalf1x16(float(g.type))};
+    materials_half[i].params = {glm::packHalf1x16(g.fuzz), glm::packHalf1x16(g.ior), 0, 0};
   }
   gpu::FrameParams frame{};
   set_camera(frame, scene.camera, settings.width, settings.height);
@@ -152,7 +182,9 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
   create_buffer(s.frame, ctx, sizeof(frame), false, "frame parameters");
   create_buffer(s.spheres, ctx, sphere_bytes, false, "sphere buffer");
   create_buffer(s.sphere_materials, ctx, sphere_materials.size() * 4, false, "sphere material buffer");
-  create_buffer(s.materials, ctx, materials.size() * sizeof(gpu::GpuMaterial), false, "material buffer");
+  const size_t material_bytes = half ? materials_half.size() * sizeof(gpu::GpuMaterialHalf)
+                                    : materials.size() * sizeof(gpu::GpuMaterial);
+  create_buffer(s.materials, ctx, material_bytes, false, "material buffer");
   create_buffer(s.accum_sum, ctx, accum_bytes, false, "accumulation buffer");
   create_buffer(s.accum_comp, ctx, accum_bytes, false, "accumulation buffer");
   create_buffer(s.accum_sq, ctx, accum_bytes, false, "accumulation buffer");
@@ -164,13 +196,23 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
   upload_buffer(ctx, s.frame, &frame, sizeof(frame));
   upload_buffer(ctx, s.spheres, spheres.data(), sphere_bytes);
   upload_buffer(ctx, s.sphere_materials, sphere_materials.data(), sphere_materials.size() * 4);
-  upload_buffer(ctx, s.materials, materials.data(), materials.size() * sizeof(gpu::GpuMaterial));
+  upload_buffer(ctx, s.materials, half ? static_cast<const void*>(materials_half.data()) : materials.data(),
+                material_bytes);
   s.timings.upload_ms = ms_since(start);
 
   start = Clock::now();
   const uint32_t accel = settings.accel == Accel::Octree ? gpu::ACCEL_OCTREE : gpu::ACCEL_BRUTE;
-  create_compute_pipeline(s.pipeline, ctx, path_trace_fp32_spv, sizeof(path_trace_fp32_spv), gpu::BINDING_COUNT,
-                          sizeof(gpu::PassConstants), {{0, accel}});
+  const uint32_t* spirv = path_trace_fp32_spv;
+  size_t spirv_bytes = sizeof(path_trace_fp32_spv);
+  if (settings.precision == Precision::FP16) {
+    spirv = path_trace_fp16_spv;
+    spirv_bytes = sizeof(path_trace_fp16_spv);
+  } else if (settings.precision == Precision::FP16All) {
+    spirv = path_trace_fp16_all_spv;
+    spirv_bytes = sizeof(path_trace_fp16_all_spv);
+  }
+  create_compute_pipeline(s.pipeline, ctx, spirv, spirv_bytes, gpu::BINDING_COUNT, sizeof(gpu::PassConstants),
+                          {{0, accel}});
   bind_buffers(s.pipeline, {&s.frame, &s.spheres, &s.sphere_materials, &s.materials, &s.accum_sum,
                             &s.accum_comp, &s.accum_sq, &s.stats, &s.nodes, &s.refs});
   s.timings.pipeline_ms = ms_since(start);
@@ -186,6 +228,9 @@ PathTracer::~PathTracer() = default;
 
 const RenderTimings& PathTracer::setup_timings() const { return state_->timings; }
 const OctreeStats& PathTracer::octree_stats() const { return state_->octree; }
+const Buffer& PathTracer::accum_sum() const { return state_->accum_sum; }
+const Buffer& PathTracer::accum_comp() const { return state_->accum_comp; }
+const RenderSettings& PathTracer::settings() const { return state_->settings; }
 
 void PathTracer::reset() {
   State& s = *state_;
@@ -195,24 +240,29 @@ void PathTracer::reset() {
   });
 }
 
-double PathTracer::run_passes(uint32_t first_sample, uint32_t count) {
-  State& s = *state_;
+void PathTracer::record_passes(VkCommandBuffer cmd, uint32_t first_sample, uint32_t count) const {
+  const State& s = *state_;
   const uint32_t groups_x = (uint32_t(s.settings.width) + gpu::WORKGROUP_SIZE - 1) / gpu::WORKGROUP_SIZE;
   const uint32_t groups_y = (uint32_t(s.settings.height) + gpu::WORKGROUP_SIZE - 1) / gpu::WORKGROUP_SIZE;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.pipeline);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.layout, 0, 1, &s.pipeline.set, 0,
+                          nullptr);
+  for (uint32_t i = 0; i < count; ++i) {
+    if (i > 0) compute_barrier(cmd);
+    gpu::PassConstants pc{first_sample + i};
+    vkCmdPushConstants(cmd, s.pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
+    vkCmdDispatch(cmd, groups_x, groups_y, 1);
+  }
+}
+
+double PathTracer::run_passes(uint32_t first_sample, uint32_t count) {
+  State& s = *state_;
   submit_and_wait(s.ctx, [&](VkCommandBuffer cmd) {
     vkCmdResetQueryPool(cmd, s.queries, 0, 2);
     // Earlier submissions (reset, previous batches) wrote the accumulation.
     compute_barrier(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, s.queries, 0);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.layout, 0, 1, &s.pipeline.set, 0,
-                            nullptr);
-    for (uint32_t i = 0; i < count; ++i) {
-      if (i > 0) compute_barrier(cmd);
-      gpu::PassConstants pc{first_sample + i};
-      vkCmdPushConstants(cmd, s.pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
-      vkCmdDispatch(cmd, groups_x, groups_y, 1);
-    }
+    record_passes(cmd, first_sample, count);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, s.queries, 1);
   });
   uint64_t stamps[2] = {0, 0};

@@ -14,10 +14,19 @@
 
 namespace octrace {
 
+struct Buffer;
+
 enum class Accel { Brute, Octree };
+
+// Which quantities the shading code keeps in half (shaders/precision.glsl).
+enum class Precision { FP32, FP16, FP16All };
+const char* precision_name(Precision p);
+// "fp32" | "fp16" | "fp16-all"; throws InputError naming --precision.
+Precision parse_precision(const std::string& name);
 
 struct RenderSettings {
   Accel accel = Accel::Octree;
+  Precision precision = Precision::FP32;
   OctreeParams octree;
   int width = 1200;
   int height = 800;
@@ -66,6 +75,14 @@ class PathTracer {
   // Adds passes [first_sample, first_sample + count) in one submission and
   // waits; returns their device time in milliseconds.
   double run_passes(uint32_t first_sample, uint32_t count);
+  // Records the same passes into `cmd` without submitting, for a caller that
+  // adds its own work to the submission (the preview window's resolve pass).
+  void record_passes(VkCommandBuffer cmd, uint32_t first_sample, uint32_t count) const;
+  // The accumulation buffers a resolve pass reads (layout in shaders/shared.h):
+  // Kahan sum with the sample count in .w, and the compensation terms.
+  const Buffer& accum_sum() const;
+  const Buffer& accum_comp() const;
+  const RenderSettings& settings() const;
   RenderResult read_result();
   const RenderTimings& setup_timings() const;
   const OctreeStats& octree_stats() const;

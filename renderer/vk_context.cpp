@@ -42,13 +42,13 @@ bool layer_available(const char* name) {
   return false;
 }
 
-VkInstance create_instance(bool validation, VkDebugUtilsMessengerEXT* messenger) {
+VkInstance create_instance(bool validation, VkDebugUtilsMessengerEXT* messenger,
+                           std::vector<const char*> extensions = {}) {
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "octrace";
   app.apiVersion = VK_API_VERSION_1_2;
 
   const char* layer = "VK_LAYER_KHRONOS_validation";
-  const char* ext = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
   VkDebugUtilsMessengerCreateInfoEXT messenger_info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
   messenger_info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
                                    VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
@@ -71,10 +71,11 @@ VkInstance create_instance(bool validation, VkDebugUtilsMessengerEXT* messenger)
                          "(Debian: vulkan-validationlayers)");
     info.enabledLayerCount = 1;
     info.ppEnabledLayerNames = &layer;
-    info.enabledExtensionCount = 1;
-    info.ppEnabledExtensionNames = &ext;
+    extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     info.pNext = &features;
   }
+  info.enabledExtensionCount = uint32_t(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
   VkInstance instance = VK_NULL_HANDLE;
   VkResult r = vkCreateInstance(&info, nullptr, &instance);
   if (r == VK_ERROR_INCOMPATIBLE_DRIVER || r == VK_ERROR_INITIALIZATION_FAILED)
@@ -107,14 +108,16 @@ std::vector<VkPhysicalDevice> physical_devices(VkInstance instance) {
 }
 
 // The queue family we run on: one with compute (a pure compute family is as
-// good as a graphics one for us; the first that fits is used).
-bool find_compute_queue(VkPhysicalDevice physical, uint32_t* family, uint32_t* timestamp_bits) {
+// good as a graphics one for us; the first that fits is used), and for which
+// `also` holds when given (a window's: it can present).
+bool find_compute_queue(VkPhysicalDevice physical, uint32_t* family, uint32_t* timestamp_bits,
+                        const std::function<bool(uint32_t)>& also = {}) {
   uint32_t count = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(physical, &count, nullptr);
   std::vector<VkQueueFamilyProperties> families(count);
   vkGetPhysicalDeviceQueueFamilyProperties(physical, &count, families.data());
   for (uint32_t i = 0; i < count; ++i) {
-    if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) {
+    if ((families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && (!also || also(i))) {
       *family = i;
       *timestamp_bits = families[i].timestampValidBits;
       return true;
@@ -173,6 +176,16 @@ std::string unsuitable_reason(const DeviceInfo& d, const ContextOptions& options
   if (options.need_fp16 && !d.shader_float16) return "no shaderFloat16";
   if (options.need_fp16 && !d.storage_16bit) return "no storageBuffer16BitAccess";
   return "";
+}
+
+bool has_device_extension(VkPhysicalDevice physical, const char* name) {
+  uint32_t count = 0;
+  vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr);
+  std::vector<VkExtensionProperties> extensions(count);
+  vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, extensions.data());
+  for (const auto& e : extensions)
+    if (std::strcmp(e.extensionName, name) == 0) return true;
+  return false;
 }
 
 int auto_rank(const DeviceInfo& d) {
@@ -252,11 +265,16 @@ std::vector<DeviceInfo> list_devices() {
 }
 
 void create_context(VulkanContext& ctx, const ContextOptions& options) {
-  ctx.instance = create_instance(options.validation || validation_requested_by_env(), &ctx.messenger);
+  ctx.instance = create_instance(options.validation || validation_requested_by_env(), &ctx.messenger,
+                                 options.instance_extensions);
   auto devices = physical_devices(ctx.instance);
   if (devices.empty())
     throw RuntimeError("no Vulkan device found; install mesa-vulkan-drivers for the CPU device (lavapipe)");
 
+  // A window needs the swapchain extension and a compute family that presents.
+  auto presents = [&](VkPhysicalDevice physical) {
+    return [&, physical](uint32_t family) { return options.can_present(ctx.instance, physical, family); };
+  };
   std::vector<DeviceInfo> infos;
   for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], i));
 
@@ -289,6 +307,11 @@ void create_context(VulkanContext& ctx, const ContextOptions& options) {
   std::string reasons;
   for (uint32_t i : candidates) {
     std::string why = unsuitable_reason(infos[i], options);
+    uint32_t family = 0, bits = 0;
+    if (why.empty() && options.can_present && !has_device_extension(devices[i], VK_KHR_SWAPCHAIN_EXTENSION_NAME))
+      why = "no VK_KHR_swapchain";
+    if (why.empty() && options.can_present && !find_compute_queue(devices[i], &family, &bits, presents(devices[i])))
+      why = "no queue family with compute that can present to the window";
     if (why.empty()) {
       chosen = int(i);
       break;
@@ -304,7 +327,8 @@ void create_context(VulkanContext& ctx, const ContextOptions& options) {
   ctx.physical = devices[chosen];
   ctx.info = infos[chosen];
   uint32_t timestamp_bits = 0;
-  find_compute_queue(ctx.physical, &ctx.queue_family, &timestamp_bits);
+  find_compute_queue(ctx.physical, &ctx.queue_family, &timestamp_bits,
+                     options.can_present ? presents(ctx.physical) : std::function<bool(uint32_t)>{});
   vkGetPhysicalDeviceMemoryProperties(ctx.physical, &ctx.memory);
   VkPhysicalDeviceProperties props;
   vkGetPhysicalDeviceProperties(ctx.physical, &props);
@@ -331,6 +355,11 @@ void create_context(VulkanContext& ctx, const ContextOptions& options) {
   info.pNext = &features;
   info.queueCreateInfoCount = 1;
   info.pQueueCreateInfos = &queue_info;
+  const char* swapchain = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
+  if (options.can_present) {
+    info.enabledExtensionCount = 1;
+    info.ppEnabledExtensionNames = &swapchain;
+  }
   VK_CHECK(vkCreateDevice(ctx.physical, &info, nullptr, &ctx.device));
   vkGetDeviceQueue(ctx.device, ctx.queue_family, 0, &ctx.queue);
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,13 @@ struct ContextOptions {
   std::string device = "auto";  // auto | cpu | gpu | INDEX
   bool need_fp16 = false;       // enable shaderFloat16 + 16-bit storage (fails without)
   bool validation = false;      // Khronos validation + synchronization validation
+  // For a window (octrace view): the instance extensions the surface needs
+  // (glfwGetRequiredInstanceExtensions), and a test whether a queue family of
+  // a device can present. When `can_present` is set, the device must have
+  // VK_KHR_swapchain (it is enabled) and a queue family with compute that can
+  // present; headless runs leave both empty.
+  std::vector<const char*> instance_extensions;
+  std::function<bool(VkInstance, VkPhysicalDevice, uint32_t family)> can_present;
 };
 
 // The validation layer is on when asked for or when OCTRACE_VALIDATION=1.

@@ -4,13 +4,18 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared.h"
+#include "precision.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE, local_size_y = WORKGROUP_SIZE) in;
 
 layout(std430, binding = BINDING_FRAME) readonly buffer FrameBuf { FrameParams params; };
 layout(std430, binding = BINDING_SPHERES) readonly buffer SphereBuf { GpuSphere spheres[]; };
 layout(std430, binding = BINDING_SPHERE_MATERIALS) readonly buffer SphereMatBuf { uint sphere_materials[]; };
+#if OCTRACE_PRECISION >= 1
+layout(std430, binding = BINDING_MATERIALS) readonly buffer MaterialBuf { GpuMaterialHalf materials[]; };
+#else
 layout(std430, binding = BINDING_MATERIALS) readonly buffer MaterialBuf { GpuMaterial materials[]; };
+#endif
 layout(std430, binding = BINDING_ACCUM_SUM) buffer AccumSumBuf { vec4 accum_sum[]; };
 layout(std430, binding = BINDING_ACCUM_COMP) buffer AccumCompBuf { vec4 accum_comp[]; };
 layout(std430, binding = BINDING_ACCUM_SQ) buffer AccumSqBuf { vec4 accum_sq[]; };
@@ -40,20 +45,39 @@ vec2 random_in_unit_disk(inout Rng rng) {
   return r * vec2(cos(phi), sin(phi));
 }
 
-vec3 sky_radiance(vec3 dir) {
+// A material as the shading code uses it, in the variant's precision.
+struct Material {
+  real3 color;  // albedo or radiance
+  uint type;
+  real fuzz;
+  real ior;
+};
+
+Material load_material(uint i) {
+#if OCTRACE_PRECISION >= 1
+  GpuMaterialHalf m = materials[i];
+  return Material(m.color_type.rgb, uint(m.color_type.a), m.params.x, m.params.y);
+#else
+  GpuMaterial m = materials[i];
+  return Material(m.color, m.type, m.fuzz, m.ior);
+#endif
+}
+
+real3 sky_radiance(vec3 dir) {
   if (params.sky_type == SKY_GRADIENT) {
-    float t = 0.5 * (dir.y + 1.0);
-    return (1.0 - t) * params.sky_a + t * params.sky_b;
+    real t = real(0.5 * (dir.y + 1.0));
+    return (real(1.0) - t) * real3(params.sky_a) + t * real3(params.sky_b);
   }
-  if (params.sky_type == SKY_UNIFORM) return params.sky_a;
-  return vec3(0.0);
+  if (params.sky_type == SKY_UNIFORM) return real3(params.sky_a);
+  return real3(0.0);
 }
 
 // Schlick's approximation of the Fresnel reflectance.
-float schlick(float cosine, float eta) {
-  float r0 = (1.0 - eta) / (1.0 + eta);
+dreal schlick(dreal cosine, dreal eta) {
+  dreal r0 = (dreal(1.0) - eta) / (dreal(1.0) + eta);
   r0 = r0 * r0;
-  return r0 + (1.0 - r0) * pow(1.0 - cosine, 5.0);
+  dreal x = dreal(1.0) - cosine;
+  return r0 + (dreal(1.0) - r0) * (x * x) * (x * x) * x;
 }
 
 Ray camera_ray(uvec2 pixel, uint pixel_index) {
@@ -67,8 +91,8 @@ Ray camera_ray(uvec2 pixel, uint pixel_index) {
 }
 
 vec3 trace_path(Ray ray, uint pixel_index) {
-  vec3 radiance = vec3(0.0);
-  vec3 throughput = vec3(1.0);
+  real3 radiance = real3(0.0);
+  real3 throughput = real3(1.0);
   uint from_sphere = NO_SPHERE;
   bool into_from = false;
   for (uint bounce = 0; bounce < params.max_depth; ++bounce) {
@@ -78,7 +102,7 @@ vec3 trace_path(Ray ray, uint pixel_index) {
       break;
     }
     GpuSphere s = spheres[hit.sphere];
-    GpuMaterial m = materials[sphere_materials[hit.sphere]];
+    Material m = load_material(sphere_materials[hit.sphere]);
     vec3 p = ray.origin + hit.t * ray.dir;
     vec3 outward = safe_normalize(p - s.center, -ray.dir);
     bool front_face = dot(ray.dir, outward) < 0.0;
@@ -90,31 +114,36 @@ vec3 trace_path(Ray ray, uint pixel_index) {
     }
 
     Rng rng = rng_init(params.sample_seed, pixel_index, pass.sample_index, bounce);
+    // Directions are worked out in dreal and re-normalised in fp32 for the
+    // next intersection test.
+    dreal3 dn = dreal3(n);
+    dreal3 d_in = dreal3(ray.dir);
     vec3 dir;
     if (m.type == MAT_LAMBERTIAN) {
       // Cosine-weighted: normal + uniform unit vector (book v4); the rare sum
       // that cancels to zero falls back to the normal.
-      dir = safe_normalize(n + random_unit_vector(rng), n);
+      dir = safe_normalize(vec3(dn + dreal3(random_unit_vector(rng))), n);
       throughput *= m.color;
     } else if (m.type == MAT_METAL) {
-      vec3 fuzz = random_unit_vector(rng);
-      dir = reflect(ray.dir, n) + m.fuzz * fuzz;
+      dreal3 fuzz = dreal3(random_unit_vector(rng));
+      dreal3 d = reflect(d_in, dn) + dreal(m.fuzz) * fuzz;
       // A fuzzed direction below the surface is absorbed (book v4).
-      if (dot(dir, n) <= 0.0) break;
-      dir = normalize(dir);
+      if (dot(d, dn) <= dreal(0.0)) break;
+      dir = safe_normalize(vec3(d), n);
       throughput *= m.color;
     } else {
-      float eta = front_face ? 1.0 / m.ior : m.ior;
-      float cos_theta = min(dot(-ray.dir, n), 1.0);
-      float sin_theta = sqrt(max(0.0, 1.0 - cos_theta * cos_theta));
-      float u = rng_next(rng);
+      dreal eta = front_face ? dreal(1.0) / dreal(m.ior) : dreal(m.ior);
+      dreal cos_theta = min(dot(-d_in, dn), dreal(1.0));
+      dreal sin_theta = sqrt(max(dreal(0.0), dreal(1.0) - cos_theta * cos_theta));
+      dreal u = dreal(rng_next(rng));
       // Past the critical angle refraction is impossible: reflect (TIR).
-      if (eta * sin_theta > 1.0 || schlick(cos_theta, eta) > u) {
-        dir = reflect(ray.dir, n);
+      dreal3 d;
+      if (eta * sin_theta > dreal(1.0) || schlick(cos_theta, eta) > u) {
+        d = reflect(d_in, dn);
       } else {
-        dir = refract(ray.dir, n, eta);
+        d = refract(d_in, dn, eta);
       }
-      dir = safe_normalize(dir, reflect(ray.dir, n));
+      dir = safe_normalize(vec3(d), reflect(ray.dir, n));
     }
     // The new ray leaves into the side its direction points to.
     bool inward = dot(dir, outward) < 0.0;
@@ -122,7 +151,7 @@ vec3 trace_path(Ray ray, uint pixel_index) {
     from_sphere = hit.sphere;
     into_from = inward;
   }
-  return radiance;
+  return vec3(radiance);
 }
 
 void main() {

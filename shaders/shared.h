@@ -7,14 +7,21 @@
 #ifndef OCTRACE_SHARED_H
 #define OCTRACE_SHARED_H
 
+#if !defined(__cplusplus) && OCTRACE_PRECISION >= 1
+#extension GL_EXT_shader_explicit_arithmetic_types_float16 : require
+#extension GL_EXT_shader_16bit_storage : require
+#endif
+
 #ifdef __cplusplus
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
+#include <glm/gtc/type_precision.hpp>
 namespace octrace::gpu {
 using uint = uint32_t;
 using vec3 = glm::vec3;
 using vec4 = glm::vec4;
+using f16vec4 = glm::u16vec4;  // half bit patterns (glm::packHalf)
 #define OCT_CONST(type, name, value) inline constexpr type name = value
 #else
 #define OCT_CONST(type, name, value) const type name = value
@@ -73,6 +80,16 @@ struct GpuMaterial {
 //   accum_comp.rgb: the Kahan compensation terms;
 //   accum_sq.rgb: sum of squared deviations from the mean (Welford's M2), for
 //     the per-pixel variance the golden tests use.
+
+// 16 bytes: the material as the fp16 variants read it (16-bit storage).
+// color_type: albedo or radiance, and the MAT_* type as a half (exact);
+// params: fuzz, ior, unused, unused. The host writes half bit patterns.
+#if defined(__cplusplus) || OCTRACE_PRECISION >= 1
+struct GpuMaterialHalf {
+  f16vec4 color_type;
+  f16vec4 params;
+};
+#endif
 
 // 32 bytes. One octree node; nodes[0] is the root. The octree is described in
 // renderer/octree.h (encoding, drawing, why).
