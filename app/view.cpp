@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <optional>
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
@@ -34,6 +35,7 @@ using Clock = std::chrono::steady_clock;
 constexpr double kPassBudgetMs = 25.0;
 constexpr uint32_t kMaxPassesPerFrame = 256;
 constexpr uint32_t kMaxDepth = 1u << 16;
+constexpr uint32_t kSampleLimit = 1u << 24;
 
 std::string g_glfw_error = "unknown error";
 void on_glfw_error(int, const char* text) { g_glfw_error = text; }
@@ -129,6 +131,10 @@ class Viewer {
   void save();
   void write_screenshot();
 
+  // Where accumulation stops: --max-spp, else where the sample count stops
+  // being an exact float (as --spp of render).
+  uint32_t target_spp() const { return options_.max_spp ? options_.max_spp : kSampleLimit; }
+
   void on_key(int key, int action);
   void on_button(int button, int action);
   void on_cursor(double x, double y);
@@ -152,6 +158,7 @@ class Viewer {
   Scene scene_;
   Camera original_camera_;
   RenderSettings settings_;
+  std::optional<RenderSettings> good_settings_;  // of the last tracer that could be built
   ViewOptions options_;
 
   uint32_t spp_ = 0;          // passes accumulated since the last restart
@@ -171,6 +178,7 @@ class Viewer {
   Clock::time_point fps_start_ = Clock::now();
   uint64_t fps_frames_ = 0;
   double fps_ = 0;
+  std::string title_;
 };
 
 Viewer::~Viewer() {
@@ -194,7 +202,7 @@ void Viewer::open() {
   glfw_.open = true;
   if (!glfwVulkanSupported()) throw RuntimeError("GLFW found no Vulkan loader with surface support");
 
-  ContextOptions context_options{options_.device, false, options_.validation};
+  ContextOptions context_options{options_.device, settings_.precision != Precision::FP32, options_.validation};
   uint32_t count = 0;
   const char** extensions = glfwGetRequiredInstanceExtensions(&count);
   if (!extensions) throw RuntimeError("this display cannot show Vulkan images: " + g_glfw_error);
@@ -252,7 +260,7 @@ void Viewer::run() {
   std::printf("octrace view: H lists the keys\n");
   std::fflush(stdout);
   while (!quit_ && !glfwWindowShouldClose(window_.get())) {
-    const bool idle = options_.max_spp && spp_ >= options_.max_spp && !tracer_dirty_ && !restart_;
+    const bool idle = spp_ >= target_spp() && !tracer_dirty_ && !restart_;
     // Nothing to add: re-present now and then (an uncovered window needs
     // its pixels again) rather than spin.
     if (idle) glfwWaitEventsTimeout(0.1);
@@ -261,7 +269,9 @@ void Viewer::run() {
 
     int width = 0, height = 0;
     glfwGetFramebufferSize(window_.get(), &width, &height);
-    if (width == 0 || height == 0) {  // minimised: nothing to show until restored
+    // Minimised (a zero-size framebuffer on some systems, iconified on
+    // others): nothing to show, and nothing to acquire, until restored.
+    if (width == 0 || height == 0 || glfwGetWindowAttrib(window_.get(), GLFW_ICONIFIED)) {
       glfwWaitEvents();
       continue;
     }
@@ -310,7 +320,20 @@ void Viewer::recreate_swapchain(int width, int height) {
 void Viewer::rebuild_tracer() {
   VK_CHECK(vkDeviceWaitIdle(ctx_.device));
   tracer_.reset();
-  tracer_ = std::make_unique<PathTracer>(ctx_, scene_, settings_);
+  try {
+    tracer_ = std::make_unique<PathTracer>(ctx_, scene_, settings_);
+  } catch (const InputError& e) {
+    // A key asked for what this scene or device does not allow (fp16 with
+    // radiance beyond half's range, say): say so, keep the settings that worked.
+    if (!good_settings_) throw;
+    std::fprintf(stderr, "octrace view: %s\n", e.what());
+    RenderSettings good = *good_settings_;
+    good.width = settings_.width;
+    good.height = settings_.height;
+    settings_ = good;
+    tracer_ = std::make_unique<PathTracer>(ctx_, scene_, settings_);
+  }
+  good_settings_ = settings_;
   create_buffer(pixels_, ctx_, uint64_t(settings_.width) * uint64_t(settings_.height) * 4, false, "window pixel buffer");
   bind_buffers(*resolve_, {&tracer_->accum_sum(), &tracer_->accum_comp(), &pixels_});
   tracer_dirty_ = false;
@@ -327,9 +350,9 @@ void Viewer::frame() {
     return;
   }
   uint32_t passes = 0;
-  if (!options_.max_spp || spp_ < options_.max_spp) {
+  if (spp_ < target_spp()) {
     passes = pass_ms_ > 0 ? uint32_t(std::clamp(kPassBudgetMs / pass_ms_, 1.0, double(kMaxPassesPerFrame))) : 1;
-    if (options_.max_spp) passes = std::min(passes, options_.max_spp - spp_);
+    passes = std::min(passes, target_spp() - spp_);
   }
   const uint32_t size[2] = {uint32_t(settings_.width), uint32_t(settings_.height)};
   VkImage image = swapchain_.images[index];
@@ -412,7 +435,7 @@ void Viewer::frame() {
   }
   update_title();
 
-  if (options_.max_spp && spp_ >= options_.max_spp && !target_reached_) {
+  if (spp_ >= target_spp() && !target_reached_) {
     target_reached_ = true;
     if (!options_.screenshot.empty()) write_screenshot();
     if (options_.exit_after_spp) quit_ = true;
@@ -432,12 +455,17 @@ void Viewer::wait_for_frame() {
 void Viewer::update_title() {
   double paths_per_s = pass_ms_ > 0 ? double(settings_.width) * settings_.height / (pass_ms_ / 1000.0) : 0.0;
   char title[256];
-  std::snprintf(title, sizeof title, "octrace  |  %u spp%s  |  %.1f ms/pass  |  %.3g paths/s  |  %s  |  depth %u  |  "
-                "%dx%d  |  %.0f fps",
-                spp_, target_reached_ ? " (done)" : "", pass_ms_, paths_per_s,
+  std::snprintf(title, sizeof title,
+                "octrace  |  %u spp%s  |  %.1f ms/pass  |  %.3g paths/s  |  %s  |  %s  |  depth %u  |  %dx%d  |  %.0f fps",
+                spp_, target_reached_ ? " (done)" : "", pass_ms_, paths_per_s, precision_name(settings_.precision),
                 settings_.accel == Accel::Octree ? "octree" : "brute", settings_.max_depth, settings_.width,
                 settings_.height, fps_);
-  glfwSetWindowTitle(window_.get(), title);
+  // Only on change: setting it sends the window an event, which would wake
+  // an idle loop at once.
+  if (title_ != title) {
+    title_ = title;
+    glfwSetWindowTitle(window_.get(), title);
+  }
 }
 
 // `S`: the accumulation as it stands, PNG and PFM, each written atomically.
@@ -485,6 +513,10 @@ void Viewer::on_key(int key, int action) {
     case GLFW_KEY_H:
       std::printf("%s", kViewKeys);
       std::fflush(stdout);
+      break;
+    case GLFW_KEY_P:
+      settings_.precision = Precision((int(settings_.precision) + 1) % 3);
+      tracer_dirty_ = true;
       break;
     case GLFW_KEY_B:
       settings_.accel = settings_.accel == Accel::Octree ? Accel::Brute : Accel::Octree;
@@ -534,6 +566,8 @@ void Viewer::on_cursor(double x, double y) {
 }  // namespace
 
 int run_view(const Scene& scene, const RenderSettings& settings, const ViewOptions& options) {
+  if (options.max_spp > kSampleLimit)
+    throw InputError("--max-spp: must be <= 16777216 (sample counts are exact fp32 integers)");
   if (options.exit_after_spp && !options.max_spp) throw InputError("--exit-after-spp: needs --max-spp N");
   if (!options.screenshot.empty()) {
     if (!options.max_spp) throw InputError("--screenshot: needs --max-spp N (it is taken when N is reached)");

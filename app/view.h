@@ -16,7 +16,8 @@ namespace octrace {
 inline constexpr const char* kViewKeys =
     "Mouse: left drag orbits around the look-at point, right (or middle) drag pans,\n"
     "       the wheel zooms; any camera move restarts the accumulation.\n"
-    "Keys:  B          toggle the acceleration structure (octree / brute)\n"
+    "Keys:  P          next precision (fp32 / fp16 / fp16-all)\n"
+    "       B          toggle the acceleration structure (octree / brute)\n"
     "       Up / Down  bounce limit +1 / -1 (PageUp / PageDown: x2 / /2)\n"
     "       R          restart the accumulation\n"
     "       C          camera back to the scene's\n"
