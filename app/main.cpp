@@ -88,6 +88,7 @@ struct RenderOptions {
   std::string size = "1200x800";
   std::string accel = "octree";
   std::string precision = "fp32";
+  std::string effects = "auto";
   RenderSettings settings;
   std::string device = "auto";
   bool validation = false;
@@ -95,6 +96,9 @@ struct RenderOptions {
   void add_to(CLI::App& cmd) {
     cmd.add_option("--accel", accel, "Acceleration structure: octree | brute")->capture_default_str();
     cmd.add_option("--precision", precision, "Shading precision: fp32 | fp16 | fp16-all (see README)")
+        ->capture_default_str();
+    cmd.add_option("--effects", effects,
+                   "auto: a pipeline specialised to the scene's effects; all: the general pipeline")
         ->capture_default_str();
     cmd.add_option("--octree-leaf", settings.octree.leaf_size, "Octree: split cells holding more spheres than this")
         ->capture_default_str();
@@ -113,6 +117,9 @@ struct RenderOptions {
     RenderSettings s = settings;
     s.accel = parse_accel(accel);
     s.precision = parse_precision(precision);
+    if (effects != "auto" && effects != "all")
+      throw InputError("--effects: expected auto or all, got \"" + effects + "\"");
+    s.all_effects = effects == "all";
     parse_size(size, s);
     validate_settings(s);
     return s;
@@ -197,6 +204,8 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
               {"sample_seed", settings.sample_seed},
               {"accel", accel_name(settings.accel)},
               {"precision", precision_name(settings.precision)},
+              {"effects", settings.all_effects ? "all" : "auto"},
+              {"features", feature_names(result.features)},
               {"times_ms", {{"scene", scene_ms},
                             {"device_init", device_ms},
                             {"accel_build", t.accel_build_ms},

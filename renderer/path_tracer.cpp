@@ -97,6 +97,7 @@ struct PathTracer::State {
   RenderTimings timings;
   uint64_t pixels = 0;
   OctreeStats octree;
+  SceneFeatures features;
   Buffer frame, spheres, sphere_materials, materials, accum_sum, accum_comp, accum_sq, stats, nodes, refs;
   ComputePipeline pipeline;
   VkQueryPool queries = VK_NULL_HANDLE;
@@ -202,6 +203,11 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
 
   start = Clock::now();
   const uint32_t accel = settings.accel == Accel::Octree ? gpu::ACCEL_OCTREE : gpu::ACCEL_BRUTE;
+  s.features = settings.all_effects ? all_features(scene) : scene_features(scene);
+  const SceneFeatures& f = s.features;
+  // FEATURE_SKY: the sky's type, or SKY_RUNTIME for the general pipeline; a
+  // black sky of any type is specialised to none.
+  const uint32_t sky = settings.all_effects ? gpu::SKY_RUNTIME : f.sky_black ? gpu::SKY_NONE : uint32_t(f.sky);
   const uint32_t* spirv = path_trace_fp32_spv;
   size_t spirv_bytes = sizeof(path_trace_fp32_spv);
   if (settings.precision == Precision::FP16) {
@@ -212,7 +218,15 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
     spirv_bytes = sizeof(path_trace_fp16_all_spv);
   }
   create_compute_pipeline(s.pipeline, ctx, spirv, spirv_bytes, gpu::BINDING_COUNT, sizeof(gpu::PassConstants),
-                          {{0, accel}});
+                          {{gpu::SPEC_ACCEL, accel},
+                           {gpu::SPEC_LAMBERTIAN, f.lambertian},
+                           {gpu::SPEC_METAL, f.metal},
+                           {gpu::SPEC_FUZZ, f.fuzzy_metal},
+                           {gpu::SPEC_DIELECTRIC, f.dielectric},
+                           {gpu::SPEC_EMISSIVE, f.emissive},
+                           {gpu::SPEC_DEFOCUS, f.defocus},
+                           {gpu::SPEC_SKY, sky},
+                           {gpu::SPEC_ANY_LIGHT, f.any_light}});
   bind_buffers(s.pipeline, {&s.frame, &s.spheres, &s.sphere_materials, &s.materials, &s.accum_sum,
                             &s.accum_comp, &s.accum_sq, &s.stats, &s.nodes, &s.refs});
   s.timings.pipeline_ms = ms_since(start);
@@ -228,6 +242,7 @@ PathTracer::~PathTracer() = default;
 
 const RenderTimings& PathTracer::setup_timings() const { return state_->timings; }
 const OctreeStats& PathTracer::octree_stats() const { return state_->octree; }
+const SceneFeatures& PathTracer::features() const { return state_->features; }
 const Buffer& PathTracer::accum_sum() const { return state_->accum_sum; }
 const Buffer& PathTracer::accum_comp() const { return state_->accum_comp; }
 const RenderSettings& PathTracer::settings() const { return state_->settings; }
@@ -304,6 +319,7 @@ RenderResult PathTracer::read_result() {
   s.timings.readback_ms = ms_since(start);
   r.timings = s.timings;
   r.octree = s.octree;
+  r.features = s.features;
   return r;
 }
 

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "scene_features.h"
 #include "image.h"
 #include "octree.h"
 #include "scene.h"
@@ -27,6 +28,9 @@ Precision parse_precision(const std::string& name);
 struct RenderSettings {
   Accel accel = Accel::Octree;
   Precision precision = Precision::FP32;
+  // false: the pipeline is specialised to the scene's features (`--effects
+  // auto`); true: the general pipeline with every effect (`--effects all`).
+  bool all_effects = false;
   OctreeParams octree;
   int width = 1200;
   int height = 800;
@@ -56,6 +60,7 @@ struct RenderResult {
   uint64_t nonfinite_samples = 0; // NaN/Inf samples rejected (0 for a clean render)
   RenderTimings timings;
   OctreeStats octree;             // zeros for --accel brute
+  SceneFeatures features;         // what the pipeline was specialised to
 };
 
 // Called after each batch of passes: passes done, total passes.
@@ -86,6 +91,7 @@ class PathTracer {
   RenderResult read_result();
   const RenderTimings& setup_timings() const;
   const OctreeStats& octree_stats() const;
+  const SceneFeatures& features() const;
 
  private:
   struct State;

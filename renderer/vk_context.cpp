@@ -367,12 +367,15 @@ void create_context(VulkanContext& ctx, const ContextOptions& options) {
   pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   pool_info.queueFamilyIndex = ctx.queue_family;
   VK_CHECK(vkCreateCommandPool(ctx.device, &pool_info, nullptr, &ctx.command_pool));
+  VkPipelineCacheCreateInfo cache_info{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
+  VK_CHECK(vkCreatePipelineCache(ctx.device, &cache_info, nullptr, &ctx.pipeline_cache));
 }
 
 VulkanContext::~VulkanContext() {
   if (device) {
     vkDeviceWaitIdle(device);
     if (command_pool) vkDestroyCommandPool(device, command_pool, nullptr);
+    if (pipeline_cache) vkDestroyPipelineCache(device, pipeline_cache, nullptr);
     vkDestroyDevice(device, nullptr);
   }
   destroy_instance(instance, messenger);

@@ -65,6 +65,9 @@ struct VulkanContext {
   VkQueue queue = VK_NULL_HANDLE;
   uint32_t queue_family = 0;
   VkCommandPool command_pool = VK_NULL_HANDLE;
+  // Every pipeline is created through this cache, so a specialisation that a
+  // run (a benchmark, the preview window) creates again costs a cache hit.
+  VkPipelineCache pipeline_cache = VK_NULL_HANDLE;
   VkPhysicalDeviceMemoryProperties memory{};
   VkPhysicalDeviceLimits limits{};
   DeviceInfo info;

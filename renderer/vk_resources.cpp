@@ -141,7 +141,7 @@ void create_compute_pipeline(ComputePipeline& p, const VulkanContext& ctx, const
   info.stage.pName = "main";
   info.stage.pSpecializationInfo = spec.empty() ? nullptr : &spec_info;
   info.layout = p.layout;
-  VkResult r = vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline);
+  VkResult r = vkCreateComputePipelines(ctx.device, ctx.pipeline_cache, 1, &info, nullptr, &p.pipeline);
   vkDestroyShaderModule(ctx.device, module, nullptr);
   VK_CHECK(r);
 

@@ -36,33 +36,31 @@ float intersect_sphere(Ray ray, vec3 center, float radius, float t_max, bool ski
   float t1 = q;
   float near_t = min(t0, t1);
   float far_t = max(t0, t1);
-  if (!skip_near && near_t > 0.0 && near_t < t_max) return near_t;
+  if (!skip_near && near_t >= 0.0 && near_t < t_max) return near_t;
   if (far_t > 0.0 && far_t < t_max) return far_t;
   return INF;
 }
 
-// Moves a point off a surface along the geometric normal `n` (pointing to the
-// side the new ray leaves into), after Wächter & Binder, "A Fast and Robust
-// Method for Avoiding Self-Intersection" (Ray Tracing Gems, ch. 6). Far from
-// the origin the offset is a fixed number of ulps of each coordinate (integer
-// steps on the float's bit pattern), so it grows with the point's magnitude as
-// the rounding error of the hit point does; near the origin, where ulps
-// vanish, a small absolute offset takes over. 256 ulps bound the error of a hit
-// point computed as origin + t*dir plus the sphere test's error in t (a few
-// ulps of |origin - centre|) for spheres up to ~100x the point's magnitude;
-// for larger spheres (the ground) the skip_near/skip_all rule of
-// intersect_sphere removes self-hits exactly.
-vec3 offset_ray_origin(vec3 p, vec3 n) {
-  const float ORIGIN_REGION = 1.0 / 32.0;
-  const float ABS_SCALE = 1.0 / 65536.0;
-  const float ULP_SCALE = 256.0;
-  ivec3 steps = ivec3(ULP_SCALE * n);
-  vec3 moved = intBitsToFloat(floatBitsToInt(p) + ivec3(p.x < 0.0 ? -steps.x : steps.x,
-                                                        p.y < 0.0 ? -steps.y : steps.y,
-                                                        p.z < 0.0 ? -steps.z : steps.z));
-  return vec3(abs(p.x) < ORIGIN_REGION ? p.x + ABS_SCALE * n.x : moved.x,
-              abs(p.y) < ORIGIN_REGION ? p.y + ABS_SCALE * n.y : moved.y,
-              abs(p.z) < ORIGIN_REGION ? p.z + ABS_SCALE * n.z : moved.z);
+// Moves a hit point off its surface along the geometric normal `n` (pointing
+// to the side the new ray leaves into) by more than the point's rounding
+// error, so that a surface through the same point (a coincident or touching
+// sphere) is not met at a distance that is only rounding. In the spirit of
+// Wächter & Binder, "A Fast and Robust Method for Avoiding Self-Intersection"
+// (Ray Tracing Gems, ch. 6), with the bound taken from the ray instead of a
+// fixed ulp count per coordinate: p = origin + t*dir is rounded to a few ulps
+// of max(|origin|, |p|) <= max|p_i| + t, and the stable sphere test's t (Haines)
+// is off by a few ulps of t, so OFFSET_ULPS ulps of (max|p_i| + t) cover both
+// however far the ray came (a fixed count of p's own ulps does not: a camera
+// 20x farther away than |p| lost paths between coincident spheres) and stay
+// small where p is small (a scene of r = 1e-4 spheres near the origin) or far
+// from the origin (at 1e5 the offset is 16 * 1.2e-7 * 1e5 = 0.2 units where
+// W&B's 256 ulps per coordinate jumped 2 units, across the contact gaps the
+// translated scenes have). Self-hits need no offset at all: the skip_near /
+// skip_all rule of intersect_sphere removes them exactly.
+vec3 offset_ray_origin(vec3 p, vec3 n, float t) {
+  const float OFFSET_ULPS = 8.0;
+  float scale = max(max(abs(p.x), abs(p.y)), abs(p.z)) + t;
+  return p + (OFFSET_ULPS * 1.1920929e-7 * scale) * n;
 }
 
 // Normalises, or returns `fallback` for a vector too short to have a direction.

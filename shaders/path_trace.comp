@@ -119,6 +119,7 @@ vec3 trace_path(Ray ray, uint pixel_index) {
     dreal3 dn = dreal3(n);
     dreal3 d_in = dreal3(ray.dir);
     vec3 dir;
+    bool refracted = false;
     if (m.type == MAT_LAMBERTIAN) {
       // Cosine-weighted: normal + uniform unit vector (book v4); the rare sum
       // that cancels to zero falls back to the normal.
@@ -142,12 +143,18 @@ vec3 trace_path(Ray ray, uint pixel_index) {
         d = reflect(d_in, dn);
       } else {
         d = refract(d_in, dn, eta);
+        refracted = true;
       }
       dir = safe_normalize(vec3(d), reflect(ray.dir, n));
     }
+    // A reflection leaves on n's side, a refraction on the other. A direction
+    // rounded onto the wrong side (worked out in half, a rounding error of
+    // ~1e-3 does it at grazing angles) would enter an opaque sphere and leak
+    // light from inside it: mirror it back across the tangent plane.
+    if ((dot(dir, n) < 0.0) != refracted) dir = reflect(dir, n);
     // The new ray leaves into the side its direction points to.
     bool inward = dot(dir, outward) < 0.0;
-    ray = Ray(offset_ray_origin(p, inward ? -outward : outward), dir);
+    ray = Ray(offset_ray_origin(p, inward ? -outward : outward, hit.t), dir);
     from_sphere = hit.sphere;
     into_from = inward;
   }

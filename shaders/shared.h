@@ -51,6 +51,20 @@ OCT_CONST(uint, BINDING_OCTREE_NODES, 8u);
 OCT_CONST(uint, BINDING_OCTREE_REFS, 9u);
 OCT_CONST(uint, BINDING_COUNT, 10u);
 
+// Specialization constants of the path-tracing pipeline: the accel, and the
+// scene's features (renderer/features.h) so that absent effects compile out.
+OCT_CONST(uint, SPEC_ACCEL, 0u);
+OCT_CONST(uint, SPEC_LAMBERTIAN, 1u);
+OCT_CONST(uint, SPEC_METAL, 2u);
+OCT_CONST(uint, SPEC_FUZZ, 3u);
+OCT_CONST(uint, SPEC_DIELECTRIC, 4u);
+OCT_CONST(uint, SPEC_EMISSIVE, 5u);
+OCT_CONST(uint, SPEC_DEFOCUS, 6u);
+OCT_CONST(uint, SPEC_SKY, 7u);
+OCT_CONST(uint, SPEC_ANY_LIGHT, 8u);
+// SPEC_SKY value for the general pipeline: the sky type is read at run time.
+OCT_CONST(uint, SKY_RUNTIME, 3u);
+
 // Acceleration structures (specialization constant ACCEL).
 OCT_CONST(uint, ACCEL_BRUTE, 0u);
 OCT_CONST(uint, ACCEL_OCTREE, 1u);
