@@ -27,6 +27,50 @@ struct Row {
 
 const char* accel_label(Accel a) { return a == Accel::Octree ? "octree" : "brute"; }
 
+// The rtiow scene with its materials replaced, one family per effect mix:
+// rtiow (all effects), lambertian / metal (fuzz 0) / glass (small spheres
+// only; the ground stays lambertian), emissive (every tenth small sphere a
+// light, black sky), pinhole (rtiow with aperture 0).
+Scene make_family(const std::string& family, uint64_t n, float radius, uint64_t seed) {
+  Scene s = make_rtiow_scene({n, radius, seed});
+  auto replace_small = [&](auto&& fn) {
+    for (size_t i = 1; i < s.materials.size(); ++i) fn(s.materials[i], i);
+  };
+  if (family == "rtiow") return s;
+  if (family == "pinhole") {
+    s.camera.aperture = 0;
+    return s;
+  }
+  if (family == "lambertian") {
+    replace_small([](Material& m, size_t) { m = {MaterialType::Lambertian, m.type == MaterialType::Dielectric ? glm::vec3(0.8f) : m.albedo}; });
+    return s;
+  }
+  if (family == "metal") {
+    replace_small([](Material& m, size_t) { m = {MaterialType::Metal, m.type == MaterialType::Dielectric ? glm::vec3(0.9f) : m.albedo, 0.0f}; });
+    return s;
+  }
+  if (family == "glass") {
+    replace_small([](Material& m, size_t) {
+      m = Material{};
+      m.type = MaterialType::Dielectric;
+      m.ior = 1.5f;
+    });
+    return s;
+  }
+  if (family == "emissive") {
+    s.sky.type = SkyType::None;
+    replace_small([](Material& m, size_t i) {
+      if (i % 10 == 0) {
+        m = Material{};
+        m.type = MaterialType::Emissive;
+        m.radiance = glm::vec3(4.0f);
+      }
+    });
+    return s;
+  }
+  throw InputError("--family: expected rtiow, lambertian, metal, glass, emissive or pinhole, got \"" + family + "\"");
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   size_t n = v.size();
@@ -41,6 +85,76 @@ std::string fmt(const char* f, double v) {
 
 }  // namespace
 
+// --effects auto against all, per scene family, as ratios measured in one run.
+int run_effects_bench(const VulkanContext& ctx, const BenchOptions& o, const RenderSettings& settings) {
+  struct EffectsRow {
+    std::string family;
+    Precision precision;
+    std::vector<std::string> features;
+    double auto_ms = 0, all_ms = 0, auto_min = 0, auto_max = 0, all_min = 0, all_max = 0;
+  };
+  std::vector<EffectsRow> rows;
+  const uint64_t n = o.spheres.empty() ? 488 : o.spheres.front();
+  const float radius = o.radii.empty() ? 0.2f : o.radii.front();
+  for (const auto& family : o.families) {
+    Scene scene = make_family(family, n, radius, o.seed);
+    for (Precision precision : o.precisions) {
+      EffectsRow row{family, precision, feature_names(scene_features(scene))};
+      RenderSettings s = settings;
+      s.accel = o.accels.empty() ? Accel::Octree : o.accels.front();
+      s.precision = precision;
+      s.all_effects = false;
+      PathTracer specialised(ctx, scene, s);
+      s.all_effects = true;
+      PathTracer general(ctx, scene, s);
+      // Alternate the two so that drift of the machine hits both alike.
+      std::vector<double> a, g;
+      for (uint32_t rep = 0; rep <= o.repeat; ++rep) {
+        specialised.reset();
+        double ta = specialised.run_passes(0, s.spp);
+        general.reset();
+        double tg = general.run_passes(0, s.spp);
+        if (rep == 0) continue;  // warm-up
+        a.push_back(ta);
+        g.push_back(tg);
+      }
+      row.auto_ms = median(a);
+      row.all_ms = median(g);
+      row.auto_min = *std::min_element(a.begin(), a.end());
+      row.auto_max = *std::max_element(a.begin(), a.end());
+      row.all_min = *std::min_element(g.begin(), g.end());
+      row.all_max = *std::max_element(g.begin(), g.end());
+      if (!o.quiet)
+        std::fprintf(stderr, "  %-10s %-8s auto %.2f ms, all %.2f ms\n", family.c_str(), precision_name(precision),
+                     row.auto_ms, row.all_ms);
+      rows.push_back(row);
+    }
+  }
+  std::printf("Device: %s (%s, %s). Image %dx%d, %u spp, depth %u, rtiow %llu spheres r=%g with materials "
+              "replaced per family; render = device time, median of %u runs after a warm-up, auto and all "
+              "alternated.\n\n",
+              ctx.info.name.c_str(), ctx.info.type.c_str(), ctx.info.driver.c_str(), settings.width,
+              settings.height, settings.spp, settings.max_depth, (unsigned long long)n, radius, o.repeat);
+  std::printf("| family | precision | features | auto ms (min-max) | all ms (min-max) | all / auto |\n");
+  std::printf("|---|---|---|---:|---:|---:|\n");
+  for (const auto& r : rows) {
+    std::string features;
+    for (const auto& f : r.features) features += (features.empty() ? "" : " ") + f;
+    std::printf("| %s | %s | %s | %.2f (%.2f-%.2f) | %.2f (%.2f-%.2f) | %.2fx |\n", r.family.c_str(),
+                precision_name(r.precision), features.c_str(), r.auto_ms, r.auto_min, r.auto_max, r.all_ms,
+                r.all_min, r.all_max, r.all_ms / r.auto_ms);
+  }
+  if (!o.csv.empty()) {
+    std::ofstream f(o.csv);
+    if (!f) throw RuntimeError(o.csv + ": cannot write");
+    f << "device,family,precision,auto_ms,all_ms,ratio\n";
+    for (const auto& r : rows)
+      f << '"' << ctx.info.name << "\"," << r.family << ',' << precision_name(r.precision) << ',' << r.auto_ms << ','
+        << r.all_ms << ',' << r.all_ms / r.auto_ms << '\n';
+  }
+  return 0;
+}
+
 int run_bench(const BenchOptions& o) {
   VulkanContext ctx;
   bool need_fp16 = false;
@@ -53,6 +167,7 @@ int run_bench(const BenchOptions& o) {
   }
   validate_settings(settings);
 
+  if (!o.families.empty()) return run_effects_bench(ctx, o, settings);
   if (!o.quiet)
     std::fprintf(stderr, "bench on %s (%s): %dx%d, %u spp, depth %u, %u repeats after a warm-up\n",
                  ctx.info.name.c_str(), ctx.info.type.c_str(), settings.width, settings.height, settings.spp,

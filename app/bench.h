@@ -23,6 +23,9 @@ struct BenchOptions {
   bool validation = false;
   std::string csv;
   bool quiet = false;
+  // Non-empty: instead of the sphere-count sweep, time --effects auto against
+  // all for each scene family (rtiow with its materials replaced, see bench.cpp).
+  std::vector<std::string> families;
 };
 
 int run_bench(const BenchOptions& options);

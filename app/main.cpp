@@ -358,6 +358,10 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--seed", bench.seed, "Scene generator seed")->capture_default_str();
   bench_cmd->add_option("--device", bench.device, "auto | cpu | gpu | INDEX")->capture_default_str();
   bench_cmd->add_option("--csv", bench.csv, "Also write the results as CSV");
+  bench_cmd->add_option("--family", bench.families,
+                        "Instead of the sphere sweep: time --effects auto against all for these scene families "
+                        "(rtiow, lambertian, metal, glass, emissive, pinhole; comma-separated)")
+      ->delimiter(',');
   bench_cmd->add_flag("--validation", bench.validation, "Enable the Khronos validation layer");
   bench_cmd->add_flag("--quiet,-q", bench.quiet, "No progress on stderr");
 

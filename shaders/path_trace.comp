@@ -25,6 +25,20 @@ layout(std430, binding = BINDING_OCTREE_REFS) readonly buffer RefBuf { uint octr
 
 layout(push_constant) uniform Push { PassConstants pass; };
 
+// The scene's features (renderer/scene_features.h), as specialization
+// constants: the driver compiles out the code of effects the scene lacks.
+// Defaults are the general pipeline (`--effects all`). Every effect draws its
+// random numbers from its own bounce's stream, so leaving one out changes no
+// other number: the image is the same.
+layout(constant_id = SPEC_LAMBERTIAN) const bool HAS_LAMBERTIAN = true;
+layout(constant_id = SPEC_METAL) const bool HAS_METAL = true;
+layout(constant_id = SPEC_FUZZ) const bool HAS_FUZZ = true;
+layout(constant_id = SPEC_DIELECTRIC) const bool HAS_DIELECTRIC = true;
+layout(constant_id = SPEC_EMISSIVE) const bool HAS_EMISSIVE = true;
+layout(constant_id = SPEC_DEFOCUS) const bool HAS_DEFOCUS = true;
+layout(constant_id = SPEC_SKY) const uint SKY = SKY_RUNTIME;
+layout(constant_id = SPEC_ANY_LIGHT) const bool ANY_LIGHT = true;
+
 #include "rng.glsl"
 #include "geometry.glsl"
 #include "scene_hit.glsl"
@@ -64,11 +78,12 @@ Material load_material(uint i) {
 }
 
 real3 sky_radiance(vec3 dir) {
-  if (params.sky_type == SKY_GRADIENT) {
+  uint sky = SKY == SKY_RUNTIME ? params.sky_type : SKY;
+  if (sky == SKY_GRADIENT) {
     real t = real(0.5 * (dir.y + 1.0));
     return (real(1.0) - t) * real3(params.sky_a) + t * real3(params.sky_b);
   }
-  if (params.sky_type == SKY_UNIFORM) return real3(params.sky_a);
+  if (sky == SKY_UNIFORM) return real3(params.sky_a);
   return real3(0.0);
 }
 
@@ -83,7 +98,7 @@ dreal schlick(dreal cosine, dreal eta) {
 Ray camera_ray(uvec2 pixel, uint pixel_index) {
   Rng rng = rng_init(params.sample_seed, pixel_index, pass.sample_index, CAMERA_BOUNCE);
   vec2 jitter = vec2(rng_next(rng), rng_next(rng));
-  vec2 lens = random_in_unit_disk(rng) * params.lens_radius;
+  vec2 lens = HAS_DEFOCUS ? random_in_unit_disk(rng) * params.lens_radius : vec2(0.0);
   vec3 origin = params.cam_origin + lens.x * params.lens_u + lens.y * params.lens_v;
   vec3 target = params.pixel00 + (float(pixel.x) + jitter.x) * params.pixel_du +
                 (float(pixel.y) + jitter.y) * params.pixel_dv;
@@ -98,7 +113,7 @@ vec3 trace_path(Ray ray, uint pixel_index) {
   for (uint bounce = 0; bounce < params.max_depth; ++bounce) {
     Hit hit;
     if (!closest_hit(ray, from_sphere, into_from, hit)) {
-      radiance += throughput * sky_radiance(ray.dir);
+      if (SKY != SKY_NONE) radiance += throughput * sky_radiance(ray.dir);
       break;
     }
     GpuSphere s = spheres[hit.sphere];
@@ -108,7 +123,7 @@ vec3 trace_path(Ray ray, uint pixel_index) {
     bool front_face = dot(ray.dir, outward) < 0.0;
     vec3 n = front_face ? outward : -outward;
 
-    if (m.type == MAT_EMISSIVE) {
+    if (HAS_EMISSIVE && m.type == MAT_EMISSIVE) {
       radiance += throughput * m.color;
       break;
     }
@@ -120,19 +135,19 @@ vec3 trace_path(Ray ray, uint pixel_index) {
     dreal3 d_in = dreal3(ray.dir);
     vec3 dir;
     bool refracted = false;
-    if (m.type == MAT_LAMBERTIAN) {
+    if (HAS_LAMBERTIAN && m.type == MAT_LAMBERTIAN) {
       // Cosine-weighted: normal + uniform unit vector (book v4); the rare sum
       // that cancels to zero falls back to the normal.
       dir = safe_normalize(vec3(dn + dreal3(random_unit_vector(rng))), n);
       throughput *= m.color;
-    } else if (m.type == MAT_METAL) {
-      dreal3 fuzz = dreal3(random_unit_vector(rng));
-      dreal3 d = reflect(d_in, dn) + dreal(m.fuzz) * fuzz;
+    } else if (HAS_METAL && m.type == MAT_METAL) {
+      dreal3 d = reflect(d_in, dn);
+      if (HAS_FUZZ) d += dreal(m.fuzz) * dreal3(random_unit_vector(rng));
       // A fuzzed direction below the surface is absorbed (book v4).
       if (dot(d, dn) <= dreal(0.0)) break;
       dir = safe_normalize(vec3(d), n);
       throughput *= m.color;
-    } else {
+    } else if (HAS_DIELECTRIC && m.type == MAT_DIELECTRIC) {
       dreal eta = front_face ? dreal(1.0) / dreal(m.ior) : dreal(m.ior);
       dreal cos_theta = min(dot(-d_in, dn), dreal(1.0));
       dreal sin_theta = sqrt(max(dreal(0.0), dreal(1.0) - cos_theta * cos_theta));
@@ -146,7 +161,11 @@ vec3 trace_path(Ray ray, uint pixel_index) {
         refracted = true;
       }
       dir = safe_normalize(vec3(d), reflect(ray.dir, n));
+    } else {
+      break;  // not reached: the pipeline is specialised to the scene's materials
     }
+    // A path that carries nothing any more cannot add light: stop it.
+    if (all(equal(throughput, real3(0.0)))) break;
     // A reflection leaves on n's side, a refraction on the other. A direction
     // rounded onto the wrong side (worked out in half, a rounding error of
     // ~1e-3 does it at grazing angles) would enter an opaque sphere and leak
@@ -166,7 +185,8 @@ void main() {
   if (pixel.x >= params.width || pixel.y >= params.height) return;
   uint index = pixel.y * params.width + pixel.x;
 
-  vec3 value = trace_path(camera_ray(pixel, index), index);
+  // A scene with no emitter under a black sky is black: nothing to trace.
+  vec3 value = ANY_LIGHT ? trace_path(camera_ray(pixel, index), index) : vec3(0.0);
 
   // A NaN or Inf sample is counted, never added: one would poison the pixel.
   if (any(isnan(value)) || any(isinf(value))) {

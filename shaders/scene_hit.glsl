@@ -7,7 +7,7 @@
 
 #include "geometry.glsl"
 
-layout(constant_id = 0) const uint ACCEL = ACCEL_OCTREE;
+layout(constant_id = SPEC_ACCEL) const uint ACCEL = ACCEL_OCTREE;
 
 struct Hit {
   float t;

@@ -1,0 +1,119 @@
+// Simulate only the effects a scene calls for: the features a scene uses are
+// detected on the CPU, the pipeline is specialised to them, and the image is
+// the same as the general pipeline's (`--effects all`), bit for bit: every
+// effect draws from its own bounce's random stream, and an effect that is
+// compiled out would only have added exact zeros.
+#include <cstring>
+
+#include "test_util.h"
+
+namespace octrace {
+namespace {
+
+Material lambertian(glm::vec3 albedo) { return {MaterialType::Lambertian, albedo}; }
+Material metal(float fuzz) { return {MaterialType::Metal, {0.8f, 0.7f, 0.6f}, fuzz}; }
+Material glass() {
+  Material m;
+  m.type = MaterialType::Dielectric;
+  m.ior = 1.5f;
+  return m;
+}
+Material light(glm::vec3 radiance) {
+  Material m;
+  m.type = MaterialType::Emissive;
+  m.radiance = radiance;
+  return m;
+}
+
+// Three spheres on a ground, all of one material, pinhole camera, gradient sky.
+Scene family(Material m) {
+  Scene s;
+  s.camera.lookfrom = {0, 1.5f, 6};
+  s.camera.lookat = {0, 0.5f, 0};
+  s.camera.aperture = 0;
+  s.materials = {m};
+  s.spheres = {{{0, -1000, 0}, 1000, 0}, {{0, 0.7f, 0}, 0.7f, 0}, {{1.4f, 0.4f, 0.6f}, 0.4f, 0}, {{-1.4f, 0.4f, 0.6f}, 0.4f, 0}};
+  return s;
+}
+
+struct EffectsCase {
+  const char* name;
+  Scene (*make)();
+  std::vector<std::string> expected;  // feature_names of the scene
+};
+void PrintTo(const EffectsCase& c, std::ostream* os) { *os << c.name; }
+
+const EffectsCase CASES[] = {
+    {"lambertian_only", [] { return family(lambertian({0.7f, 0.4f, 0.3f})); }, {"lambertian", "sky_gradient"}},
+    {"mirror_only", [] { return family(metal(0.0f)); }, {"metal", "sky_gradient"}},
+    {"fuzzy_metal_only", [] { return family(metal(0.3f)); }, {"metal", "fuzzy_metal", "sky_gradient"}},
+    {"glass_only", [] { return family(glass()); }, {"dielectric", "sky_gradient"}},
+    {"mixed_rtiow", [] { return make_rtiow_scene({60, 0.25f, 2}); },
+     {"lambertian", "metal", "fuzzy_metal", "dielectric", "defocus", "sky_gradient"}},
+    {"emissive_black_sky",
+     [] {
+       Scene s = family(lambertian({0.5f, 0.5f, 0.5f}));
+       s.materials.push_back(light({4, 3, 2}));
+       s.spheres[1].material = 1;
+       s.sky.type = SkyType::None;
+       return s;
+     },
+     {"lambertian", "emissive", "sky_none", "sky_black"}},
+    {"lens_rtiow", [] { return make_rtiow_scene({60, 0.25f, 3}); },
+     {"lambertian", "metal", "fuzzy_metal", "dielectric", "defocus", "sky_gradient"}},
+    {"pinhole_rtiow",
+     [] {
+       Scene s = make_rtiow_scene({60, 0.25f, 3});
+       s.camera.aperture = 0;
+       return s;
+     },
+     {"lambertian", "metal", "fuzzy_metal", "dielectric", "sky_gradient"}},
+    {"no_light",
+     [] {
+       Scene s = family(lambertian({0.5f, 0.5f, 0.5f}));
+       s.sky.type = SkyType::Uniform;
+       s.sky.radiance = glm::vec3(0.0f);
+       return s;
+     },
+     {"lambertian", "sky_uniform", "sky_black", "no_light"}},
+    {"unused_glass_material",
+     [] {
+       Scene s = family(lambertian({0.5f, 0.5f, 0.5f}));
+       s.materials.push_back(glass());
+       return s;
+     },
+     {"lambertian", "sky_gradient"}},
+};
+
+class EffectsTest : public test::VulkanTest, public ::testing::WithParamInterface<EffectsCase> {};
+
+TEST_P(EffectsTest, FeaturesAreDetected) {
+  EXPECT_EQ(feature_names(scene_features(GetParam().make())), GetParam().expected);
+}
+
+TEST_P(EffectsTest, SpecialisedImageIsBitIdenticalToGeneral) {
+  Scene scene = GetParam().make();
+  for (Precision precision : {Precision::FP32, Precision::FP16}) {
+    RenderSettings s;
+    s.width = 48;
+    s.height = 32;
+    s.spp = 4;
+    s.precision = precision;
+    s.all_effects = false;
+    RenderResult specialised = render(test::shared_context(), scene, s);
+    s.all_effects = true;
+    RenderResult general = render(test::shared_context(), scene, s);
+    ASSERT_EQ(specialised.mean.rgb.size(), general.mean.rgb.size());
+    size_t differing = 0;
+    for (size_t i = 0; i < general.mean.rgb.size(); ++i)
+      differing += std::memcmp(&specialised.mean.rgb[i], &general.mean.rgb[i], sizeof(float)) != 0;
+    EXPECT_EQ(differing, 0u) << precision_name(precision) << ": values that differ between --effects auto and all";
+    EXPECT_EQ(specialised.nonfinite_samples, 0u);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, EffectsTest, ::testing::ValuesIn(CASES),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace octrace
