@@ -13,8 +13,10 @@ date -u +"%Y-%m-%d %H:%M UTC" > "$out/date.txt"
   > "$out/bench_1m.md" 2>> "$out/bench.log"
 "$bin" bench --device gpu --accel octree,brute --spheres 488,8000 --radius 0.1 --precision fp32,fp16,fp16-all \
   --budget 30 --csv "$out/bench_precision.csv" > "$out/bench_precision.md" 2>> "$out/bench.log"
+"$bin" bench --device gpu --family rtiow,lambertian,metal,glass,emissive,pinhole --precision fp32,fp16 \
+  --csv "$out/bench_effects.csv" > "$out/bench_effects.md" 2>> "$out/bench.log"
 if command -v python3 >/dev/null; then
   python3 "$(dirname "$0")/accuracy.py" --octrace "$bin" --device gpu --size 400x225 --study-size 1200x800 \
     --out "$out/accuracy" > "$out/accuracy.log" 2>&1 || echo "accuracy failed: see accuracy.log"
 fi
-cat "$out/bench.md" "$out/bench_1m.md" "$out/bench_precision.md"
+cat "$out/bench.md" "$out/bench_1m.md" "$out/bench_precision.md" "$out/bench_effects.md"
