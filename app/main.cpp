@@ -109,6 +109,9 @@ struct RenderOptions {
         ->capture_default_str();
     cmd.add_option("--sample-seed", settings.sample_seed, "Seed of the sampler (independent noise)")
         ->capture_default_str();
+    cmd.add_option("--rr-depth", settings.rr_depth,
+                   "Russian roulette from this bounce on (0: off; changes the noise, not the expectation)")
+        ->capture_default_str();
     cmd.add_option("--device", device, "auto | cpu | gpu | INDEX (see `octrace devices`)")->capture_default_str();
     cmd.add_flag("--validation", validation, "Enable the Khronos validation layer (also OCTRACE_VALIDATION=1)");
   }
@@ -205,6 +208,7 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
               {"accel", accel_name(settings.accel)},
               {"precision", precision_name(settings.precision)},
               {"effects", settings.all_effects ? "all" : "auto"},
+              {"rr_depth", settings.rr_depth},
               {"features", feature_names(result.features)},
               {"times_ms", {{"scene", scene_ms},
                             {"device_init", device_ms},

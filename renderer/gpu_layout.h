@@ -43,6 +43,6 @@ static_assert(offsetof(FrameParams, sky_type) == 108);
 static_assert(offsetof(FrameParams, sky_b) == 112);
 static_assert(offsetof(FrameParams, big_count) == 124);
 
-static_assert(sizeof(PassConstants) == 4);
+static_assert(sizeof(PassConstants) == 8);
 
 }  // namespace octrace::gpu

@@ -264,7 +264,7 @@ void PathTracer::record_passes(VkCommandBuffer cmd, uint32_t first_sample, uint3
                           nullptr);
   for (uint32_t i = 0; i < count; ++i) {
     if (i > 0) compute_barrier(cmd);
-    gpu::PassConstants pc{first_sample + i};
+    gpu::PassConstants pc{first_sample + i, s.settings.rr_depth ? s.settings.rr_depth : UINT32_MAX};
     vkCmdPushConstants(cmd, s.pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
     vkCmdDispatch(cmd, groups_x, groups_y, 1);
   }

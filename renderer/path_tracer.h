@@ -31,6 +31,10 @@ struct RenderSettings {
   // false: the pipeline is specialised to the scene's features (`--effects
   // auto`); true: the general pipeline with every effect (`--effects all`).
   bool all_effects = false;
+  // Russian roulette from this bounce on (0: off): a path survives with
+  // probability p = min(max throughput, 0.95) and carries 1/p more, so the
+  // expectation is unchanged and the noise grows; paths end sooner.
+  uint32_t rr_depth = 0;
   OctreeParams octree;
   int width = 1200;
   int height = 800;

@@ -166,6 +166,14 @@ vec3 trace_path(Ray ray, uint pixel_index) {
     }
     // A path that carries nothing any more cannot add light: stop it.
     if (all(equal(throughput, real3(0.0)))) break;
+    // Russian roulette (--rr-depth): unbiased, since a surviving path is
+    // weighted by 1/p.
+    if (bounce + 1u >= pass.rr_depth) {
+      Rng rr = rng_init(params.sample_seed, pixel_index, pass.sample_index, bounce | RR_STREAM);
+      float p = min(float(max(max(throughput.r, throughput.g), throughput.b)), 0.95);
+      if (rng_next(rr) >= p) break;
+      throughput /= real(p);
+    }
     // A reflection leaves on n's side, a refraction on the other. A direction
     // rounded onto the wrong side (worked out in half, a rounding error of
     // ~1e-3 does it at grazing angles) would enter an opaque sphere and leak

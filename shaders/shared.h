@@ -152,10 +152,16 @@ struct FrameParams {
   uint big_count;     // octree: refs[0, big_count) are spheres tested before traversal
 };
 
-// Push constants: the index of the sample this dispatch adds to every pixel.
+// Push constants: the index of the sample this dispatch adds to every pixel,
+// and the bounce from which Russian roulette runs (0xffffffff: never).
 struct PassConstants {
   uint sample_index;
+  uint rr_depth;
 };
+
+// Russian roulette draws from a stream of its own (bounce | RR_STREAM), so
+// turning it on changes no other random number.
+OCT_CONST(uint, RR_STREAM, 0x40000000u);
 
 #ifdef __cplusplus
 }  // namespace octrace::gpu

@@ -88,5 +88,32 @@ TEST_F(RenderTest, DepthLimitCutsPaths) {
   EXPECT_EQ(r.mean.pixel(0, 0)[0], 1.0f);
 }
 
+// Russian roulette changes the noise, not the expectation: in the furnace a
+// path that survives the roulette (p = 0.95 at throughput 1) carries 1/p, so
+// the image mean stays 1. Tolerance: 5 standard errors of the image mean
+// (from the per-pixel variances the accumulation keeps), and the noise must
+// actually grow (the roulette ran).
+TEST_F(RenderTest, RussianRouletteKeepsTheExpectation) {
+  Scene scene = test::furnace_scene();
+  scene.materials = {{MaterialType::Lambertian, glm::vec3(1.0f)}, {MaterialType::Metal, glm::vec3(1.0f), 0.0f}};
+  scene.spheres = {{{-1.1f, 0, 0}, 1.0f, 0}, {{1.1f, 0, 0}, 1.0f, 1}};
+  RenderSettings s;
+  s.width = 48;
+  s.height = 32;
+  s.spp = 64;
+  s.rr_depth = 1;
+  RenderResult r = render(test::shared_context(), scene, s);
+  ASSERT_EQ(r.nonfinite_samples, 0u);
+  double sum = 0, var = 0;
+  for (size_t i = 0; i < r.mean.rgb.size(); i += 3) {
+    sum += r.mean.rgb[i];
+    var += r.variance_of_mean.rgb[i];
+  }
+  const double n = double(r.mean.rgb.size() / 3);
+  const double mean = sum / n, standard_error = std::sqrt(var) / n;
+  EXPECT_GT(standard_error, 0.0) << "the roulette added no noise: it did not run";
+  EXPECT_LE(std::abs(mean - 1.0), 5.0 * standard_error) << "image mean " << mean << ", standard error " << standard_error;
+}
+
 }  // namespace
 }  // namespace octrace

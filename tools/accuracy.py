@@ -42,10 +42,10 @@ class Octrace:
     def __init__(self, binary, device, scene_flags):
         self.binary, self.device, self.scene_flags = binary, device, scene_flags
 
-    def render(self, path, size, spp, depth, precision, seed):
+    def render(self, path, size, spp, depth, precision, seed, extra=()):
         cmd = [self.binary, "render", "--json", "--quiet", "--device", self.device, "--size", size,
                "--spp", str(spp), "--depth", str(depth), "--precision", precision,
-               "--sample-seed", str(seed), "--out", path] + self.scene_flags
+               "--sample-seed", str(seed), "--out", path] + self.scene_flags + list(extra)
         return json.loads(run(cmd))
 
     def compare(self, test, reference):
@@ -64,13 +64,17 @@ def plot(rows, path, title):
         return
     fig, ax = plt.subplots(figsize=(8.5, 6))
     styles = {"fp32": "-", "fp16": "--", "fp16-all": ":"}
+    rr_color = "black"
     colors = {4: "tab:red", 8: "tab:orange", 16: "tab:green", 50: "tab:blue"}
     for precision in dict.fromkeys(r["precision"] for r in rows):
         for depth in dict.fromkeys(int(r["depth"]) for r in rows):
             pts = [r for r in rows if r["precision"] == precision and int(r["depth"]) == depth]
+            if not pts:
+                continue
+            rr = "+rr" in precision
             ax.plot([float(p["render_ms"]) for p in pts], [max(float(p["rel_mse"]), 1e-12) for p in pts],
-                    styles.get(precision, "-"), marker="o", markersize=3, color=colors.get(depth),
-                    label=f"{precision} depth {depth}")
+                    "-." if rr else styles.get(precision, "-"), marker="o", markersize=3,
+                    color=rr_color if rr else colors.get(depth), label=f"{precision} depth {depth}")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("render time, ms (device)")
@@ -97,6 +101,8 @@ def main():
     ap.add_argument("--converged-spp", type=int, default=1024)
     ap.add_argument("--depths", default="4,8,16,50")
     ap.add_argument("--precisions", default=",".join(PRECISIONS))
+    ap.add_argument("--rr-depth", type=int, default=3,
+                    help="also sweep fp32 at depth 50 with Russian roulette from this bounce (0: no)")
     ap.add_argument("--scene-flags", default="", help="extra scene flags for octrace render, e.g. '--spheres 1000'")
     ap.add_argument("--out", default="docs/results/accuracy")
     ap.add_argument("--replot", metavar="DIR", help="only redraw DIR/accuracy.png from DIR/accuracy.csv")
@@ -138,6 +144,16 @@ def main():
                              "render_ms": info["times_ms"]["render"], "rel_mse": err["rel_mse"],
                              "ssim": err["ssim"], "nonfinite": info["nonfinite_samples"]})
             progress(f"sweep: {precision} depth {depth} done")
+    if args.rr_depth > 0:
+        label = f"fp32+rr{args.rr_depth}"
+        for spp in spps:
+            path = os.path.join(tmp, f"rr_{spp}.pfm")
+            info = o.render(path, args.size, spp, 50, "fp32", 1, ["--rr-depth", str(args.rr_depth)])
+            err = o.compare(path, ref)
+            rows.append({"precision": label, "depth": 50, "spp": spp,
+                         "render_ms": info["times_ms"]["render"], "rel_mse": err["rel_mse"],
+                         "ssim": err["ssim"], "nonfinite": info["nonfinite_samples"]})
+        progress("sweep: Russian roulette done")
 
     with open(os.path.join(args.out, "accuracy.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))

@@ -3,7 +3,7 @@
 against sphere count, log axes, one line per accel and radius, the octree's
 speedup over brute force written next to its points.
 
-  tools/plot_bench.py bench.csv bench.png [--title TEXT]
+  tools/plot_bench.py bench.csv [more.csv ...] -o bench.png [--title TEXT]
 
 Uses Debian's python3-matplotlib (installed by tools/setup.sh).
 """
@@ -20,13 +20,15 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("csv")
-    ap.add_argument("png")
+    ap.add_argument("csv", nargs="+")
+    ap.add_argument("-o", "--out", required=True, help="PNG to write")
     ap.add_argument("--title", default=None)
     args = ap.parse_args()
 
-    with open(args.csv, newline="") as f:
-        rows = list(csv.DictReader(f))
+    rows = []
+    for path in args.csv:
+        with open(path, newline="") as f:
+            rows += list(csv.DictReader(f))
     if not rows:
         sys.exit(f"plot_bench: {args.csv}: no rows")
 
@@ -60,7 +62,7 @@ def main():
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
     fig.tight_layout()
-    fig.savefig(args.png, dpi=110)
+    fig.savefig(args.out, dpi=110)
 
 
 if __name__ == "__main__":
