@@ -26,15 +26,11 @@ float intersect_sphere(Ray ray, vec3 center, float radius, float t_max, bool ski
   if (skip_all) return INF;
   vec3 f = ray.origin - center;
   float b = -dot(f, ray.dir);
-  float r2 = radius * radius;
-  float c = dot(f, f) - r2;
-  // Origin outside (c > 0) and centre behind (b < 0): both roots are
-  // negative (they have b's sign when c > 0). The cheap early out for about
-  // half the spheres brute force meets.
-  if (c > 0.0 && b < 0.0) return INF;
   vec3 l = f + b * ray.dir;
+  float r2 = radius * radius;
   float disc = r2 - dot(l, l);
   if (disc < 0.0) return INF;
+  float c = dot(f, f) - r2;
   float q = b + (b >= 0.0 ? sqrt(disc) : -sqrt(disc));
   float t0 = c / q;  // c/q and q are the two roots, in either order
   float t1 = q;
