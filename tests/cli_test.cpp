@@ -10,26 +10,14 @@
 
 #include <gtest/gtest.h>
 
+#include "test_util.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int code;
-  std::string output;  // stdout and stderr together
-};
-
-RunResult run_octrace(const std::string& args) {
-  std::string cmd = std::string(OCTRACE_BIN) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  RunResult r{-1, ""};
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.output.append(buf, n);
-  int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using octrace::test::RunResult;
+using octrace::test::run_octrace;
 
 std::string tmp(const std::string& name) { return std::string(OCTRACE_TEST_TMP) + "/cli_" + name; }
 

@@ -10,20 +10,10 @@
 namespace octrace {
 namespace {
 
-Material lambertian(glm::vec3 albedo) { return {MaterialType::Lambertian, albedo}; }
-Material metal(float fuzz) { return {MaterialType::Metal, {0.8f, 0.7f, 0.6f}, fuzz}; }
-Material glass() {
-  Material m;
-  m.type = MaterialType::Dielectric;
-  m.ior = 1.5f;
-  return m;
-}
-Material light(glm::vec3 radiance) {
-  Material m;
-  m.type = MaterialType::Emissive;
-  m.radiance = radiance;
-  return m;
-}
+using test::emitter;
+using test::glass;
+using test::lambertian;
+using test::metal;
 
 // Three spheres on a ground, all of one material, pinhole camera, gradient sky.
 Scene family(Material m) {
@@ -45,15 +35,15 @@ void PrintTo(const EffectsCase& c, std::ostream* os) { *os << c.name; }
 
 const EffectsCase CASES[] = {
     {"lambertian_only", [] { return family(lambertian({0.7f, 0.4f, 0.3f})); }, {"lambertian", "sky_gradient"}},
-    {"mirror_only", [] { return family(metal(0.0f)); }, {"metal", "sky_gradient"}},
-    {"fuzzy_metal_only", [] { return family(metal(0.3f)); }, {"metal", "fuzzy_metal", "sky_gradient"}},
-    {"glass_only", [] { return family(glass()); }, {"dielectric", "sky_gradient"}},
+    {"mirror_only", [] { return family(metal({0.8f, 0.7f, 0.6f}, 0.0f)); }, {"metal", "sky_gradient"}},
+    {"fuzzy_metal_only", [] { return family(metal({0.8f, 0.7f, 0.6f}, 0.3f)); }, {"metal", "fuzzy_metal", "sky_gradient"}},
+    {"glass_only", [] { return family(glass(1.5f)); }, {"dielectric", "sky_gradient"}},
     {"mixed_rtiow", [] { return make_rtiow_scene({60, 0.25f, 2}); },
      {"lambertian", "metal", "fuzzy_metal", "dielectric", "defocus", "sky_gradient"}},
     {"emissive_black_sky",
      [] {
        Scene s = family(lambertian({0.5f, 0.5f, 0.5f}));
-       s.materials.push_back(light({4, 3, 2}));
+       s.materials.push_back(emitter({4, 3, 2}));
        s.spheres[1].material = 1;
        s.sky.type = SkyType::None;
        return s;
@@ -79,7 +69,7 @@ const EffectsCase CASES[] = {
     {"unused_glass_material",
      [] {
        Scene s = family(lambertian({0.5f, 0.5f, 0.5f}));
-       s.materials.push_back(glass());
+       s.materials.push_back(glass(1.5f));
        return s;
      },
      {"lambertian", "sky_gradient"}},

@@ -129,21 +129,10 @@ RenderSettings settings(int width, int height, uint32_t spp, uint32_t depth = 50
   return s;
 }
 
-Material lambertian(float albedo) { return {MaterialType::Lambertian, glm::vec3(albedo)}; }
-Material lambertian(glm::vec3 albedo) { return {MaterialType::Lambertian, albedo}; }
-Material metal(float albedo, float fuzz) { return {MaterialType::Metal, glm::vec3(albedo), fuzz}; }
-Material glass(float ior) {
-  Material m;
-  m.type = MaterialType::Dielectric;
-  m.ior = ior;
-  return m;
-}
-Material emitter(glm::vec3 radiance) {
-  Material m;
-  m.type = MaterialType::Emissive;
-  m.radiance = radiance;
-  return m;
-}
+using test::emitter;
+using test::glass;
+using test::lambertian;
+using test::metal;
 
 Scene black_sky(Scene s) {
   s.sky.type = SkyType::None;

@@ -3,6 +3,9 @@
 // a check after every test that the layer stayed silent.
 #pragma once
 
+#include <sys/wait.h>
+
+#include <cstdio>
 #include <memory>
 #include <string>
 
@@ -35,6 +38,42 @@ class VulkanTest : public ::testing::Test {
 };
 
 inline std::string tmp_path(const std::string& name) { return std::string(OCTRACE_TEST_TMP) + "/" + name; }
+
+struct RunResult {
+  int code;
+  std::string output;  // stdout and stderr together
+};
+
+// Runs the octrace binary with `args` (after environment assignments `env`).
+inline RunResult run_octrace(const std::string& args, const std::string& env = "") {
+  std::string cmd = env + " " + OCTRACE_BIN + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  RunResult r{-1, ""};
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.output.append(buf, n);
+  int status = pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+// Materials for scenes built in tests.
+inline Material lambertian(glm::vec3 albedo) { return {MaterialType::Lambertian, albedo}; }
+inline Material lambertian(float albedo) { return lambertian(glm::vec3(albedo)); }
+inline Material metal(glm::vec3 albedo, float fuzz) { return {MaterialType::Metal, albedo, fuzz}; }
+inline Material metal(float albedo, float fuzz) { return metal(glm::vec3(albedo), fuzz); }
+inline Material glass(float ior) {
+  Material m;
+  m.type = MaterialType::Dielectric;
+  m.ior = ior;
+  return m;
+}
+inline Material emitter(glm::vec3 radiance) {
+  Material m;
+  m.type = MaterialType::Emissive;
+  m.radiance = radiance;
+  return m;
+}
 
 // A scene of `spheres` under a uniform sky, camera looking at the origin.
 inline Scene furnace_scene() {

@@ -16,27 +16,15 @@
 #include <gtest/gtest.h>
 
 #include "image.h"
+#include "test_util.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int code;
-  std::string output;  // stdout and stderr together
-};
+using octrace::test::RunResult;
 
-RunResult run(const std::string& env, const std::string& args) {
-  std::string cmd = env + " " + OCTRACE_BIN + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  RunResult r{-1, ""};
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.output.append(buf, n);
-  int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+RunResult run(const std::string& env, const std::string& args) { return octrace::test::run_octrace(args, env); }
 
 std::string tmp(const std::string& name) { return std::string(OCTRACE_TEST_TMP) + "/view_" + name; }
 
