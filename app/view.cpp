@@ -456,9 +456,10 @@ void Viewer::update_title() {
   double paths_per_s = pass_ms_ > 0 ? double(settings_.width) * settings_.height / (pass_ms_ / 1000.0) : 0.0;
   char title[256];
   std::snprintf(title, sizeof title,
-                "octrace  |  %u spp%s  |  %.1f ms/pass  |  %.3g paths/s  |  %s  |  %s  |  depth %u  |  %dx%d  |  %.0f fps",
+                "octrace  |  %u spp%s  |  %.1f ms/pass  |  %.3g paths/s  |  %s  |  %s  |  effects %s  |  depth %u  |  %dx%d  |  %.0f fps",
                 spp_, target_reached_ ? " (done)" : "", pass_ms_, paths_per_s, precision_name(settings_.precision),
-                settings_.accel == Accel::Octree ? "octree" : "brute", settings_.max_depth, settings_.width,
+                settings_.accel == Accel::Octree ? "octree" : "brute", settings_.all_effects ? "all" : "auto",
+                settings_.max_depth, settings_.width,
                 settings_.height, fps_);
   // Only on change: setting it sends the window an event, which would wake
   // an idle loop at once.
@@ -520,6 +521,10 @@ void Viewer::on_key(int key, int action) {
       break;
     case GLFW_KEY_B:
       settings_.accel = settings_.accel == Accel::Octree ? Accel::Brute : Accel::Octree;
+      tracer_dirty_ = true;
+      break;
+    case GLFW_KEY_E:
+      settings_.all_effects = !settings_.all_effects;
       tracer_dirty_ = true;
       break;
     case GLFW_KEY_UP: settings_.max_depth = std::min(settings_.max_depth + 1, kMaxDepth); tracer_dirty_ = true; break;
