@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <string>
 
@@ -16,10 +17,13 @@
 
 namespace octrace::test {
 
+// The suite runs on the CPU device (lavapipe) unless OCTRACE_TEST_DEVICE
+// names another (`gpu`, an index): the same tests then check a GPU driver.
 inline VulkanContext& shared_context() {
   static std::unique_ptr<VulkanContext> ctx = [] {
     auto c = std::make_unique<VulkanContext>();
-    create_context(*c, {"cpu", false, false});
+    const char* device = std::getenv("OCTRACE_TEST_DEVICE");
+    create_context(*c, {device ? device : "cpu", false, false});
     return c;
   }();
   return *ctx;
