@@ -526,9 +526,15 @@ void coincident(CaseRun& run) {
 // the book's model treats each surface as air/glass, and paths bounce there
 // by total internal reflection, some for more than 50 bounces: at depth 50
 // the depth limit's share is lost (image-mean loss <= 0.5%, measured 0.15%),
-// at depth 1000 nothing is (every pixel 1 within 1e-6). fp16-all works out
-// directions in half, whose rounding can close such a path into an orbit
-// that never leaves: measured 1 sample of 16 in one pixel, tolerance 0.1.
+// at depth 1000 almost nothing is. Almost: a path in the overlap can close
+// into a total-internal-reflection orbit that never leaves (the book's model
+// has no nested media, so the overlap is not a consistent medium), and which
+// path does so depends on rounding: lavapipe loses no sample in fp32 and
+// fp16 and 1 sample of 16 in one pixel in fp16-all (directions in half); the
+// H100 loses 1 of 16 in one pixel in fp32 and fp16 as well (run with
+// OCTRACE_TEST_DEVICE=gpu, 2026-11-24). So in every precision: no pixel loses
+// more than one sample in 16 plus rounding (0.07), and the image mean loses at
+// most 1e-3 (one sample of 16 in one pixel of 48x32 is 4e-5).
 void overlapping(CaseRun& run) {
   Scene s = furnace({lambertian(1.0f)}, {{{-0.5f, 0.5f, 0}, 1, 0}, {{0.4f, -0.3f, 0.2f}, 0.8f, 0}});
   RenderResult r = run.render(s, settings(48, 32, 16));
@@ -539,8 +545,8 @@ void overlapping(CaseRun& run) {
   run.at_most("glass overlaps, depth 50: 1 - image mean", 1.0 - image_mean(r50.mean), 0.005);
   run.at_most("glass overlaps, depth 50: max pixel - 1", max_value(r50.mean) - 1.0, 1e-6);
   RenderResult r1000 = run.render(g, settings(48, 32, 16, 1000));
-  run.at_most("glass overlaps, depth 1000: max |pixel - 1|", max_deviation(r1000.mean, 1.0),
-              run.precision_kind() == Precision::FP16All ? 0.1 : 1e-6);
+  run.at_most("glass overlaps, depth 1000: max |pixel - 1|", max_deviation(r1000.mean, 1.0), 0.07);
+  run.at_most("glass overlaps, depth 1000: 1 - image mean", 1.0 - image_mean(r1000.mean), 1e-3);
 }
 
 // Zero spheres: the octree of nothing and brute force of nothing show the
