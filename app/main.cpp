@@ -18,6 +18,7 @@
 #include "bench.h"
 #include "image.h"
 #include "path_tracer.h"
+#include "render_state.h"
 #include "scene.h"
 #include "view.h"
 #include "vk_context.h"
@@ -109,6 +110,9 @@ struct RenderOptions {
         ->capture_default_str();
     cmd.add_option("--sample-seed", settings.sample_seed, "Seed of the sampler (independent noise)")
         ->capture_default_str();
+    cmd.add_option("--first-sample", settings.first_sample,
+                   "First sample index: runs over disjoint ranges merge into one render (octrace merge)")
+        ->capture_default_str();
     cmd.add_option("--rr-depth", settings.rr_depth,
                    "Russian roulette from this bounce on (0: off; changes the noise, not the expectation)")
         ->capture_default_str();
@@ -166,16 +170,17 @@ class Progress {
 };
 
 int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts, std::vector<std::string> outputs,
-               bool as_json, bool quiet) {
+               const std::string& state, bool as_json, bool quiet) {
   // Everything the user typed is checked before the (possibly long) render.
   RenderSettings settings = render_opts.parsed();
-  if (outputs.empty() && scene_opts.dump_scene.empty()) outputs.push_back("out.png");
+  if (outputs.empty() && scene_opts.dump_scene.empty() && state.empty()) outputs.push_back("out.png");
   for (const auto& o : outputs) check_image_path(o);
+  if (!state.empty()) check_image_path(state + ".mean.pfm");
 
   auto start = Clock::now();
   Scene scene = scene_opts.load();
   double scene_ms = ms_since(start);
-  if (outputs.empty()) return 0;  // only --dump-scene
+  if (outputs.empty() && state.empty()) return 0;  // only --dump-scene
 
   start = Clock::now();
   VulkanContext ctx;
@@ -190,6 +195,7 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
 
   start = Clock::now();
   for (const auto& o : outputs) write_image(result.mean, o);
+  if (!state.empty()) write_state({result.mean, result.count}, state);
   double write_ms = ms_since(start);
 
   const RenderTimings& t = result.timings;
@@ -259,6 +265,26 @@ void check_csv_path(const std::string& path) {
     throw InputError(path + ": folder does not exist or is not writable");
 }
 
+// Merges accumulation states (render --state) weighted by their sample counts.
+int cmd_merge(const std::vector<std::string>& inputs, const std::vector<std::string>& outputs,
+              const std::string& state, bool quiet) {
+  if (outputs.empty() && state.empty()) throw InputError("merge: give --out and/or --state");
+  for (const auto& o : outputs) check_image_path(o);
+  if (!state.empty()) check_image_path(state + ".mean.pfm");
+  std::vector<RenderState> states;
+  for (const auto& in : inputs) states.push_back(read_state(in));
+  RenderState merged = merge_states(states);
+  for (const auto& o : outputs) write_image(merged.mean, o);
+  if (!state.empty()) write_state(merged, state);
+  if (!quiet) {
+    double total = 0;
+    for (float n : merged.count) total += n;
+    std::printf("merged %zu states: %.0f samples per pixel on average\n", states.size(),
+                merged.count.empty() ? 0.0 : total / double(merged.count.size()));
+  }
+  return 0;
+}
+
 int cmd_devices(bool as_json) {
   auto devices = list_devices();
   if (as_json) {
@@ -318,6 +344,9 @@ int main(int argc, char** argv) {
   render_opts.add_to(*render_cmd);
   render_cmd->add_option("--out,-o", outputs, "Output image(s), format by extension: .png .pfm .exr (default out.png)");
   render_cmd->add_flag("--json", as_json, "Print a machine-readable summary on stdout");
+  std::string state_out;
+  render_cmd->add_option("--state", state_out,
+                         "Also save the accumulation state as PREFIX.mean.pfm + PREFIX.count.pfm (octrace merge)");
   render_cmd->add_flag("--quiet,-q", quiet, "No progress or summary");
 
   ViewOptions view_opts;
@@ -335,6 +364,14 @@ int main(int argc, char** argv) {
   compare_cmd->add_option("test", compare_a, "Test image (.png .pfm .exr)")->required();
   compare_cmd->add_option("reference", compare_b, "Reference image")->required();
   compare_cmd->add_flag("--json", as_json, "Machine-readable output");
+
+  std::vector<std::string> merge_inputs, merge_outputs;
+  std::string merge_state;
+  auto* merge_cmd = app.add_subcommand("merge", "Merge accumulation states (render --state) weighted by their counts");
+  merge_cmd->add_option("states", merge_inputs, "State prefixes (PREFIX.mean.pfm + PREFIX.count.pfm)")->required();
+  merge_cmd->add_option("--out,-o", merge_outputs, "Output image(s): .png .pfm .exr");
+  merge_cmd->add_option("--state", merge_state, "Also save the merged state under this prefix");
+  merge_cmd->add_flag("--quiet,-q", quiet, "No summary");
 
   BenchOptions bench;
   std::vector<uint64_t> bench_spheres{488, 1000, 2000, 4000, 8000, 32000, 128000, 1000000};
@@ -382,7 +419,8 @@ int main(int argc, char** argv) {
 
   int code = 0;
   try {
-    if (*render_cmd) code = cmd_render(scene_opts, render_opts, outputs, as_json, quiet);
+    if (*render_cmd) code = cmd_render(scene_opts, render_opts, outputs, state_out, as_json, quiet);
+    else if (*merge_cmd) code = cmd_merge(merge_inputs, merge_outputs, merge_state, quiet);
     else if (*view_cmd) {
 #ifdef OCTRACE_WINDOW
       view_opts.scene_file = scene_opts.scene_file;

@@ -86,6 +86,8 @@ void validate_settings(const RenderSettings& s) {
     throw InputError("--size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
                      ": each side must be <= " + std::to_string(max_side));
   if (s.spp < 1) throw InputError("--spp: must be >= 1");
+  if (uint64_t(s.first_sample) + s.spp > (uint64_t(1) << 32))
+    throw InputError("--first-sample: first sample + spp must be <= 2^32");
   if (s.spp > (1u << 24))
     throw InputError("--spp: must be <= 16777216 (sample counts are exact fp32 integers)");
   if (s.max_depth < 1) throw InputError("--depth: must be >= 1");
@@ -302,10 +304,12 @@ RenderResult PathTracer::read_result() {
   r.mean.rgb.resize(s.pixels * 3);
   r.variance_of_mean.rgb.resize(s.pixels * 3);
   r.nonfinite_samples = stats.nonfinite_samples;
+  r.count.resize(s.pixels);
   r.min_samples = UINT32_MAX;
   for (uint64_t i = 0; i < s.pixels; ++i) {
     double n = sum[i].w;
     r.min_samples = std::min(r.min_samples, uint32_t(n));
+    r.count[i] = float(n);
     for (int c = 0; c < 3; ++c) {
       // The Kahan sum is sum - comp (comp holds what the float sum overshot).
       double total = double(sum[i][c]) - double(comp[i][c]);
@@ -334,7 +338,7 @@ RenderResult render(const VulkanContext& ctx, const Scene& scene, const RenderSe
   while (done < settings.spp) {
     uint32_t n = std::min(batch, settings.spp - done);
     auto batch_start = Clock::now();
-    device_ms += tracer.run_passes(done, n);
+    device_ms += tracer.run_passes(settings.first_sample + done, n);
     double batch_ms = ms_since(batch_start);
     done += n;
     if (progress) progress(done, settings.spp);

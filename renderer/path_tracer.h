@@ -41,6 +41,9 @@ struct RenderSettings {
   uint32_t spp = 10;
   uint32_t max_depth = 50;
   uint32_t sample_seed = 1;
+  // The first sample index of this render: runs with disjoint ranges of
+  // sample indices (on other devices or machines) merge into one render.
+  uint32_t first_sample = 0;
 };
 
 // Checks sizes and counts before anything is allocated; throws InputError
@@ -60,6 +63,7 @@ struct RenderTimings {
 struct RenderResult {
   Image mean;              // linear mean radiance per pixel
   Image variance_of_mean;  // per pixel and channel: sample variance / count
+  std::vector<float> count;  // per pixel: samples added (NaN/Inf ones are not)
   uint32_t min_samples = 0;       // smallest per-pixel sample count
   uint64_t nonfinite_samples = 0; // NaN/Inf samples rejected (0 for a clean render)
   RenderTimings timings;

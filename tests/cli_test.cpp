@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "image.h"
 #include "test_util.h"
 
 namespace {
@@ -133,6 +134,38 @@ TEST(Cli, CompareRejectsSizeMismatchAndMissingFiles) {
   r = run_octrace("compare " + a + " " + tmp("nope.pfm"));
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.output.find("nope.pfm"), std::string::npos) << r.output;
+}
+
+// The accumulation state is what a render is: renders over disjoint ranges of
+// sample indices (as on two machines) merge into the render of the whole
+// range. Tolerance 1e-5 relative: the merge weights two fp32 means in double,
+// the single render keeps one Kahan-compensated fp32 sum; both are within a
+// few ulps of the exact mean of the same samples.
+TEST(Cli, StatesOfDisjointSampleRangesMergeIntoTheWholeRender) {
+  const std::string args = "render --size 32x20 --spheres 40 --quiet ";
+  std::string whole = tmp("whole.pfm"), merged = tmp("merged.pfm"), a = tmp("state_a"), b = tmp("state_b");
+  ASSERT_EQ(run_octrace(args + "--spp 8 --out " + whole).code, 0);
+  ASSERT_EQ(run_octrace(args + "--spp 3 --state " + a).code, 0);
+  ASSERT_EQ(run_octrace(args + "--spp 5 --first-sample 3 --state " + b).code, 0);
+  RunResult r = run_octrace("merge " + a + " " + b + " --out " + merged);
+  ASSERT_EQ(r.code, 0) << r.output;
+  octrace::Image w = octrace::read_image(whole), m = octrace::read_image(merged);
+  ASSERT_EQ(w.rgb.size(), m.rgb.size());
+  for (size_t i = 0; i < w.rgb.size(); ++i)
+    ASSERT_NEAR(m.rgb[i], w.rgb[i], 1e-5 * std::max(1.0f, std::abs(w.rgb[i]))) << "value " << i;
+}
+
+TEST(Cli, MergeRejectsMissingAndMismatchedStates) {
+  std::string small = tmp("state_small"), large = tmp("state_large");
+  ASSERT_EQ(run_octrace("render --size 8x8 --spp 1 --quiet --spheres 5 --state " + small).code, 0);
+  ASSERT_EQ(run_octrace("render --size 16x8 --spp 1 --quiet --spheres 5 --state " + large).code, 0);
+  RunResult r = run_octrace("merge " + small + " " + large + " --out " + tmp("never.png"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("sizes differ"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(tmp("never.png")));
+  r = run_octrace("merge " + tmp("no_such_state") + " --out " + tmp("never.png"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("no_such_state.mean.pfm"), std::string::npos) << r.output;
 }
 
 TEST(Cli, DevicesListsLavapipeWithFp16Support) {
