@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <map>
 #include <optional>
 
+#include "atomic_file.h"
 #include "vk_context.h"
 
 namespace octrace {
@@ -145,12 +146,13 @@ int run_effects_bench(const VulkanContext& ctx, const BenchOptions& o, const Ren
                 r.all_min, r.all_max, r.all_ms / r.auto_ms);
   }
   if (!o.csv.empty()) {
-    std::ofstream f(o.csv);
-    if (!f) throw RuntimeError(o.csv + ": cannot write");
+    std::ostringstream f;
     f << "device,family,precision,auto_ms,all_ms,ratio\n";
     for (const auto& r : rows)
       f << '"' << ctx.info.name << "\"," << r.family << ',' << precision_name(r.precision) << ',' << r.auto_ms << ','
         << r.all_ms << ',' << r.all_ms / r.auto_ms << '\n';
+    const std::string text = f.str();
+    write_file_atomically(o.csv, text.data(), text.size());
   }
   return 0;
 }
@@ -254,27 +256,23 @@ int run_bench(const BenchOptions& o) {
   }
 
   if (!o.csv.empty()) {
-    std::string tmp = o.csv + ".tmp";
-    {
-      std::ofstream f(tmp);
-      if (!f) throw RuntimeError(o.csv + ": cannot write");
-      f << "device,software,width,height,spp,depth,repeat,spheres,radius,accel,precision,skipped,median_ms,min_ms,"
+    std::ostringstream f;
+    f << "device,software,width,height,spp,depth,repeat,spheres,radius,accel,precision,skipped,median_ms,min_ms,"
            "max_ms,speedup,build_ms,bytes_per_sphere,refs_per_sphere\n";
-      for (const Row& r : rows) {
-        f << '"' << ctx.info.name << "\"," << (ctx.info.software ? 1 : 0) << ',' << settings.width << ','
-          << settings.height << ',' << settings.spp << ',' << settings.max_depth << ',' << o.repeat << ','
-          << r.spheres << ',' << r.radius << ',' << accel_label(r.accel) << ',' << precision_name(r.precision) << ','
-          << (r.skipped ? 1 : 0) << ',';
-        if (r.skipped) {
-          f << ",,,,,,\n";
-          continue;
-        }
-        f << r.median_ms << ',' << r.min_ms << ',' << r.max_ms << ',' << (r.speedup ? *r.speedup : 0.0) << ','
-          << r.build_ms << ',' << r.bytes_per_sphere << ',' << r.refs_per_sphere << '\n';
+    for (const Row& r : rows) {
+      f << '"' << ctx.info.name << "\"," << (ctx.info.software ? 1 : 0) << ',' << settings.width << ','
+        << settings.height << ',' << settings.spp << ',' << settings.max_depth << ',' << o.repeat << ','
+        << r.spheres << ',' << r.radius << ',' << accel_label(r.accel) << ',' << precision_name(r.precision) << ','
+        << (r.skipped ? 1 : 0) << ',';
+      if (r.skipped) {
+        f << ",,,,,,\n";
+        continue;
       }
-      if (!f) throw RuntimeError(o.csv + ": cannot write");
+      f << r.median_ms << ',' << r.min_ms << ',' << r.max_ms << ',' << (r.speedup ? *r.speedup : 0.0) << ','
+        << r.build_ms << ',' << r.bytes_per_sphere << ',' << r.refs_per_sphere << '\n';
     }
-    if (std::rename(tmp.c_str(), o.csv.c_str()) != 0) throw RuntimeError(o.csv + ": cannot write");
+    const std::string text = f.str();
+    write_file_atomically(o.csv, text.data(), text.size());
   }
   return 0;
 }

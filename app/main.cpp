@@ -17,6 +17,7 @@
 
 #include "bench.h"
 #include "image.h"
+#include "atomic_file.h"
 #include "path_tracer.h"
 #include "render_state.h"
 #include "scene.h"
@@ -259,12 +260,6 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
   return 0;
 }
 
-void check_csv_path(const std::string& path) {
-  std::string folder = path.substr(0, path.find_last_of('/') + 1);
-  if (!folder.empty() && access(folder.c_str(), W_OK) != 0)
-    throw InputError(path + ": folder does not exist or is not writable");
-}
-
 // Merges accumulation states (render --state) weighted by their sample counts.
 int cmd_merge(const std::vector<std::string>& inputs, const std::vector<std::string>& outputs,
               const std::string& state, bool quiet) {
@@ -445,7 +440,7 @@ int main(int argc, char** argv) {
       if (bench.repeat < 1) throw InputError("--repeat: must be >= 1");
       for (float r : bench.radii)
         if (!(r > 0) || !std::isfinite(r)) throw InputError("--radius: must be finite numbers > 0");
-      if (!bench.csv.empty()) check_csv_path(bench.csv);
+      if (!bench.csv.empty()) check_output_folder(bench.csv);
       code = run_bench(bench);
     }
   } catch (const InputError& e) {

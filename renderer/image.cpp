@@ -2,9 +2,7 @@
 
 #include <stb_image.h>
 #include <stb_image_write.h>
-#include <sys/stat.h>
 #include <tinyexr.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -22,6 +20,7 @@
 #include <iterator>
 #include <limits>
 
+#include "atomic_file.h"
 #include "errors.h"
 
 namespace octrace {
@@ -136,42 +135,6 @@ Bytes encode_exr(const Image& image, const std::string& path) {
   Bytes bytes(memory, memory + size);
   std::free(memory);
   return bytes;
-}
-
-// Fills the freshly made temporary file `fd` and closes it. Returns 0 or the
-// errno of the first step that failed.
-int fill_and_close(int fd, const Bytes& bytes) {
-  // mkstemp creates the file with mode 0600; give the image the permissions
-  // any other new file would get. umask can only be read by setting it (for
-  // the whole process, for an instant; images are written from one thread).
-  mode_t mask = umask(0);
-  umask(mask);
-  int error = fchmod(fd, 0666 & ~mask) == 0 ? 0 : errno;
-  for (size_t done = 0; error == 0 && done < bytes.size();) {
-    ssize_t n = write(fd, bytes.data() + done, bytes.size() - done);
-    if (n >= 0)
-      done += size_t(n);
-    else if (errno != EINTR)
-      error = errno;
-  }
-  if (error == 0 && fsync(fd) != 0) error = errno;
-  if (close(fd) != 0 && error == 0) error = errno;
-  return error;
-}
-
-// Writes `bytes` to a temporary file beside `path`, flushes it to disk and
-// renames it over `path`: rename is atomic on POSIX, so `path` holds either
-// its old contents or the complete new image, never a truncated one.
-void write_file_atomically(const std::string& path, const Bytes& bytes) {
-  std::string temp = path + ".tmp-XXXXXX";
-  int fd = mkstemp(temp.data());
-  if (fd < 0) write_failed(path, std::strerror(errno));
-  int error = fill_and_close(fd, bytes);
-  if (error == 0 && std::rename(temp.c_str(), path.c_str()) != 0) error = errno;
-  if (error != 0) {
-    unlink(temp.c_str());
-    write_failed(path, std::strerror(error));
-  }
 }
 
 // --- Decoding from bytes. Every length is checked against the file size, so
@@ -374,17 +337,15 @@ double ssim(const Image& test, const Image& reference) {
 
 void check_image_path(const std::string& path) {
   image_format(path);
-  std::filesystem::path folder = std::filesystem::path(path).parent_path();
-  std::error_code ec;
-  if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
-    throw InputError(path + ": folder does not exist");
+  check_output_folder(path);
 }
 
 void write_image(const Image& image, const std::string& path) {
   ImageFormat format = image_format(path);
-  write_file_atomically(path, format == ImageFormat::png   ? encode_png(image, path)
-                              : format == ImageFormat::pfm ? encode_pfm(image)
-                                                           : encode_exr(image, path));
+  const Bytes bytes = format == ImageFormat::png   ? encode_png(image, path)
+                      : format == ImageFormat::pfm ? encode_pfm(image)
+                                                   : encode_exr(image, path);
+  write_file_atomically(path, bytes.data(), bytes.size(), "cannot write image");
 }
 
 Image read_image(const std::string& path) {

@@ -22,7 +22,6 @@
 // reads back to the same float. So a round trip is bit-exact and 0.2f is written
 // as 0.2.
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -38,6 +37,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "atomic_file.h"
 #include "errors.h"
 #include "scene.h"
 
@@ -330,9 +330,6 @@ void append(std::string& out, const std::vector<T>& items) {
   out += "  ]";
 }
 
-[[noreturn]] void throw_errno(const std::string& path, const char* what, int err) {
-  throw RuntimeError(path + ": " + what + ": " + std::strerror(err));
-}
 
 }  // namespace
 
@@ -474,27 +471,7 @@ std::string scene_to_json(const Scene& scene) {
 
 void save_scene_json(const Scene& scene, const std::string& path) {
   const std::string text = scene_to_json(scene);
-  // A name of our own with O_EXCL rather than mkstemp: mkstemp creates the file
-  // 0600, and the renamed result should get the usual permissions (0666 & ~umask).
-  static std::atomic<uint64_t> counter{0};
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-  if (fd < 0) throw_errno(path, "cannot write", errno);
-  const auto fail = [&](int err, bool open) {
-    if (open) ::close(fd);
-    ::unlink(tmp.c_str());
-    throw_errno(path, "cannot write", err);
-  };
-  for (size_t done = 0; done < text.size();) {
-    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) fail(errno, true);
-    done += static_cast<size_t>(n);
-  }
-  // fsync before rename: otherwise a crash can leave the new name with empty contents.
-  if (::fsync(fd) != 0) fail(errno, true);
-  if (::close(fd) != 0) fail(errno, false);
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) fail(errno, false);
+  write_file_atomically(path, text.data(), text.size());
 }
 
 }  // namespace octrace

@@ -1,0 +1,22 @@
+// Writing a file so that a failed or interrupted run never leaves a truncated
+// one: every file octrace writes (images, scenes, CSVs) goes through here.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace octrace {
+
+// Writes `size` bytes to a temporary file beside `path`, flushes it to disk and
+// renames it over `path` (atomic on POSIX): `path` holds either its old
+// contents or the complete new ones. The file gets the usual permissions
+// (0666 & ~umask). On failure the temporary is removed and RuntimeError
+// "PATH: WHAT: reason" is thrown (WHAT e.g. "cannot write image").
+void write_file_atomically(const std::string& path, const void* data, size_t size,
+                           const std::string& what = "cannot write");
+
+// Checks, before any long work, that `path`'s folder exists and can be written
+// to. Throws InputError "PATH: folder does not exist" / "... is not writable".
+void check_output_folder(const std::string& path);
+
+}  // namespace octrace
