@@ -6,11 +6,10 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/packing.hpp>
 #include <glm/trigonometric.hpp>
 
 #include "gpu_layout.h"
-#include <glm/gtc/packing.hpp>
-
 #include "path_trace_fp16.h"
 #include "path_trace_fp16_all.h"
 #include "path_trace_fp32.h"
