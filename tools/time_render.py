@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Times `octrace render` the way the README reports it: one warm-up run, then
 N runs; prints the median, min and max of the device render time (timestamp
-queries, from --json) and of the whole process's wall time.
+queries, from --json) and of the whole process's wall time, and with the
+octree its build time and statistics.
 
   tools/time_render.py [--runs 5] [--octrace build/app/octrace] -- RENDER FLAGS...
 """
@@ -21,7 +22,7 @@ def main():
     args = ap.parse_args()
     flags = [f for f in args.flags if f != "--"]
     cmd = [args.octrace, "render", "--json", "--quiet", "--out", "/tmp/octrace_time_render.pfm"] + flags
-    device_ms, wall_ms = [], []
+    device_ms, wall_ms, build_ms = [], [], []
     summary = None
     for i in range(args.runs + 1):
         start = time.perf_counter()
@@ -33,6 +34,7 @@ def main():
         if i == 0:
             continue  # warm-up
         device_ms.append(summary["times_ms"]["render"])
+        build_ms.append(summary["times_ms"]["accel_build"])
         wall_ms.append(wall)
 
     def line(name, xs):
@@ -44,6 +46,12 @@ def main():
           f"depth {summary['depth']}, accel {summary['accel']}, scene {summary['scene']['source']}")
     print(line("render (device time)", device_ms))
     print(line("whole process (wall)", wall_ms))
+    if "octree" in summary:
+        o = summary["octree"]
+        print(line("octree build (wall)", build_ms))
+        print(f"octree: {o['nodes']} nodes, {o['leaves']} leaves, depth {o['depth_reached']}, "
+              f"{o['refs_per_sphere']:.2f} refs/sphere, {o['bytes_per_sphere']:.1f} bytes/sphere, "
+              f"{o['big_spheres']} big spheres")
 
 
 if __name__ == "__main__":
