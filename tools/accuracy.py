@@ -134,25 +134,23 @@ def main():
     while s <= args.max_spp:
         spps.append(s)
         s *= 2
+    def measure(label, precision, depth, spp, extra=()):
+        """One render of the sweep: its device time and its error against the reference."""
+        path = os.path.join(tmp, f"{label}_{depth}_{spp}.pfm")
+        info = o.render(path, args.size, spp, depth, precision, 1, extra)
+        err = o.compare(path, ref)
+        rows.append({"precision": label, "depth": depth, "spp": spp,
+                     "render_ms": info["times_ms"]["render"], "rel_mse": err["rel_mse"],
+                     "ssim": err["ssim"], "nonfinite": info["nonfinite_samples"]})
+
     for precision in precisions:
         for depth in depths:
             for spp in spps:
-                path = os.path.join(tmp, f"{precision}_{depth}_{spp}.pfm")
-                info = o.render(path, args.size, spp, depth, precision, 1)
-                err = o.compare(path, ref)
-                rows.append({"precision": precision, "depth": depth, "spp": spp,
-                             "render_ms": info["times_ms"]["render"], "rel_mse": err["rel_mse"],
-                             "ssim": err["ssim"], "nonfinite": info["nonfinite_samples"]})
+                measure(precision, precision, depth, spp)
             progress(f"sweep: {precision} depth {depth} done")
     if args.rr_depth > 0:
-        label = f"fp32+rr{args.rr_depth}"
         for spp in spps:
-            path = os.path.join(tmp, f"rr_{spp}.pfm")
-            info = o.render(path, args.size, spp, 50, "fp32", 1, ["--rr-depth", str(args.rr_depth)])
-            err = o.compare(path, ref)
-            rows.append({"precision": label, "depth": 50, "spp": spp,
-                         "render_ms": info["times_ms"]["render"], "rel_mse": err["rel_mse"],
-                         "ssim": err["ssim"], "nonfinite": info["nonfinite_samples"]})
+            measure(f"fp32+rr{args.rr_depth}", "fp32", 50, spp, ["--rr-depth", str(args.rr_depth)])
         progress("sweep: Russian roulette done")
 
     with open(os.path.join(args.out, "accuracy.csv"), "w", newline="") as f:
