@@ -7,8 +7,8 @@
 #include <map>
 #include <optional>
 
-#include "atomic_file.h"
-#include "vk_context.h"
+#include "io/atomic_file.h"
+#include "vk/context.h"
 
 namespace octrace {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "path_tracer.h"
+#include "render/path_tracer.h"
 
 namespace octrace {
 

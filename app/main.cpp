@@ -16,13 +16,13 @@
 #include <nlohmann/json.hpp>
 
 #include "bench.h"
-#include "image.h"
-#include "atomic_file.h"
-#include "path_tracer.h"
-#include "render_state.h"
-#include "scene.h"
+#include "io/image.h"
+#include "io/atomic_file.h"
+#include "render/path_tracer.h"
+#include "render/render_state.h"
+#include "scene/scene.h"
 #include "view.h"
-#include "vk_context.h"
+#include "vk/context.h"
 
 using namespace octrace;
 using json = nlohmann::json;

@@ -18,11 +18,11 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
-#include "image.h"
+#include "io/image.h"
 #include "resolve.h"
-#include "shared.h"
-#include "vk_resources.h"
-#include "vk_window.h"
+#include "shared/shared.h"
+#include "vk/resources.h"
+#include "vk/swapchain.h"
 
 namespace octrace {
 

@@ -8,8 +8,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "path_tracer.h"
-#include "scene.h"
+#include "render/path_tracer.h"
+#include "scene/scene.h"
 
 namespace octrace {
 

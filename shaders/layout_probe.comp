@@ -4,7 +4,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
-#include "shared.h"
+#include "shared/shared.h"
 
 layout(local_size_x = 1) in;
 

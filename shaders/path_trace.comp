@@ -3,8 +3,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
-#include "shared.h"
-#include "precision.glsl"
+#include "shared/shared.h"
+#include "shading/precision.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE, local_size_y = WORKGROUP_SIZE) in;
 
@@ -39,9 +39,9 @@ layout(constant_id = SPEC_DEFOCUS) const bool HAS_DEFOCUS = true;
 layout(constant_id = SPEC_SKY) const uint SKY = SKY_RUNTIME;
 layout(constant_id = SPEC_ANY_LIGHT) const bool ANY_LIGHT = true;
 
-#include "rng.glsl"
-#include "geometry.glsl"
-#include "scene_hit.glsl"
+#include "sampling/rng.glsl"
+#include "geometry/sphere.glsl"
+#include "accel/closest_hit.glsl"
 
 // A direction uniform on the unit sphere (z uniform in [-1,1], phi uniform):
 // the distribution the book's rejection-sampled random_unit_vector has, from

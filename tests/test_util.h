@@ -12,8 +12,8 @@
 
 #include <gtest/gtest.h>
 
-#include "path_tracer.h"
-#include "vk_context.h"
+#include "render/path_tracer.h"
+#include "vk/context.h"
 
 namespace octrace::test {
 

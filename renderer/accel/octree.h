@@ -1,0 +1,130 @@
+// The sphere octree: built on the CPU, encoded as two flat arrays that are
+// uploaded as they are (shaders/shared.h GpuOctreeNode, a uint array of sphere
+// indices). No Vulkan and no materials in here: only centres and radii.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "scene/scene.h"
+#include "shared/shared.h"
+
+namespace octrace {
+
+// --octree-leaf K, --octree-depth D. Placeholders until a sweep picks the defaults.
+struct OctreeParams {
+  uint32_t leaf_size = 8;   // a node with more references than this splits ...
+  uint32_t max_depth = 16;  // ... while its depth (root = 0) is below this, 1..20
+};
+
+struct OctreeStats {
+  double build_ms = 0;                // wall time of build_octree
+  uint32_t nodes = 0;                 // nodes.size()
+  uint32_t leaves = 0;                // nodes without OCTREE_INTERNAL (the root of an empty tree counts)
+  uint32_t max_depth_reached = 0;     // depth of the deepest node, root = 0
+  uint64_t refs = 0;                  // refs.size(): big spheres plus every leaf reference
+  uint32_t big_spheres = 0;           // big_count
+  double refs_per_sphere = 0;         // refs / sphere count (0 for an empty scene)
+  double bytes_per_sphere = 0;        // bytes / sphere count (0 for an empty scene)
+  uint64_t bytes = 0;                 // nodes * 32 + refs * 4: what the GPU holds for the octree
+};
+
+// ---------------------------------------------------------------------------
+// Encoding (32 bytes per node, 4 bytes per reference)
+//
+//   GpuOctreeNode, std430, 32 bytes:
+//   +------+------+------+-------+------+------+------+---------------+
+//   | lo.x | lo.y | lo.z | first | hi.x | hi.y | hi.z | count_or_mask |
+//   +------+------+------+-------+------+------+------+---------------+
+//   0      4      8      12      16     20     24     28              32
+//
+//   lo, hi          the node's box: its cell clipped to the union of the AABBs
+//                   of the spheres below it. Never outside the cell, so sibling
+//                   boxes are disjoint (touching at most on the split planes).
+//   count_or_mask   internal node: OCTREE_INTERNAL | child mask, bit k set when
+//                   octant k has a child; octant k = (x >= mid.x)
+//                   | (y >= mid.y) << 1 | (z >= mid.z) << 2.
+//                   leaf: the number of references (< OCTREE_INTERNAL; 0 only
+//                   for the root of a tree with no spheres in it, whose box
+//                   is then the point lo = hi = 0).
+//   first           internal node: index of its first child in `nodes`; the
+//                   present children follow consecutively in octant order.
+//                   leaf: index of its first reference in `refs`.
+//
+//   An internal node with children in octants 1, 4 and 6 (mask 0b01010010):
+//
+//     nodes: ... [ node  | first = c | INTERNAL|0x52 ] ... [ oct 1 ][ oct 4 ][ oct 6 ] ...
+//                                 |                        ^ c      c + 1    c + 2
+//                                 +------------------------+
+//     child of octant k = first + popcount(mask & ((1 << k) - 1))
+//
+//   A leaf with 3 references:
+//
+//     nodes: ... [ leaf  | first = r | 3 ] ...
+//     refs:  [ big 0 | .. | big B-1 | ... | s7 | s12 | s40 | ... ]
+//                                         ^ r   (ascending sphere indices)
+//
+//   refs[0, big_count) are the "big" spheres, tested before traversal and not in
+//   the tree; leaf ranges follow. A sphere is referenced by every leaf whose
+//   cell its AABB overlaps, so no leaf has a capacity and the tree has no sphere
+//   limit (the price is duplicated references, reported as refs_per_sphere).
+//
+// Why this layout. Two 16-byte halves that each hold a vec3 and a uint match
+// std430 with no padding, so one struct serves host and GLSL. The box is stored
+// rather than derived from the parent's cell because a tight box culls empty
+// space (a flat field of spheres fills a sliver of its cell) and because the
+// traversal needs no stack of cells. An 8-bit mask plus one first-child index
+// costs 4 bytes where 8 child indices would cost 32; empty octants cost nothing.
+// Children in octant order make front-to-back order free: for a ray whose
+// direction has sign bits s (bit a set when dir[a] < 0), visiting octants in the
+// order k = 0..7 as k ^ s visits the near side of every split plane first
+// (Revelles et al. 2000, "An efficient parametric algorithm for octree
+// traversal"), because the siblings' boxes lie on their own side of the planes.
+//
+// How it is built. The root's cell is the AABB of the non-big spheres (from the
+// scene, no constants). A node splits at the midpoint of its box into the
+// octants its references' AABBs overlap: the low half [lo, mid] takes a sphere
+// whose AABB has lo < mid, the high half [mid, hi] one whose AABB has hi >= mid
+// (so every point of a sphere's AABB lies in a child that holds it). Splitting
+// at the box rather than the cell midpoint skips the empty levels above a small
+// cluster. An axis is split only if its box extent is at least half the largest
+// one (a flat field of spheres is split like a quadtree; a zero extent never)
+// and not every reference straddles its midpoint (that would only copy them).
+// A node splits while it holds more than leaf_size references and its depth is
+// below max_depth, and only if
+//   - the split lowers the expected cost of a ray that meets the node:
+//     sum over children of area_k * (count_k + 2) < area * count (surface area
+//     heuristic, MacDonald and Booth 1990; 2 = a node visit in sphere tests).
+//     This is what stops a split that makes no progress: when every child holds
+//     all the references (coincident spheres) the children's areas add up to at
+//     least the node's; and
+//   - the references it creates stay within its budget: along any path from the
+//     root the product of the splits' duplication factors (child references /
+//     node references) is at most 8, so the references never exceed 8 per
+//     sphere, whatever the input (a hard bound, where the heuristic is not).
+// The top levels are split on the calling thread, the subtrees below them in
+// parallel; the result depends only on the input.
+//
+// Big spheres. Sort by radius, descending (ties by index). Sphere i of that
+// order is big when its diameter exceeds half the largest extent of the AABB of
+// all spheres after it in the order (a sphere that would fill the whole tree of
+// the rest, such as the rtiow ground of radius 1000 next to a 22x22 field). The
+// list stops at the first sphere that is not big, and at 16 spheres. With no
+// spheres after it, a sphere is big: a scene of one sphere is just that list.
+// ---------------------------------------------------------------------------
+struct Octree {
+  std::vector<gpu::GpuOctreeNode> nodes;  // nodes[0] is the root, present even with no spheres
+  std::vector<uint32_t> refs;             // refs[0, big_count): big spheres; then leaf ranges
+  uint32_t big_count = 0;
+  OctreeStats stats;
+};
+
+inline constexpr uint32_t kMaxBigSpheres = 16;
+inline constexpr uint32_t kMaxOctreeDepth = 20;  // 2^-20 of the root extent is near float resolution
+
+// Builds the octree over `spheres` (finite centres, radius > 0: validate_scene).
+// Uses the hardware threads; the result depends only on the input.
+// Throws InputError naming the flag for bad params.
+Octree build_octree(const std::vector<Sphere>& spheres, const OctreeParams& params);
+
+}  // namespace octrace

@@ -1,0 +1,49 @@
+#include "io/atomic_file.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "core/errors.h"
+
+namespace octrace {
+
+void write_file_atomically(const std::string& path, const void* data, size_t size, const std::string& what) {
+  // A name of our own with O_EXCL rather than mkstemp: mkstemp creates the
+  // file 0600, and the renamed result should get the usual permissions.
+  static std::atomic<uint64_t> counter{0};
+  const std::string tmp = path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd < 0) throw RuntimeError(path + ": " + what + ": " + std::strerror(errno));
+  const auto fail = [&](int err, bool open) {
+    if (open) ::close(fd);
+    ::unlink(tmp.c_str());
+    throw RuntimeError(path + ": " + what + ": " + std::strerror(err));
+  };
+  const char* bytes = static_cast<const char*>(data);
+  for (size_t done = 0; done < size;) {
+    const ssize_t n = ::write(fd, bytes + done, size - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) fail(errno, true);
+    done += static_cast<size_t>(n);
+  }
+  // fsync before rename: otherwise a crash can leave the new name with empty contents.
+  if (::fsync(fd) != 0) fail(errno, true);
+  if (::close(fd) != 0) fail(errno, false);
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) fail(errno, false);
+}
+
+void check_output_folder(const std::string& path) {
+  std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  if (folder.empty()) folder = ".";
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec)) throw InputError(path + ": folder does not exist");
+  if (::access(folder.c_str(), W_OK) != 0) throw InputError(path + ": folder is not writable");
+}
+
+}  // namespace octrace

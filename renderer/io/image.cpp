@@ -1,0 +1,396 @@
+#include "io/image.h"
+
+#include <stb_image.h>
+#include <stb_image_write.h>
+#include <tinyexr.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+
+#include "io/atomic_file.h"
+#include "core/errors.h"
+
+namespace octrace {
+
+namespace {
+
+enum class ImageFormat { png, pfm, exr };
+
+ImageFormat image_format(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::string lower = ext;
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  if (lower == ".png") return ImageFormat::png;
+  if (lower == ".pfm") return ImageFormat::pfm;
+  if (lower == ".exr") return ImageFormat::exr;
+  throw InputError(path + ": unknown image format \"" + ext +
+                   "\" (expected .png, .pfm or .exr)");
+}
+
+// --- Encoding to bytes. Each format is encoded in memory first so that one
+// function does the atomic file write for all of them.
+
+using Bytes = std::vector<unsigned char>;
+
+[[noreturn]] void write_failed(const std::string& path, const std::string& reason) {
+  throw RuntimeError(path + ": cannot write image: " + reason);
+}
+
+// The sRGB value a display shows for a linear value: clamped to [0,1], with
+// NaN shown as black.
+float displayed(float linear) {
+  return srgb_encode(!(linear > 0.0f) ? 0.0f : std::min(linear, 1.0f));
+}
+
+Bytes encode_png(const Image& image, const std::string& path) {
+  std::vector<std::uint8_t> pixels(image.rgb.size());
+  std::transform(image.rgb.begin(), image.rgb.end(), pixels.begin(),
+                 [](float v) { return std::uint8_t(displayed(v) * 255.0f + 0.5f); });
+  Bytes bytes;
+  auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<Bytes*>(context);
+    auto* begin = static_cast<unsigned char*>(data);
+    out->insert(out->end(), begin, begin + size);
+  };
+  if (!stbi_write_png_to_func(append, &bytes, image.width, image.height, 3,
+                              pixels.data(), 3 * image.width))
+    write_failed(path, "PNG encoder failed");
+  return bytes;
+}
+
+// PFM stores floats in the byte order given by the sign of the scale; we always
+// write little-endian (scale -1), independent of the host.
+void append_le_float(Bytes& out, float value) {
+  auto bits = std::bit_cast<std::uint32_t>(value);
+  for (int i = 0; i < 4; ++i) out.push_back(std::uint8_t(bits >> (8 * i)));
+}
+
+Bytes encode_pfm(const Image& image) {
+  std::string header =
+      "PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n-1.0\n";
+  Bytes bytes(header.begin(), header.end());
+  bytes.reserve(header.size() + 4 * image.rgb.size());
+  // PFM rows run bottom to top (Netpbm PFM specification).
+  for (int y = image.height - 1; y >= 0; --y)
+    for (int i = 0; i < 3 * image.width; ++i) append_le_float(bytes, image.pixel(0, y)[i]);
+  return bytes;
+}
+
+std::string take_exr_error(const char* err) {
+  std::string message = err ? err : "unknown tinyexr error";
+  if (err) FreeEXRErrorMessage(err);
+  return message;
+}
+
+Bytes encode_exr(const Image& image, const std::string& path) {
+  // Planar channels in the order B, G, R: OpenEXR readers expect channel names
+  // sorted alphabetically.
+  size_t count = size_t(image.width) * image.height;
+  std::array<std::vector<float>, 3> planes;
+  for (int c = 0; c < 3; ++c) {
+    planes[c].resize(count);
+    for (size_t i = 0; i < count; ++i) planes[c][i] = image.rgb[3 * i + (2 - c)];
+  }
+  std::array<float*, 3> plane_ptrs = {planes[0].data(), planes[1].data(), planes[2].data()};
+
+  EXRImage exr_image;
+  InitEXRImage(&exr_image);
+  exr_image.num_channels = 3;
+  exr_image.images = reinterpret_cast<unsigned char**>(plane_ptrs.data());
+  exr_image.width = image.width;
+  exr_image.height = image.height;
+
+  std::array<EXRChannelInfo, 3> channels{};
+  std::strcpy(channels[0].name, "B");
+  std::strcpy(channels[1].name, "G");
+  std::strcpy(channels[2].name, "R");
+  std::array<int, 3> float_types = {TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT,
+                                    TINYEXR_PIXELTYPE_FLOAT};
+  EXRHeader header;
+  InitEXRHeader(&header);
+  header.num_channels = 3;
+  header.channels = channels.data();
+  header.pixel_types = float_types.data();
+  header.requested_pixel_types = float_types.data();
+  header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;
+
+  unsigned char* memory = nullptr;
+  const char* err = nullptr;
+  size_t size = SaveEXRImageToMemory(&exr_image, &header, &memory, &err);
+  if (size == 0) write_failed(path, "EXR encoder failed: " + take_exr_error(err));
+  Bytes bytes(memory, memory + size);
+  std::free(memory);
+  return bytes;
+}
+
+// --- Decoding from bytes. Every length is checked against the file size, so
+// a truncated or corrupt file gives an error, not a crash.
+
+Bytes read_file(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InputError(path + ": cannot open file");
+  Bytes bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  if (file.bad()) throw InputError(path + ": cannot read file");
+  return bytes;
+}
+
+Image decode_png(const std::string& path, const Bytes& bytes) {
+  // 16-bit decoding reads 8- and 16-bit PNGs alike without losing precision
+  // (stb widens 8-bit values v to v * 257, so v / 255 == v * 257 / 65535).
+  int width = 0, height = 0, channels = 0;
+  std::uint16_t* data = stbi_load_16_from_memory(bytes.data(), int(bytes.size()), &width,
+                                                 &height, &channels, 3);
+  if (!data) throw InputError(path + ": not a valid PNG file: " + stbi_failure_reason());
+  Image image{width, height, std::vector<float>(size_t(width) * height * 3)};
+  for (size_t i = 0; i < image.rgb.size(); ++i)
+    image.rgb[i] = srgb_decode(float(data[i]) / 65535.0f);
+  stbi_image_free(data);
+  return image;
+}
+
+// Portable Float Map, as defined by Netpbm: "PF" (RGB) or "Pf" (grey), width,
+// height and a scale separated by whitespace, then one whitespace character
+// and the raw floats, rows bottom to top. A negative scale means little-endian
+// data, a positive one big-endian; like pbrt-v4 we multiply the data by
+// |scale| (writers, ours included, use 1).
+Image decode_pfm(const std::string& path, const Bytes& bytes) {
+  auto invalid = [&](const std::string& why) {
+    return InputError(path + ": not a valid PFM file: " + why);
+  };
+  const char* begin = reinterpret_cast<const char*>(bytes.data());
+  const char* end = begin + bytes.size();
+  const char* p = begin;
+  auto skip_space = [&] {
+    while (p < end && std::isspace(static_cast<unsigned char>(*p))) ++p;
+  };
+  auto parse = [&](auto& value, const char* what) {
+    skip_space();
+    auto [next, ec] = std::from_chars(p, end, value);
+    if (ec != std::errc() || next == end || !std::isspace(static_cast<unsigned char>(*next)))
+      throw invalid("bad " + std::string(what) + " in header");
+    p = next;
+  };
+
+  if (bytes.size() < 2 || begin[0] != 'P' || (begin[1] != 'F' && begin[1] != 'f'))
+    throw invalid("does not start with \"PF\" or \"Pf\"");
+  int channels = begin[1] == 'F' ? 3 : 1;
+  p += 2;
+  int width = 0, height = 0;
+  double scale = 0;
+  parse(width, "width");
+  parse(height, "height");
+  parse(scale, "scale");
+  ++p;  // the single whitespace character that ends the header
+  if (width <= 0 || height <= 0)
+    throw invalid("bad size " + std::to_string(width) + "x" + std::to_string(height));
+  if (scale == 0 || !std::isfinite(scale)) throw invalid("bad scale in header");
+
+  std::uint64_t expected = std::uint64_t(width) * std::uint64_t(height) * channels * 4;
+  std::uint64_t found = std::uint64_t(end - p);
+  if (found < expected)
+    throw invalid("truncated pixel data (expected " + std::to_string(expected) +
+                  " bytes, found " + std::to_string(found) + ")");
+
+  bool little_endian = scale < 0;
+  float factor = float(std::abs(scale));
+  auto read_float = [&](std::uint64_t index) {
+    const auto* b = reinterpret_cast<const std::uint8_t*>(p) + 4 * index;
+    std::uint32_t bits = little_endian
+                             ? std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 |
+                                   std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24
+                             : std::uint32_t(b[3]) | std::uint32_t(b[2]) << 8 |
+                                   std::uint32_t(b[1]) << 16 | std::uint32_t(b[0]) << 24;
+    return std::bit_cast<float>(bits) * factor;
+  };
+
+  Image image{width, height, std::vector<float>(size_t(width) * height * 3)};
+  for (int y = 0; y < height; ++y) {
+    std::uint64_t row = std::uint64_t(height - 1 - y) * width;
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < 3; ++c)
+        image.pixel(x, y)[c] = read_float((row + x) * channels + (channels == 3 ? c : 0));
+  }
+  return image;
+}
+
+// tinyexr 1.0.1 leaks a little memory when it rejects a file; harmless for a
+// run that then stops with an error.
+Image decode_exr(const std::string& path, const Bytes& bytes) {
+  float* rgba = nullptr;
+  int width = 0, height = 0;
+  const char* err = nullptr;
+  if (LoadEXRFromMemory(&rgba, &width, &height, bytes.data(), bytes.size(), &err) !=
+      TINYEXR_SUCCESS)
+    throw InputError(path + ": not a valid EXR file: " + take_exr_error(err));
+  Image image{width, height, std::vector<float>(size_t(width) * height * 3)};
+  for (size_t i = 0; i < size_t(width) * height; ++i)
+    for (int c = 0; c < 3; ++c) image.rgb[3 * i + c] = rgba[4 * i + c];
+  std::free(rgba);
+  return image;
+}
+
+// Structural similarity of one window from its (weighted) moments: equation
+// (13) of Wang et al. 2004 with C1 = (K1 L)^2, C2 = (K2 L)^2.
+double ssim_from_moments(double mu_x, double mu_y, double xx, double yy, double xy) {
+  constexpr double c1 = (0.01 * 1.0) * (0.01 * 1.0);
+  constexpr double c2 = (0.03 * 1.0) * (0.03 * 1.0);
+  double var_x = xx - mu_x * mu_x;
+  double var_y = yy - mu_y * mu_y;
+  double cov = xy - mu_x * mu_y;
+  return (2 * mu_x * mu_y + c1) * (2 * cov + c2) /
+         ((mu_x * mu_x + mu_y * mu_y + c1) * (var_x + var_y + c2));
+}
+
+// SSIM as defined by Z. Wang, A. C. Bovik, H. R. Sheikh, E. P. Simoncelli,
+// "Image quality assessment: from error visibility to structural similarity",
+// IEEE Trans. Image Processing 13(4), 2004, and their reference code
+// ssim_index.m:
+// - It is computed on one channel, the luma Y = 0.2126 R' + 0.7152 G' + 0.0722 B'
+//   (Rec. 709 weights) of the sRGB-encoded channels clamped to [0,1], i.e. of
+//   what a viewer sees on screen rather than of linear radiance; L = 1.
+// - Each window is an 11x11 circular-symmetric Gaussian with sigma 1.5,
+//   normalised to sum 1; K1 = 0.01, K2 = 0.03. Variances and the covariance
+//   are the weighted population moments (no N/(N-1) correction), as in the paper.
+// - The result is the mean SSIM over every window position that lies fully
+//   inside the image ("valid" filtering), with no downsampling.
+// - For an image smaller than 11 pixels in either dimension, the whole image is
+//   one window with uniform weights.
+// The Gaussian is separable, so the five moment maps (x, y, x^2, y^2, xy) are
+// filtered along rows and then along columns.
+double ssim(const Image& test, const Image& reference) {
+  auto luma = [](const Image& image) {
+    std::vector<double> y(size_t(image.width) * image.height);
+    for (size_t i = 0; i < y.size(); ++i) {
+      const float* p = &image.rgb[3 * i];
+      y[i] = 0.2126 * displayed(p[0]) + 0.7152 * displayed(p[1]) + 0.0722 * displayed(p[2]);
+    }
+    return y;
+  };
+  std::vector<double> a = luma(test), b = luma(reference);
+  int w = test.width, h = test.height;
+
+  constexpr int radius = 5, size = 2 * radius + 1;
+  if (w < size || h < size) {
+    double n = double(a.size()), mx = 0, my = 0, xx = 0, yy = 0, xy = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+      mx += a[i];
+      my += b[i];
+      xx += a[i] * a[i];
+      yy += b[i] * b[i];
+      xy += a[i] * b[i];
+    }
+    return ssim_from_moments(mx / n, my / n, xx / n, yy / n, xy / n);
+  }
+
+  std::array<double, size> weights;
+  double total = 0;
+  for (int i = 0; i < size; ++i)
+    total += weights[i] = std::exp(-(i - radius) * (i - radius) / (2 * 1.5 * 1.5));
+  for (double& weight : weights) weight /= total;
+
+  // Horizontal pass: five maps of (w - 10) x h.
+  int ow = w - 2 * radius, oh = h - 2 * radius;
+  std::array<std::vector<double>, 5> rows;
+  for (auto& map : rows) map.resize(size_t(ow) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < ow; ++x) {
+      std::array<double, 5> sum{};
+      for (int k = 0; k < size; ++k) {
+        size_t i = size_t(y) * w + x + k;
+        double wk = weights[k], va = a[i], vb = b[i];
+        sum[0] += wk * va;
+        sum[1] += wk * vb;
+        sum[2] += wk * va * va;
+        sum[3] += wk * vb * vb;
+        sum[4] += wk * va * vb;
+      }
+      for (int m = 0; m < 5; ++m) rows[m][size_t(y) * ow + x] = sum[m];
+    }
+
+  // Vertical pass, folded into the mean of the SSIM map.
+  double ssim_sum = 0;
+  for (int y = 0; y < oh; ++y)
+    for (int x = 0; x < ow; ++x) {
+      std::array<double, 5> sum{};
+      for (int k = 0; k < size; ++k)
+        for (int m = 0; m < 5; ++m) sum[m] += weights[k] * rows[m][size_t(y + k) * ow + x];
+      ssim_sum += ssim_from_moments(sum[0], sum[1], sum[2], sum[3], sum[4]);
+    }
+  return ssim_sum / (double(ow) * oh);
+}
+
+}  // namespace
+
+void check_image_path(const std::string& path) {
+  image_format(path);
+  check_output_folder(path);
+}
+
+void write_image(const Image& image, const std::string& path) {
+  ImageFormat format = image_format(path);
+  const Bytes bytes = format == ImageFormat::png   ? encode_png(image, path)
+                      : format == ImageFormat::pfm ? encode_pfm(image)
+                                                   : encode_exr(image, path);
+  write_file_atomically(path, bytes.data(), bytes.size(), "cannot write image");
+}
+
+Image read_image(const std::string& path) {
+  ImageFormat format = image_format(path);
+  Bytes bytes = read_file(path);
+  return format == ImageFormat::png   ? decode_png(path, bytes)
+         : format == ImageFormat::pfm ? decode_pfm(path, bytes)
+                                      : decode_exr(path, bytes);
+}
+
+// IEC 61966-2-1 (sRGB) transfer functions, exact piecewise form.
+float srgb_encode(float linear) {
+  return linear <= 0.0031308f ? 12.92f * linear
+                              : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+float srgb_decode(float encoded) {
+  return encoded <= 0.04045f ? encoded / 12.92f
+                             : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
+}
+
+ErrorMetrics compare_images(const Image& test, const Image& reference) {
+  if (test.width != reference.width || test.height != reference.height)
+    throw InputError("image sizes differ: " + std::to_string(test.width) + "x" +
+                     std::to_string(test.height) + " vs " + std::to_string(reference.width) +
+                     "x" + std::to_string(reference.height));
+  if (test.rgb.empty()) throw InputError("cannot compare empty images");
+
+  double squared = 0, relative = 0;
+  for (size_t i = 0; i < test.rgb.size(); ++i) {
+    double a = test.rgb[i], b = reference.rgb[i];
+    squared += (a - b) * (a - b);
+    // relMSE as in Rousselle, Knaus, Zwicker, "Adaptive sampling and
+    // reconstruction using greedy error minimization", SIGGRAPH Asia 2011;
+    // the 1e-2 keeps dark reference pixels from dominating.
+    relative += (a - b) * (a - b) / (b * b + 1e-2);
+  }
+  double n = double(test.rgb.size());
+  double mse = squared / n;
+  ErrorMetrics metrics;
+  metrics.rmse = std::sqrt(mse);
+  metrics.rel_mse = relative / n;
+  metrics.psnr = mse == 0 ? std::numeric_limits<double>::infinity() : 10 * std::log10(1 / mse);
+  metrics.ssim = ssim(test, reference);
+  return metrics;
+}
+
+}  // namespace octrace

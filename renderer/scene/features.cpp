@@ -1,0 +1,66 @@
+#include "scene/features.h"
+
+namespace octrace {
+
+namespace {
+
+bool is_black(glm::vec3 c) { return c.r == 0.0f && c.g == 0.0f && c.b == 0.0f; }
+
+}  // namespace
+
+SceneFeatures scene_features(const Scene& scene) {
+  SceneFeatures f;
+  std::vector<bool> used(scene.materials.size(), false);
+  for (const Sphere& s : scene.spheres)
+    if (s.material < used.size()) used[s.material] = true;
+  for (size_t i = 0; i < scene.materials.size(); ++i) {
+    if (!used[i]) continue;
+    const Material& m = scene.materials[i];
+    switch (m.type) {
+      case MaterialType::Lambertian: f.lambertian = true; break;
+      case MaterialType::Metal:
+        f.metal = true;
+        f.fuzzy_metal |= m.fuzz > 0.0f;
+        break;
+      case MaterialType::Dielectric: f.dielectric = true; break;
+      case MaterialType::Emissive: f.emissive |= !is_black(m.radiance); break;
+    }
+  }
+  f.defocus = scene.camera.aperture > 0.0f;
+  f.sky = scene.sky.type;
+  switch (scene.sky.type) {
+    case SkyType::None: f.sky_black = true; break;
+    case SkyType::Uniform: f.sky_black = is_black(scene.sky.radiance); break;
+    case SkyType::Gradient: f.sky_black = is_black(scene.sky.down) && is_black(scene.sky.up); break;
+  }
+  f.any_light = f.emissive || !f.sky_black;
+  f.empty = scene.spheres.empty();
+  return f;
+}
+
+SceneFeatures all_features(const Scene& scene) {
+  SceneFeatures f;
+  f.lambertian = f.metal = f.fuzzy_metal = f.dielectric = f.emissive = f.defocus = true;
+  f.sky = scene.sky.type;
+  f.sky_black = false;
+  f.any_light = true;
+  f.empty = false;
+  return f;
+}
+
+std::vector<std::string> feature_names(const SceneFeatures& f) {
+  std::vector<std::string> names;
+  if (f.lambertian) names.push_back("lambertian");
+  if (f.metal) names.push_back("metal");
+  if (f.fuzzy_metal) names.push_back("fuzzy_metal");
+  if (f.dielectric) names.push_back("dielectric");
+  if (f.emissive) names.push_back("emissive");
+  if (f.defocus) names.push_back("defocus");
+  names.push_back(f.sky == SkyType::Gradient ? "sky_gradient" : f.sky == SkyType::Uniform ? "sky_uniform" : "sky_none");
+  if (f.sky_black) names.push_back("sky_black");
+  if (!f.any_light) names.push_back("no_light");
+  if (f.empty) names.push_back("empty");
+  return names;
+}
+
+}  // namespace octrace

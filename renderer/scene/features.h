@@ -1,0 +1,41 @@
+// SceneFeatures: which effects a scene uses, so that the pipeline can be
+// specialised to simulate only those (a scene without glass runs no glass
+// code). Computed on the CPU from the Scene; no Vulkan here.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace octrace {
+
+struct SceneFeatures {
+  bool lambertian = false;   // some sphere is lambertian
+  bool metal = false;        // some sphere is metal ...
+  bool fuzzy_metal = false;  // ... with fuzz > 0
+  bool dielectric = false;   // some sphere is glass
+  bool emissive = false;     // some sphere emits
+  bool defocus = false;      // camera aperture > 0
+  SkyType sky = SkyType::Gradient;
+  bool sky_black = false;    // the sky adds nothing (type none, or a black colour)
+  // Some path can carry light to the camera: an emitter, or a sky that is
+  // not black. Without it every pixel is 0 and no pass needs to run.
+  bool any_light = true;
+  bool empty = false;        // no spheres
+
+  bool operator==(const SceneFeatures&) const = default;
+};
+
+// Only the materials that spheres use count (an unused glass material in the
+// list does not make the scene need glass code).
+SceneFeatures scene_features(const Scene& scene);
+
+// Every effect on: the general pipeline (`--effects all`).
+SceneFeatures all_features(const Scene& scene);
+
+// Names of the features that are on, for --json and messages.
+std::vector<std::string> feature_names(const SceneFeatures& f);
+
+}  // namespace octrace

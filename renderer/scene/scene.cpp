@@ -1,0 +1,273 @@
+// The built-in rtiow scene and the checks every scene passes before it is rendered.
+#include "scene/scene.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <random>
+
+#include <glm/geometric.hpp>
+
+#include "core/errors.h"
+
+namespace octrace {
+namespace {
+
+// ---------------------------------------------------------------------------
+// rtiow generator
+//
+// The book places one sphere per unit cell of a 22x22 grid and skips those that
+// touch the big metal sphere. To place any number N of spheres of any radius R
+// without overlaps, the 20x20 field [-10,10]^2 (x, z) is cut into g x g cells of
+// edge c = 20/g. A sphere stays inside its cell (its centre moves at most
+// (c - 2R - kGap) / 2 either way from the cell centre), so neighbours never touch.
+// Cells from which a sphere could touch one of the three big spheres are left
+// out, g is grown until at least N cells remain, and N of them are drawn
+// uniformly (Knuth's selection sampling, TAOCP vol. 2, 3.4.2 algorithm S), so the
+// spheres spread over the whole field in one pass without storing the cells.
+//
+// When N spheres of radius R do not fit (c < 2R + kGap), the spheres sit at their
+// cell centres and overlap their neighbours: the field just gets denser. When R
+// is so large that the big spheres' keep-out zones leave too little of the
+// field, the keep-out is dropped too and small spheres may cut into big ones.
+// ---------------------------------------------------------------------------
+
+constexpr double kFieldHalf = 10.0;
+// Clearance kept between neighbouring small spheres, so that rounding the centres
+// to float (at most ulp(10)/2 ~ 5e-7 per coordinate) cannot make them overlap.
+constexpr double kGap = 1e-5;
+constexpr uint64_t kMaxSpheres = 100'000'000;
+
+// The three radius-1 spheres standing on the ground at y = 1 (DESIGN.md).
+constexpr double kBigX[3] = {0.0, -4.0, 4.0};
+
+struct Grid {
+  uint64_t g = 0;         // cells per side
+  double cell = 0.0;      // cell edge
+  double span = 0.0;      // range of a centre coordinate inside its cell
+  double keep_out = 0.0;  // least horizontal distance of a small centre from a big one
+};
+
+Grid make_grid(uint64_t g, double radius, double keep_out) {
+  const double cell = 2.0 * kFieldHalf / static_cast<double>(g);
+  return {g, cell, std::max(0.0, cell - 2.0 * radius - kGap), keep_out};
+}
+
+// Whether some centre the cell allows lies within keep_out of a big sphere's centre.
+bool cell_blocked(const Grid& grid, uint64_t i, uint64_t j) {
+  const double mid_x = -kFieldHalf + (static_cast<double>(i) + 0.5) * grid.cell;
+  const double mid_z = -kFieldHalf + (static_cast<double>(j) + 0.5) * grid.cell;
+  const double dz = std::max(0.0, std::abs(mid_z) - 0.5 * grid.span);
+  for (double big_x : kBigX) {
+    const double dx = std::max(0.0, std::abs(mid_x - big_x) - 0.5 * grid.span);
+    if (dx * dx + dz * dz < grid.keep_out * grid.keep_out) return true;
+  }
+  return false;
+}
+
+// Cells left once the blocked ones are out; only cells near the big spheres are visited.
+uint64_t free_cells(const Grid& grid) {
+  const double reach = grid.keep_out + grid.cell;
+  const auto to_cell = [&](double x) {
+    const double c = std::floor((x + kFieldHalf) / grid.cell);
+    return static_cast<uint64_t>(std::clamp(c, 0.0, static_cast<double>(grid.g - 1)));
+  };
+  uint64_t blocked = 0;
+  for (uint64_t i = to_cell(kBigX[1] - reach); i <= to_cell(kBigX[2] + reach); ++i) {
+    for (uint64_t j = to_cell(-reach); j <= to_cell(reach); ++j) blocked += cell_blocked(grid, i, j);
+  }
+  return grid.g * grid.g - blocked;
+}
+
+Grid choose_grid(uint64_t n, double radius) {
+  // A small sphere (centre height R) and a big one (centre height 1, radius 1)
+  // touch when d^2 + (1 - R)^2 = (1 + R)^2, i.e. at horizontal distance d = 2 sqrt(R).
+  const double keep_out = 2.0 * std::sqrt(radius) + kGap;
+  const auto g0 = static_cast<uint64_t>(std::ceil(std::sqrt(static_cast<double>(n))));
+  Grid grid = make_grid(g0, radius, keep_out);
+  for (uint64_t free = free_cells(grid); free < n; free = free_cells(grid)) {
+    // Jump to the side length the current free fraction calls for; at least one step.
+    const double want = std::ceil(static_cast<double>(grid.g) *
+                                  std::sqrt(static_cast<double>(n) / std::max(1.0, static_cast<double>(free))));
+    const uint64_t g = std::max(grid.g + 1, static_cast<uint64_t>(want));
+    if (g > 4 * g0 + 64) return make_grid(g0, radius, 0.0);
+    grid = make_grid(g, radius, keep_out);
+  }
+  return grid;
+}
+
+// [0,1) from the top 53 bits. std::uniform_real_distribution would do, but its
+// algorithm is left to the implementation and scenes must not differ by compiler.
+double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1p-53; }
+
+void add_small_material(Scene& scene, std::mt19937_64& rng, uint32_t shared_glass) {
+  Material m;
+  const double choice = unit(rng);
+  if (choice < 0.8) {
+    for (int c = 0; c < 3; ++c) m.albedo[c] = static_cast<float>(unit(rng) * unit(rng));
+  } else if (choice < 0.95) {
+    m.type = MaterialType::Metal;
+    for (int c = 0; c < 3; ++c) m.albedo[c] = static_cast<float>(0.5 + 0.5 * unit(rng));
+    m.fuzz = static_cast<float>(0.5 * unit(rng));
+  } else {
+    scene.spheres.back().material = shared_glass;
+    return;
+  }
+  scene.spheres.back().material = static_cast<uint32_t>(scene.materials.size());
+  scene.materials.push_back(m);
+}
+
+// ---------------------------------------------------------------------------
+// validation
+// ---------------------------------------------------------------------------
+
+std::string format(float v) {
+  char buf[32];
+  return {buf, std::to_chars(buf, buf + sizeof buf, v).ptr};
+}
+
+std::string format(glm::vec3 v) {
+  return "[" + format(v.x) + ", " + format(v.y) + ", " + format(v.z) + "]";
+}
+
+[[noreturn]] void invalid(const std::string& source, const std::string& path, const std::string& what) {
+  throw InputError(source + ": " + path + ": " + what);
+}
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+void check_finite(glm::vec3 v, const std::string& source, const std::string& path) {
+  if (!finite(v)) invalid(source, path, "must be 3 finite numbers, got " + format(v));
+}
+
+void check_colour(glm::vec3 v, const std::string& source, const std::string& path) {
+  if (!finite(v) || v.x < 0.0f || v.y < 0.0f || v.z < 0.0f)
+    invalid(source, path, "must be 3 finite numbers >= 0, got " + format(v));
+}
+
+void check_positive(float v, const std::string& source, const std::string& path) {
+  if (!(std::isfinite(v) && v > 0.0f)) invalid(source, path, "must be a finite number > 0, got " + format(v));
+}
+
+void validate_camera(const Camera& c, const std::string& source) {
+  check_finite(c.lookfrom, source, "camera.lookfrom");
+  check_finite(c.lookat, source, "camera.lookat");
+  check_finite(c.vup, source, "camera.vup");
+  if (!(std::isfinite(c.vfov) && c.vfov > 0.0f && c.vfov < 180.0f))
+    invalid(source, "camera.vfov", "must be a finite number in (0, 180) degrees, got " + format(c.vfov));
+  if (!(std::isfinite(c.aperture) && c.aperture >= 0.0f))
+    invalid(source, "camera.aperture", "must be a finite number >= 0, got " + format(c.aperture));
+  check_positive(c.focus_dist, source, "camera.focus_dist");
+  // In double, so that distant or tiny camera set-ups do not overflow or flush to zero.
+  const glm::dvec3 dir = glm::dvec3(c.lookat) - glm::dvec3(c.lookfrom);
+  const glm::dvec3 vup(c.vup);
+  if (dir == glm::dvec3(0.0)) invalid(source, "camera.lookat", "must differ from camera.lookfrom");
+  if (vup == glm::dvec3(0.0)) invalid(source, "camera.vup", "must not be the zero vector");
+  // The camera basis is built from cross(vup, -dir); below this sine it is noise.
+  if (glm::length(glm::cross(glm::normalize(vup), glm::normalize(dir))) < 1e-6)
+    invalid(source, "camera.vup", "must not be parallel to the view direction (lookat - lookfrom), got " +
+                                      format(c.vup));
+}
+
+void validate_sky(const Sky& sky, const std::string& source) {
+  switch (sky.type) {
+    case SkyType::Gradient:
+      check_colour(sky.down, source, "sky.down");
+      check_colour(sky.up, source, "sky.up");
+      return;
+    case SkyType::Uniform:
+      check_colour(sky.radiance, source, "sky.radiance");
+      return;
+    case SkyType::None:
+      return;
+  }
+  invalid(source, "sky.type", "unknown sky type " + std::to_string(static_cast<uint32_t>(sky.type)));
+}
+
+void validate_material(const Material& m, const std::string& source, size_t index) {
+  const std::string path = "materials[" + std::to_string(index) + "]";
+  switch (m.type) {
+    case MaterialType::Lambertian:
+      check_colour(m.albedo, source, path + ".albedo");
+      return;
+    case MaterialType::Metal:
+      check_colour(m.albedo, source, path + ".albedo");
+      if (!(m.fuzz >= 0.0f && m.fuzz <= 1.0f))
+        invalid(source, path + ".fuzz", "must be a number in [0, 1], got " + format(m.fuzz));
+      return;
+    case MaterialType::Dielectric:
+      check_positive(m.ior, source, path + ".ior");
+      return;
+    case MaterialType::Emissive:
+      check_colour(m.radiance, source, path + ".radiance");
+      return;
+  }
+  invalid(source, path + ".type", "unknown material type " + std::to_string(static_cast<uint32_t>(m.type)));
+}
+
+}  // namespace
+
+Scene make_rtiow_scene(const RtiowParams& params) {
+  if (!(std::isfinite(params.radius) && params.radius > 0.0f))
+    throw InputError("--radius: must be a finite number > 0, got " + format(params.radius));
+  if (params.spheres > kMaxSpheres)
+    throw InputError("--spheres: at most " + std::to_string(kMaxSpheres) + " small spheres, got " +
+                     std::to_string(params.spheres));
+
+  Scene scene;  // the camera defaults are the study's rtiow camera
+  const auto lambertian = [](glm::vec3 albedo) { Material m; m.albedo = albedo; return m; };
+  Material glass;
+  glass.type = MaterialType::Dielectric;
+  glass.ior = 1.5f;
+  Material metal;
+  metal.type = MaterialType::Metal;
+  metal.albedo = {0.7f, 0.6f, 0.5f};
+  metal.fuzz = 0.0f;
+  scene.materials = {lambertian(glm::vec3(0.5f)), glass, lambertian({0.4f, 0.2f, 0.1f}), metal};
+  scene.spheres = {{{0.0f, -1000.0f, 0.0f}, 1000.0f, 0},
+                   {{0.0f, 1.0f, 0.0f}, 1.0f, 1},
+                   {{-4.0f, 1.0f, 0.0f}, 1.0f, 2},
+                   {{4.0f, 1.0f, 0.0f}, 1.0f, 3}};
+  const uint32_t shared_glass = 1;  // small glass spheres share the big one's material
+  if (params.spheres == 0) return scene;
+
+  scene.spheres.reserve(scene.spheres.size() + params.spheres);
+  scene.materials.reserve(scene.materials.size() + params.spheres);
+  std::mt19937_64 rng(params.seed);
+  const double radius = params.radius;
+  const Grid grid = choose_grid(params.spheres, radius);
+  uint64_t free_left = free_cells(grid);
+  uint64_t needed = params.spheres;
+  for (uint64_t i = 0; i < grid.g && needed > 0; ++i) {
+    for (uint64_t j = 0; j < grid.g && needed > 0; ++j) {
+      if (cell_blocked(grid, i, j)) continue;
+      // Algorithm S: take this cell with probability needed / free_left (in integers,
+      // so that the last cells are taken for sure when free_left == needed).
+      if (rng() % free_left-- >= needed) continue;
+      --needed;
+      const double x = -kFieldHalf + (static_cast<double>(i) + 0.5) * grid.cell + (unit(rng) - 0.5) * grid.span;
+      const double z = -kFieldHalf + (static_cast<double>(j) + 0.5) * grid.cell + (unit(rng) - 0.5) * grid.span;
+      scene.spheres.push_back({{static_cast<float>(x), params.radius, static_cast<float>(z)}, params.radius, 0});
+      add_small_material(scene, rng, shared_glass);
+    }
+  }
+  return scene;
+}
+
+void validate_scene(const Scene& scene, const std::string& source) {
+  validate_camera(scene.camera, source);
+  validate_sky(scene.sky, source);
+  for (size_t i = 0; i < scene.materials.size(); ++i) validate_material(scene.materials[i], source, i);
+  for (size_t i = 0; i < scene.spheres.size(); ++i) {
+    const Sphere& s = scene.spheres[i];
+    const auto path = [&](const char* field) { return "spheres[" + std::to_string(i) + "]." + field; };
+    if (!finite(s.center)) check_finite(s.center, source, path("center"));
+    if (!(std::isfinite(s.radius) && s.radius > 0.0f)) check_positive(s.radius, source, path("radius"));
+    if (s.material >= scene.materials.size())
+      invalid(source, path("material"), "index " + std::to_string(s.material) + " out of range (" +
+                                            std::to_string(scene.materials.size()) +
+                                            (scene.materials.size() == 1 ? " material)" : " materials)"));
+  }
+}
+
+}  // namespace octrace

@@ -1,0 +1,477 @@
+// Scene <-> JSON, the format of DESIGN.md "Scene description (JSON)".
+//
+// Required and optional fields:
+//   top level     "materials" and "spheres" are required (either may be empty);
+//                 "camera" and "sky" are optional.
+//   camera        every field is optional; the defaults are Camera's in scene.h
+//                 (the rtiow camera).
+//   sky           optional as a whole (default: the book's gradient); if given,
+//                 "type" is required; gradient "down"/"up" are optional (the
+//                 book's white and blue); uniform "radiance" is required.
+//   materials[i]  "type" is required; lambertian/metal "albedo" and emissive
+//                 "radiance" are required; metal "fuzz" is optional (0: a mirror),
+//                 dielectric "ior" is optional (1.5: glass).
+//   spheres[i]    "center", "radius" and "material" are all required.
+// Any other key is an error, a field of another material or sky type included,
+// so that a typo never silently turns into a default. Fields a type does not use
+// are neither written nor read; they load as scene.h's defaults.
+//
+// Numbers go straight to float: the JSON type below stores floats, which
+// nlohmann parses with strtof (correctly rounded; going through double could
+// round twice), and they are written with std::to_chars, the shortest text that
+// reads back to the same float. So a round trip is bit-exact and 0.2f is written
+// as 0.2.
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <initializer_list>
+#include <limits>
+#include <optional>
+#include <string_view>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "io/atomic_file.h"
+#include "core/errors.h"
+#include "scene/scene.h"
+
+namespace octrace {
+namespace {
+
+using Json = nlohmann::basic_json<std::map, std::vector, std::string, bool, std::int64_t, std::uint64_t, float>;
+
+// Indexed by the enum values.
+constexpr std::string_view kMaterialNames[] = {"lambertian", "metal", "dielectric", "emissive"};
+constexpr std::string_view kSkyNames[] = {"gradient", "uniform", "none"};
+
+// ---------------------------------------------------------------------------
+// reading
+// ---------------------------------------------------------------------------
+
+// A JSON value and where it sits in the file. The path ("spheres[12].radius") is
+// spelled out only when an error needs it, so reading a million spheres builds
+// no strings.
+struct Node {
+  const Json* value;
+  const std::string* source;
+  const Node* parent = nullptr;
+  std::string_view key{};  // member name, unless is_element
+  bool is_element = false;
+  size_t index = 0;
+
+  std::string path() const {
+    if (!parent) return "";
+    const std::string p = parent->path();
+    if (is_element) return p + "[" + std::to_string(index) + "]";
+    return p.empty() ? std::string(key) : p + "." + std::string(key);
+  }
+
+  [[noreturn]] void fail(const std::string& what) const {
+    const std::string p = path();
+    throw InputError(*source + ": " + (p.empty() ? "" : p + ": ") + what);
+  }
+
+  Node member(std::string_view name, const Json* v) const { return {v, source, this, name}; }
+  Node element(size_t i, const Json* v) const { return {v, source, this, {}, true, i}; }
+  Node element(size_t i) const { return element(i, &(*value)[i]); }
+
+  std::optional<Node> find(const char* name) const {
+    const auto it = value->find(name);
+    if (it == value->end()) return std::nullopt;
+    return member(name, &*it);
+  }
+
+  Node require(const char* name) const {
+    const std::optional<Node> n = find(name);
+    if (!n) member(name, nullptr).fail("missing required field");
+    return *n;
+  }
+};
+
+// The value as the user wrote it, shortened, for "got ..." in messages.
+std::string describe(const Json& v) {
+  const std::string text = v.dump();
+  if (text.size() <= 40) return text;
+  if (v.is_array()) return "an array of " + std::to_string(v.size()) + " elements";
+  if (v.is_object()) return "an object";
+  return text.substr(0, 37) + "...";
+}
+
+template <typename Names>
+std::string join(const Names& names) {
+  std::string out;
+  for (std::string_view n : names) out += (out.empty() ? "" : ", ") + std::string(n);
+  return out;
+}
+
+void require_object(const Node& n) {
+  if (!n.value->is_object()) n.fail("expected an object, got " + describe(*n.value));
+}
+
+void require_array(const Node& n) {
+  if (!n.value->is_array()) n.fail("expected an array, got " + describe(*n.value));
+}
+
+void check_keys(const Node& n, std::initializer_list<std::string_view> allowed) {
+  for (auto it = n.value->begin(); it != n.value->end(); ++it) {
+    if (std::find(allowed.begin(), allowed.end(), it.key()) == allowed.end())
+      n.member(it.key(), &*it).fail("unknown key (expected " + join(allowed) + ")");
+  }
+}
+
+float read_float(const Node& n) {
+  if (!n.value->is_number()) n.fail("expected a number, got " + describe(*n.value));
+  return n.value->get<float>();  // finite: the parser refuses numbers beyond float's range
+}
+
+glm::vec3 read_vec3(const Node& n) {
+  const Json& v = *n.value;
+  if (!v.is_array() || v.size() != 3 || !std::all_of(v.begin(), v.end(), [](const Json& e) { return e.is_number(); }))
+    n.fail("expected an array of 3 numbers, got " + describe(v));
+  return {read_float(n.element(0)), read_float(n.element(1)), read_float(n.element(2))};
+}
+
+uint32_t read_index(const Node& n) {
+  const Json& v = *n.value;
+  // nlohmann stores every integer literal >= 0 as unsigned; 1.5, 2.0 and -1 are not.
+  if (!v.is_number_unsigned() || v.get<uint64_t>() > std::numeric_limits<uint32_t>::max())
+    n.fail("expected a material index (an integer >= 0), got " + describe(v));
+  return static_cast<uint32_t>(v.get<uint64_t>());
+}
+
+// The position of the "type" string in `names`, or an error listing them.
+template <size_t N>
+uint32_t read_type(const Node& n, const std::string_view (&names)[N], const char* kind) {
+  const Node type = n.require("type");
+  if (type.value->is_string()) {
+    const auto it = std::find(std::begin(names), std::end(names), type.value->get_ref<const std::string&>());
+    if (it != std::end(names)) return static_cast<uint32_t>(it - std::begin(names));
+  }
+  type.fail("unknown " + std::string(kind) + " type " + describe(*type.value) + " (expected " + join(names) + ")");
+}
+
+template <typename T>
+void read_optional(const Node& n, const char* name, T& out) {
+  if (const std::optional<Node> field = n.find(name)) {
+    if constexpr (std::is_same_v<T, float>) out = read_float(*field);
+    else out = read_vec3(*field);
+  }
+}
+
+Camera read_camera(const Node& n) {
+  require_object(n);
+  check_keys(n, {"lookfrom", "lookat", "vup", "vfov", "aperture", "focus_dist"});
+  Camera c;
+  read_optional(n, "lookfrom", c.lookfrom);
+  read_optional(n, "lookat", c.lookat);
+  read_optional(n, "vup", c.vup);
+  read_optional(n, "vfov", c.vfov);
+  read_optional(n, "aperture", c.aperture);
+  read_optional(n, "focus_dist", c.focus_dist);
+  return c;
+}
+
+Sky read_sky(const Node& n) {
+  require_object(n);
+  Sky sky;
+  sky.type = static_cast<SkyType>(read_type(n, kSkyNames, "sky"));
+  switch (sky.type) {
+    case SkyType::Gradient:
+      check_keys(n, {"type", "down", "up"});
+      read_optional(n, "down", sky.down);
+      read_optional(n, "up", sky.up);
+      break;
+    case SkyType::Uniform:
+      check_keys(n, {"type", "radiance"});
+      sky.radiance = read_vec3(n.require("radiance"));
+      break;
+    case SkyType::None:
+      check_keys(n, {"type"});
+      break;
+  }
+  return sky;
+}
+
+Material read_material(const Node& n) {
+  require_object(n);
+  Material m;
+  m.type = static_cast<MaterialType>(read_type(n, kMaterialNames, "material"));
+  switch (m.type) {
+    case MaterialType::Lambertian:
+      check_keys(n, {"type", "albedo"});
+      m.albedo = read_vec3(n.require("albedo"));
+      break;
+    case MaterialType::Metal:
+      check_keys(n, {"type", "albedo", "fuzz"});
+      m.albedo = read_vec3(n.require("albedo"));
+      read_optional(n, "fuzz", m.fuzz);
+      break;
+    case MaterialType::Dielectric:
+      check_keys(n, {"type", "ior"});
+      read_optional(n, "ior", m.ior);
+      break;
+    case MaterialType::Emissive:
+      check_keys(n, {"type", "radiance"});
+      m.radiance = read_vec3(n.require("radiance"));
+      break;
+  }
+  return m;
+}
+
+Sphere read_sphere(const Node& n) {
+  require_object(n);
+  check_keys(n, {"center", "radius", "material"});
+  // Braced initialisation evaluates left to right, so the first bad field is reported.
+  return {read_vec3(n.require("center")), read_float(n.require("radius")), read_index(n.require("material"))};
+}
+
+// ---------------------------------------------------------------------------
+// writing
+// ---------------------------------------------------------------------------
+
+void append(std::string& out, float v) {
+  // "-0" would read back as the integer 0; "-0.0" is a float token.
+  if (v == 0.0f && std::signbit(v)) {
+    out += "-0.0";
+    return;
+  }
+  char buf[32];
+  out.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
+}
+
+void append(std::string& out, uint32_t v) {
+  char buf[16];
+  out.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
+}
+
+void append(std::string& out, glm::vec3 v) {
+  out += '[';
+  append(out, v.x);
+  out += ", ";
+  append(out, v.y);
+  out += ", ";
+  append(out, v.z);
+  out += ']';
+}
+
+// `, "name": value`
+template <typename T>
+void append_field(std::string& out, const char* name, T value) {
+  out += ", \"";
+  out += name;
+  out += "\": ";
+  append(out, value);
+}
+
+void append_type(std::string& out, std::string_view name) {
+  out += "{\"type\": \"";
+  out += name;
+  out += '"';
+}
+
+void append(std::string& out, const Sky& sky) {
+  append_type(out, kSkyNames[static_cast<uint32_t>(sky.type)]);
+  if (sky.type == SkyType::Gradient) {
+    append_field(out, "down", sky.down);
+    append_field(out, "up", sky.up);
+  } else if (sky.type == SkyType::Uniform) {
+    append_field(out, "radiance", sky.radiance);
+  }
+  out += '}';
+}
+
+void append(std::string& out, const Material& m) {
+  append_type(out, kMaterialNames[static_cast<uint32_t>(m.type)]);
+  switch (m.type) {
+    case MaterialType::Lambertian:
+      append_field(out, "albedo", m.albedo);
+      break;
+    case MaterialType::Metal:
+      append_field(out, "albedo", m.albedo);
+      append_field(out, "fuzz", m.fuzz);
+      break;
+    case MaterialType::Dielectric:
+      append_field(out, "ior", m.ior);
+      break;
+    case MaterialType::Emissive:
+      append_field(out, "radiance", m.radiance);
+      break;
+  }
+  out += '}';
+}
+
+void append(std::string& out, const Sphere& s) {
+  out += "{\"center\": ";
+  append(out, s.center);
+  append_field(out, "radius", s.radius);
+  append_field(out, "material", s.material);
+  out += '}';
+}
+
+// One element per line, so that a file of a million spheres stays readable and diffable.
+template <typename T>
+void append(std::string& out, const std::vector<T>& items) {
+  if (items.empty()) {
+    out += "[]";
+    return;
+  }
+  out += "[\n";
+  for (size_t i = 0; i < items.size(); ++i) {
+    out += "    ";
+    append(out, items[i]);
+    out += i + 1 < items.size() ? ",\n" : "\n";
+  }
+  out += "  ]";
+}
+
+
+}  // namespace
+
+Scene parse_scene_json(const std::string& text, const std::string& source) {
+  // The elements of "materials" and "spheres" are converted as the parser
+  // finishes each one and then dropped from the document: a million spheres never
+  // exist as a JSON tree (~400 bytes each) next to the Scene (20 bytes each), and
+  // nlohmann's callback parser, which scans an array from its start at every
+  // object end, has only the one element to scan. `open` follows the parser's
+  // position: one entry per open object or array, with the current key or index.
+  struct Open {
+    bool is_array;
+    size_t index = 0;
+    std::string key{};
+  };
+  std::vector<Open> open;
+  // The top-level list the parser is in: 0 none, 1 materials, 2 spheres (the
+  // indices of `lists` and `seen`).
+  const auto list = [&]() -> int {
+    if (open.size() != 2 || open[0].is_array || !open[1].is_array) return 0;
+    return open[0].key == "materials" ? 1 : open[0].key == "spheres" ? 2 : 0;
+  };
+  const Node root_path{nullptr, &source};
+  const Node lists[3] = {root_path, root_path.member("materials", nullptr), root_path.member("spheres", nullptr)};
+  bool seen[3] = {};
+  Scene scene;
+  using Event = Json::parse_event_t;
+  const auto on_event = [&](int, Event event, Json& parsed) {
+    switch (event) {
+      case Event::object_start:
+      case Event::array_start:
+        open.push_back({event == Event::array_start});
+        // nlohmann keeps the last of duplicate keys; here both lists would be read, so refuse.
+        if (const int l = list()) {
+          if (seen[l]) lists[l].fail("appears twice");
+          seen[l] = true;
+        }
+        return true;
+      case Event::key:
+        open.back().key = parsed.get_ref<const std::string&>();
+        return true;
+      case Event::object_end:
+      case Event::array_end:
+        open.pop_back();
+        break;
+      case Event::value:
+        break;
+    }
+    // A value is complete.
+    if (open.empty() || !open.back().is_array) return true;
+    const size_t index = open.back().index++;
+    switch (list()) {
+      case 1:
+        scene.materials.push_back(read_material(lists[1].element(index, &parsed)));
+        return false;
+      case 2:
+        scene.spheres.push_back(read_sphere(lists[2].element(index, &parsed)));
+        return false;
+    }
+    return true;
+  };
+
+  Json doc;
+  try {
+    doc = Json::parse(text, on_event);
+  } catch (const Json::parse_error& e) {
+    // e.what(): "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
+    const std::string what = e.what();
+    const size_t at = what.find(" at line ");
+    throw InputError(source + ": invalid JSON" + (at == std::string::npos ? ": " + what : what.substr(at)));
+  } catch (const Json::out_of_range& e) {
+    // A number beyond float's range (1e999, or just 1e39): nlohmann refuses it
+    // without a position, but `open` knows where the parser stood.
+    std::string path;
+    for (const Open& o : open)
+      path += o.is_array ? "[" + std::to_string(o.index) + "]" : (path.empty() ? "" : ".") + o.key;
+    const std::string what = e.what();
+    const size_t quote = what.find('\'');
+    const std::string got = quote == std::string::npos ? "" : ", got " + what.substr(quote + 1, what.size() - quote - 2);
+    throw InputError(source + ": " + (path.empty() ? "" : path + ": ") + "number out of range of a 32-bit float" + got);
+  }
+
+  const Node root{&doc, &source};
+  if (!doc.is_object()) root.fail("expected a JSON object at the top level, got " + describe(doc));
+  check_keys(root, {"camera", "sky", "materials", "spheres"});
+  if (const std::optional<Node> camera = root.find("camera")) scene.camera = read_camera(*camera);
+  if (const std::optional<Node> sky = root.find("sky")) scene.sky = read_sky(*sky);
+  // If they are arrays, the parser has already moved their elements into `scene`.
+  require_array(root.require("materials"));
+  require_array(root.require("spheres"));
+  validate_scene(scene, source);
+  return scene;
+}
+
+Scene load_scene_json(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw InputError(path + ": cannot open file: " + std::strerror(errno));
+  std::string text;
+  struct stat st {};
+  if (::fstat(fd, &st) == 0 && st.st_size > 0) text.reserve(static_cast<size_t>(st.st_size));
+  char buf[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n == 0) break;
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int err = errno;
+      ::close(fd);
+      throw InputError(path + ": cannot read file: " + std::strerror(err));
+    }
+    text.append(buf, static_cast<size_t>(n));
+  }
+  ::close(fd);
+  return parse_scene_json(text, path);
+}
+
+std::string scene_to_json(const Scene& scene) {
+  // What is written must load again; non-finite numbers cannot even be written.
+  validate_scene(scene, "scene");
+  std::string out;
+  out.reserve(512 + 64 * scene.materials.size() + 72 * scene.spheres.size());
+  const Camera& c = scene.camera;
+  out += "{\n  \"camera\": {\"lookfrom\": ";
+  append(out, c.lookfrom);
+  append_field(out, "lookat", c.lookat);
+  append_field(out, "vup", c.vup);
+  append_field(out, "vfov", c.vfov);
+  append_field(out, "aperture", c.aperture);
+  append_field(out, "focus_dist", c.focus_dist);
+  out += "},\n  \"sky\": ";
+  append(out, scene.sky);
+  out += ",\n  \"materials\": ";
+  append(out, scene.materials);
+  out += ",\n  \"spheres\": ";
+  append(out, scene.spheres);
+  out += "\n}\n";
+  return out;
+}
+
+void save_scene_json(const Scene& scene, const std::string& path) {
+  const std::string text = scene_to_json(scene);
+  write_file_atomically(path, text.data(), text.size());
+}
+
+}  // namespace octrace

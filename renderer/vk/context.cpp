@@ -1,0 +1,414 @@
+#include "vk/context.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+namespace octrace {
+
+namespace {
+
+std::atomic<uint32_t> g_validation_messages{0};
+
+VKAPI_ATTR VkBool32 VKAPI_CALL debug_callback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                              VkDebugUtilsMessageTypeFlagsEXT,
+                                              const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                              void*) {
+  if (severity < VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) return VK_FALSE;
+  g_validation_messages++;
+  std::fprintf(stderr, "octrace: validation: %s\n", data->pMessage);
+  return VK_FALSE;
+}
+
+const char* device_type_name(VkPhysicalDeviceType type) {
+  switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
+    default: return "other";
+  }
+}
+
+bool layer_available(const char* name) {
+  uint32_t count = 0;
+  vkEnumerateInstanceLayerProperties(&count, nullptr);
+  std::vector<VkLayerProperties> layers(count);
+  vkEnumerateInstanceLayerProperties(&count, layers.data());
+  for (const auto& l : layers)
+    if (std::strcmp(l.layerName, name) == 0) return true;
+  return false;
+}
+
+VkInstance create_instance(bool validation, VkDebugUtilsMessengerEXT* messenger,
+                           std::vector<const char*> extensions = {}) {
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "octrace";
+  app.apiVersion = VK_API_VERSION_1_2;
+
+  const char* layer = "VK_LAYER_KHRONOS_validation";
+  VkDebugUtilsMessengerCreateInfoEXT messenger_info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+  messenger_info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                                   VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  messenger_info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                               VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                               VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+  messenger_info.pfnUserCallback = debug_callback;
+  // Synchronization validation is off by default in the layer; the tests need it.
+  VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+  VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+  features.enabledValidationFeatureCount = 1;
+  features.pEnabledValidationFeatures = enables;
+  features.pNext = &messenger_info;
+
+  VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  info.pApplicationInfo = &app;
+  if (validation) {
+    if (!layer_available(layer))
+      throw RuntimeError("validation requested but VK_LAYER_KHRONOS_validation is not installed "
+                         "(Debian: vulkan-validationlayers)");
+    info.enabledLayerCount = 1;
+    info.ppEnabledLayerNames = &layer;
+    extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    info.pNext = &features;
+  }
+  info.enabledExtensionCount = uint32_t(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
+  VkInstance instance = VK_NULL_HANDLE;
+  VkResult r = vkCreateInstance(&info, nullptr, &instance);
+  if (r == VK_ERROR_INCOMPATIBLE_DRIVER || r == VK_ERROR_INITIALIZATION_FAILED)
+    throw RuntimeError(std::string("no Vulkan driver found (") + vk_result_name(r) +
+                       "); install mesa-vulkan-drivers for the CPU device or a GPU driver");
+  VK_CHECK(r);
+  if (validation) {
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+    VK_CHECK(create(instance, &messenger_info, nullptr, messenger));
+  }
+  return instance;
+}
+
+void destroy_instance(VkInstance instance, VkDebugUtilsMessengerEXT messenger) {
+  if (messenger) {
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+    destroy(instance, messenger, nullptr);
+  }
+  if (instance) vkDestroyInstance(instance, nullptr);
+}
+
+std::vector<VkPhysicalDevice> physical_devices(VkInstance instance) {
+  uint32_t count = 0;
+  VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, nullptr));
+  std::vector<VkPhysicalDevice> devices(count);
+  VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, devices.data()));
+  return devices;
+}
+
+// The queue family we run on: one with compute (a pure compute family is as
+// good as a graphics one for us; the first that fits is used), and for which
+// `also` holds when given (a window's: it can present).
+bool find_compute_queue(VkPhysicalDevice physical, uint32_t* family, uint32_t* timestamp_bits,
+                        const std::function<bool(uint32_t)>& also = {}) {
+  uint32_t count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(physical, &count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(count);
+  vkGetPhysicalDeviceQueueFamilyProperties(physical, &count, families.data());
+  for (uint32_t i = 0; i < count; ++i) {
+    if ((families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && (!also || also(i))) {
+      *family = i;
+      *timestamp_bits = families[i].timestampValidBits;
+      return true;
+    }
+  }
+  return false;
+}
+
+DeviceInfo describe(VkPhysicalDevice physical, uint32_t index) {
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(physical, &props);
+  DeviceInfo info;
+  info.index = index;
+  info.name = props.deviceName;
+  info.type = device_type_name(props.deviceType);
+  info.software = props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+  info.api_version = std::to_string(VK_API_VERSION_MAJOR(props.apiVersion)) + "." +
+                     std::to_string(VK_API_VERSION_MINOR(props.apiVersion)) + "." +
+                     std::to_string(VK_API_VERSION_PATCH(props.apiVersion));
+  info.vulkan12 = props.apiVersion >= VK_API_VERSION_1_2;
+  info.max_storage_buffer = props.limits.maxStorageBufferRange;
+
+  if (info.vulkan12) {
+    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    props2.pNext = &driver;
+    vkGetPhysicalDeviceProperties2(physical, &props2);
+    info.driver = std::string(driver.driverName) + " " + driver.driverInfo;
+
+    VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
+    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    f11.pNext = &f12;
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    features.pNext = &f11;
+    vkGetPhysicalDeviceFeatures2(physical, &features);
+    info.shader_float16 = f12.shaderFloat16;
+    info.storage_16bit = f11.storageBuffer16BitAccess;
+  }
+
+  uint32_t family = 0, timestamp_bits = 0;
+  find_compute_queue(physical, &family, &timestamp_bits);
+  info.timestamps = timestamp_bits > 0 && props.limits.timestampPeriod > 0;
+
+  VkPhysicalDeviceMemoryProperties memory;
+  vkGetPhysicalDeviceMemoryProperties(physical, &memory);
+  for (uint32_t i = 0; i < memory.memoryHeapCount; ++i)
+    if (memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+      info.device_memory = std::max<uint64_t>(info.device_memory, memory.memoryHeaps[i].size);
+  return info;
+}
+
+// What, if anything, keeps this device from running octrace with these options.
+std::string unsuitable_reason(const DeviceInfo& d, const ContextOptions& options) {
+  if (!d.vulkan12) return "Vulkan " + d.api_version + " < 1.2";
+  if (!d.timestamps) return "no timestamp queries on its compute queue";
+  if (options.need_fp16 && !d.shader_float16) return "no shaderFloat16";
+  if (options.need_fp16 && !d.storage_16bit) return "no storageBuffer16BitAccess";
+  return "";
+}
+
+bool has_device_extension(VkPhysicalDevice physical, const char* name) {
+  uint32_t count = 0;
+  vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr);
+  std::vector<VkExtensionProperties> extensions(count);
+  vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, extensions.data());
+  for (const auto& e : extensions)
+    if (std::strcmp(e.extensionName, name) == 0) return true;
+  return false;
+}
+
+int auto_rank(const DeviceInfo& d) {
+  if (d.type == "discrete GPU") return 0;
+  if (d.type == "integrated GPU") return 1;
+  if (d.type == "virtual GPU") return 2;
+  if (d.type == "CPU") return 4;
+  return 3;
+}
+
+}  // namespace
+
+const char* vk_result_name(VkResult result) {
+  switch (result) {
+#define OCT_CASE(x) case x: return #x;
+    OCT_CASE(VK_SUCCESS)
+    OCT_CASE(VK_NOT_READY)
+    OCT_CASE(VK_TIMEOUT)
+    OCT_CASE(VK_INCOMPLETE)
+    OCT_CASE(VK_ERROR_OUT_OF_HOST_MEMORY)
+    OCT_CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY)
+    OCT_CASE(VK_ERROR_INITIALIZATION_FAILED)
+    OCT_CASE(VK_ERROR_DEVICE_LOST)
+    OCT_CASE(VK_ERROR_MEMORY_MAP_FAILED)
+    OCT_CASE(VK_ERROR_LAYER_NOT_PRESENT)
+    OCT_CASE(VK_ERROR_EXTENSION_NOT_PRESENT)
+    OCT_CASE(VK_ERROR_FEATURE_NOT_PRESENT)
+    OCT_CASE(VK_ERROR_INCOMPATIBLE_DRIVER)
+    OCT_CASE(VK_ERROR_TOO_MANY_OBJECTS)
+    OCT_CASE(VK_ERROR_FORMAT_NOT_SUPPORTED)
+    OCT_CASE(VK_ERROR_FRAGMENTED_POOL)
+    OCT_CASE(VK_ERROR_OUT_OF_POOL_MEMORY)
+    OCT_CASE(VK_ERROR_SURFACE_LOST_KHR)
+    OCT_CASE(VK_ERROR_OUT_OF_DATE_KHR)
+    OCT_CASE(VK_SUBOPTIMAL_KHR)
+#undef OCT_CASE
+    default: return "VK_ERROR_UNKNOWN";
+  }
+}
+
+void throw_vk_error(VkResult result, const char* what) {
+  std::string where = what;
+  if (auto paren = where.find('('); paren != std::string::npos) where.resize(paren);
+  switch (result) {
+    case VK_ERROR_DEVICE_LOST:
+      throw RuntimeError("Vulkan device lost during " + where +
+                         " (the driver reset the device: a pass took too long or the GPU faulted)");
+    case VK_ERROR_OUT_OF_DEVICE_MEMORY:
+      throw RuntimeError("out of device memory in " + where + " (try a smaller --size or scene)");
+    case VK_ERROR_OUT_OF_HOST_MEMORY:
+      throw RuntimeError("out of host memory in " + where);
+    default:
+      throw RuntimeError(where + " failed: " + vk_result_name(result));
+  }
+}
+
+bool validation_requested_by_env() {
+  const char* v = std::getenv("OCTRACE_VALIDATION");
+  return v && std::strcmp(v, "0") != 0 && *v;
+}
+
+uint32_t validation_message_count() { return g_validation_messages.load(); }
+
+std::vector<DeviceInfo> list_devices() {
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  VkInstance instance = create_instance(validation_requested_by_env(), &messenger);
+  std::vector<DeviceInfo> result;
+  try {
+    auto devices = physical_devices(instance);
+    for (uint32_t i = 0; i < devices.size(); ++i) result.push_back(describe(devices[i], i));
+  } catch (...) {
+    destroy_instance(instance, messenger);
+    throw;
+  }
+  destroy_instance(instance, messenger);
+  return result;
+}
+
+void create_context(VulkanContext& ctx, const ContextOptions& options) {
+  ctx.instance = create_instance(options.validation || validation_requested_by_env(), &ctx.messenger,
+                                 options.instance_extensions);
+  auto devices = physical_devices(ctx.instance);
+  if (devices.empty())
+    throw RuntimeError("no Vulkan device found; install mesa-vulkan-drivers for the CPU device (lavapipe)");
+
+  // A window needs the swapchain extension and a compute family that presents.
+  auto presents = [&](VkPhysicalDevice physical) {
+    return [&, physical](uint32_t family) { return options.can_present(ctx.instance, physical, family); };
+  };
+  std::vector<DeviceInfo> infos;
+  for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], i));
+
+  // Candidates per --device, then the first that is suitable. When none is,
+  // the error lists each candidate with the requirement it failed.
+  std::vector<uint32_t> candidates;
+  const std::string& sel = options.device;
+  if (sel == "auto" || sel == "cpu" || sel == "gpu") {
+    for (uint32_t i = 0; i < infos.size(); ++i) {
+      bool cpu = infos[i].software;
+      if (sel == "auto" || (sel == "cpu") == cpu) candidates.push_back(i);
+    }
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [&](uint32_t a, uint32_t b) { return auto_rank(infos[a]) < auto_rank(infos[b]); });
+  } else {
+    char* end = nullptr;
+    unsigned long idx = std::strtoul(sel.c_str(), &end, 10);
+    if (sel.empty() || *end != '\0')
+      throw InputError("--device: expected auto, cpu, gpu or a device index, got \"" + sel + "\"");
+    if (idx >= infos.size())
+      throw InputError("--device: index " + sel + " out of range (" + std::to_string(infos.size()) +
+                       " devices; see `octrace devices`)");
+    candidates.push_back(uint32_t(idx));
+  }
+  if (candidates.empty())
+    throw InputError("--device " + sel + ": no " + (sel == "cpu" ? "CPU (software)" : "GPU") +
+                     " device found (see `octrace devices`)");
+
+  int chosen = -1;
+  std::string reasons;
+  for (uint32_t i : candidates) {
+    std::string why = unsuitable_reason(infos[i], options);
+    uint32_t family = 0, bits = 0;
+    if (why.empty() && options.can_present && !has_device_extension(devices[i], VK_KHR_SWAPCHAIN_EXTENSION_NAME))
+      why = "no VK_KHR_swapchain";
+    if (why.empty() && options.can_present && !find_compute_queue(devices[i], &family, &bits, presents(devices[i])))
+      why = "no queue family with compute that can present to the window";
+    if (why.empty()) {
+      chosen = int(i);
+      break;
+    }
+    reasons += (reasons.empty() ? "" : "; ") + std::to_string(i) + " " + infos[i].name + ": " + why;
+  }
+  if (chosen < 0) {
+    if (options.need_fp16)
+      throw InputError("--precision fp16: no suitable device (" + reasons + ")");
+    throw RuntimeError("no suitable Vulkan device (" + reasons + ")");
+  }
+
+  ctx.physical = devices[chosen];
+  ctx.info = infos[chosen];
+  uint32_t timestamp_bits = 0;
+  find_compute_queue(ctx.physical, &ctx.queue_family, &timestamp_bits,
+                     options.can_present ? presents(ctx.physical) : std::function<bool(uint32_t)>{});
+  vkGetPhysicalDeviceMemoryProperties(ctx.physical, &ctx.memory);
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(ctx.physical, &props);
+  ctx.limits = props.limits;
+
+  float priority = 1.0f;
+  VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+  queue_info.queueFamilyIndex = ctx.queue_family;
+  queue_info.queueCount = 1;
+  queue_info.pQueuePriorities = &priority;
+
+  // 16-bit features are enabled only when asked for, so an fp32 run works on
+  // devices without them.
+  VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  f11.pNext = &f12;
+  ctx.fp16_enabled = options.need_fp16 || ctx.info.supports_fp16();
+  f11.storageBuffer16BitAccess = ctx.fp16_enabled;
+  f12.shaderFloat16 = ctx.fp16_enabled;
+  VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+  features.pNext = &f11;
+
+  VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+  info.pNext = &features;
+  info.queueCreateInfoCount = 1;
+  info.pQueueCreateInfos = &queue_info;
+  const char* swapchain = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
+  if (options.can_present) {
+    info.enabledExtensionCount = 1;
+    info.ppEnabledExtensionNames = &swapchain;
+  }
+  VK_CHECK(vkCreateDevice(ctx.physical, &info, nullptr, &ctx.device));
+  vkGetDeviceQueue(ctx.device, ctx.queue_family, 0, &ctx.queue);
+
+  VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  pool_info.queueFamilyIndex = ctx.queue_family;
+  VK_CHECK(vkCreateCommandPool(ctx.device, &pool_info, nullptr, &ctx.command_pool));
+  VkPipelineCacheCreateInfo cache_info{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
+  VK_CHECK(vkCreatePipelineCache(ctx.device, &cache_info, nullptr, &ctx.pipeline_cache));
+}
+
+VulkanContext::~VulkanContext() {
+  if (device) {
+    vkDeviceWaitIdle(device);
+    if (command_pool) vkDestroyCommandPool(device, command_pool, nullptr);
+    if (pipeline_cache) vkDestroyPipelineCache(device, pipeline_cache, nullptr);
+    vkDestroyDevice(device, nullptr);
+  }
+  destroy_instance(instance, messenger);
+}
+
+void submit_and_wait_raw(const VulkanContext& ctx, void (*record)(VkCommandBuffer, void*), void* user) {
+  VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  alloc.commandPool = ctx.command_pool;
+  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  alloc.commandBufferCount = 1;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  VK_CHECK(vkAllocateCommandBuffers(ctx.device, &alloc, &cmd));
+  VkFence fence = VK_NULL_HANDLE;
+  try {
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+    record(cmd, user);
+    VK_CHECK(vkEndCommandBuffer(cmd));
+    VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VK_CHECK(vkCreateFence(ctx.device, &fence_info, nullptr, &fence));
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    VK_CHECK(vkQueueSubmit(ctx.queue, 1, &submit, fence));
+    VK_CHECK(vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, UINT64_MAX));
+  } catch (...) {
+    if (fence) vkDestroyFence(ctx.device, fence, nullptr);
+    vkFreeCommandBuffers(ctx.device, ctx.command_pool, 1, &cmd);
+    throw;
+  }
+  vkDestroyFence(ctx.device, fence, nullptr);
+  vkFreeCommandBuffers(ctx.device, ctx.command_pool, 1, &cmd);
+}
+
+}  // namespace octrace

@@ -1,0 +1,105 @@
+// Vulkan instance, device selection and the logical device. Knows nothing of
+// scenes or spheres.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "core/errors.h"
+
+namespace octrace {
+
+// Throws RuntimeError naming the call and the VkResult.
+#define VK_CHECK(call)                                              \
+  do {                                                              \
+    VkResult vk_check_result_ = (call);                             \
+    if (vk_check_result_ != VK_SUCCESS)                             \
+      ::octrace::throw_vk_error(vk_check_result_, #call);           \
+  } while (0)
+
+[[noreturn]] void throw_vk_error(VkResult result, const char* what);
+const char* vk_result_name(VkResult result);
+
+struct DeviceInfo {
+  uint32_t index = 0;  // position in vkEnumeratePhysicalDevices order
+  std::string name;
+  std::string type;    // "discrete GPU", "integrated GPU", "virtual GPU", "CPU", "other"
+  std::string driver;  // driver name and info, e.g. "llvmpipe Mesa 22.3.6 (LLVM 15.0.6)"
+  std::string api_version;
+  bool software = false;         // a CPU implementation (lavapipe, SwiftShader)
+  bool shader_float16 = false;   // VkPhysicalDeviceVulkan12Features::shaderFloat16
+  bool storage_16bit = false;    // VkPhysicalDeviceVulkan11Features::storageBuffer16BitAccess
+  bool timestamps = false;       // timestamps on the compute queue
+  bool vulkan12 = false;         // device API >= 1.2 (we need it)
+  uint64_t max_storage_buffer = 0;  // maxStorageBufferRange, bytes
+  uint64_t device_memory = 0;       // largest device-local heap, bytes
+
+  bool supports_fp16() const { return shader_float16 && storage_16bit; }
+};
+
+struct ContextOptions {
+  std::string device = "auto";  // auto | cpu | gpu | INDEX
+  bool need_fp16 = false;       // enable shaderFloat16 + 16-bit storage (fails without)
+  bool validation = false;      // Khronos validation + synchronization validation
+  // For a window (octrace view): the instance extensions the surface needs
+  // (glfwGetRequiredInstanceExtensions), and a test whether a queue family of
+  // a device can present. When `can_present` is set, the device must have
+  // VK_KHR_swapchain (it is enabled) and a queue family with compute that can
+  // present; headless runs leave both empty.
+  std::vector<const char*> instance_extensions;
+  std::function<bool(VkInstance, VkPhysicalDevice, uint32_t family)> can_present;
+};
+
+// The validation layer is on when asked for or when OCTRACE_VALIDATION=1.
+bool validation_requested_by_env();
+
+struct VulkanContext {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  VkPhysicalDevice physical = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;
+  uint32_t queue_family = 0;
+  VkCommandPool command_pool = VK_NULL_HANDLE;
+  // Every pipeline is created through this cache, so a specialisation that a
+  // run (a benchmark, the preview window) creates again costs a cache hit.
+  VkPipelineCache pipeline_cache = VK_NULL_HANDLE;
+  VkPhysicalDeviceMemoryProperties memory{};
+  VkPhysicalDeviceLimits limits{};
+  DeviceInfo info;
+  bool fp16_enabled = false;
+
+  VulkanContext() = default;
+  VulkanContext(const VulkanContext&) = delete;
+  VulkanContext& operator=(const VulkanContext&) = delete;
+  ~VulkanContext();
+};
+
+// Every device the loader reports, with what octrace needs to know about it.
+std::vector<DeviceInfo> list_devices();
+
+// Picks a device per options.device and creates it. Throws InputError for a
+// selection that matches nothing (the message says what each device lacked)
+// and RuntimeError when Vulkan itself fails.
+void create_context(VulkanContext& ctx, const ContextOptions& options);
+
+// Messages the validation layer reported so far in this process (warnings and
+// errors). The front end fails the run if this is not zero.
+uint32_t validation_message_count();
+
+// One-shot command buffer: record with `record`, submit, wait.
+template <typename F>
+void submit_and_wait(const VulkanContext& ctx, F&& record);
+void submit_and_wait_raw(const VulkanContext& ctx, void (*record)(VkCommandBuffer, void*), void* user);
+
+template <typename F>
+void submit_and_wait(const VulkanContext& ctx, F&& record) {
+  submit_and_wait_raw(
+      ctx, [](VkCommandBuffer cmd, void* user) { (*static_cast<F*>(user))(cmd); }, &record);
+}
+
+}  // namespace octrace

@@ -1,0 +1,194 @@
+#include "vk/resources.h"
+
+#include <cstring>
+
+namespace octrace {
+
+namespace {
+
+uint32_t find_memory_type(const VulkanContext& ctx, uint32_t type_bits, VkMemoryPropertyFlags want) {
+  for (uint32_t i = 0; i < ctx.memory.memoryTypeCount; ++i)
+    if ((type_bits & (1u << i)) && (ctx.memory.memoryTypes[i].propertyFlags & want) == want) return i;
+  return UINT32_MAX;
+}
+
+std::string mib(VkDeviceSize bytes) {
+  return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB";
+}
+
+}  // namespace
+
+void create_buffer(Buffer& b, const VulkanContext& ctx, VkDeviceSize size, bool host, const std::string& what) {
+  destroy_buffer(b);
+  size = std::max<VkDeviceSize>(size, 16);
+  b.ctx = &ctx;
+  b.size = size;
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.size = size;
+  info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+               VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  VkResult r = vkCreateBuffer(ctx.device, &info, nullptr, &b.buffer);
+  if (r != VK_SUCCESS)
+    throw RuntimeError("cannot create " + what + " of " + mib(size) + ": " + vk_result_name(r));
+
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(ctx.device, b.buffer, &req);
+  // Host buffers are coherent so mapped writes need no flush; device buffers
+  // prefer device-local memory and fall back to any memory (lavapipe has one heap).
+  VkMemoryPropertyFlags want = host ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+                                    : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+  uint32_t type = find_memory_type(ctx, req.memoryTypeBits, want);
+  if (type == UINT32_MAX && !host) type = find_memory_type(ctx, req.memoryTypeBits, 0);
+  if (type == UINT32_MAX) throw RuntimeError("no memory type for " + what);
+
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = req.size;
+  alloc.memoryTypeIndex = type;
+  r = vkAllocateMemory(ctx.device, &alloc, nullptr, &b.memory);
+  if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY)
+    throw RuntimeError("out of memory allocating " + mib(size) + " for the " + what);
+  if (r != VK_SUCCESS) throw RuntimeError("cannot allocate the " + what + ": " + vk_result_name(r));
+  VK_CHECK(vkBindBufferMemory(ctx.device, b.buffer, b.memory, 0));
+  if (host) VK_CHECK(vkMapMemory(ctx.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
+}
+
+Buffer::~Buffer() { destroy_buffer(*this); }
+
+void destroy_buffer(Buffer& b) {
+  if (!b.ctx) return;
+  if (b.buffer) vkDestroyBuffer(b.ctx->device, b.buffer, nullptr);
+  if (b.memory) vkFreeMemory(b.ctx->device, b.memory, nullptr);
+  b.buffer = VK_NULL_HANDLE;
+  b.memory = VK_NULL_HANDLE;
+  b.mapped = nullptr;
+  b.ctx = nullptr;
+}
+
+void upload_buffer(const VulkanContext& ctx, Buffer& dst, const void* data, size_t bytes) {
+  if (bytes == 0) return;
+  Buffer staging;
+  create_buffer(staging, ctx, bytes, true, "staging buffer");
+  std::memcpy(staging.mapped, data, bytes);
+  submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
+    VkBufferCopy region{0, 0, bytes};
+    vkCmdCopyBuffer(cmd, staging.buffer, dst.buffer, 1, &region);
+  });
+}
+
+void download_buffer(const VulkanContext& ctx, const Buffer& src, void* data, size_t bytes) {
+  if (bytes == 0) return;
+  Buffer staging;
+  create_buffer(staging, ctx, bytes, true, "readback buffer");
+  submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
+    VkBufferCopy region{0, 0, bytes};
+    vkCmdCopyBuffer(cmd, src.buffer, staging.buffer, 1, &region);
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier,
+                         0, nullptr, 0, nullptr);
+  });
+  std::memcpy(data, staging.mapped, bytes);
+}
+
+void fill_buffer(const VulkanContext& ctx, Buffer& dst, uint32_t value) {
+  submit_and_wait(ctx, [&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, dst.buffer, 0, VK_WHOLE_SIZE, value); });
+}
+
+void create_compute_pipeline(ComputePipeline& p, const VulkanContext& ctx, const uint32_t* spirv,
+                             size_t spirv_bytes, uint32_t binding_count, uint32_t push_bytes,
+                             const std::vector<SpecConstant>& spec) {
+  p.ctx = &ctx;
+  std::vector<VkDescriptorSetLayoutBinding> bindings(binding_count);
+  for (uint32_t i = 0; i < binding_count; ++i) {
+    bindings[i].binding = i;
+    bindings[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    bindings[i].descriptorCount = 1;
+    bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+  }
+  VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  set_info.bindingCount = binding_count;
+  set_info.pBindings = bindings.data();
+  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &set_info, nullptr, &p.set_layout));
+
+  VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes};
+  VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  layout_info.setLayoutCount = 1;
+  layout_info.pSetLayouts = &p.set_layout;
+  layout_info.pushConstantRangeCount = push_bytes ? 1 : 0;
+  layout_info.pPushConstantRanges = &push;
+  VK_CHECK(vkCreatePipelineLayout(ctx.device, &layout_info, nullptr, &p.layout));
+
+  VkShaderModuleCreateInfo module_info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  module_info.codeSize = spirv_bytes;
+  module_info.pCode = spirv;
+  VkShaderModule module = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateShaderModule(ctx.device, &module_info, nullptr, &module));
+
+  std::vector<VkSpecializationMapEntry> entries;
+  std::vector<uint32_t> values;
+  for (const auto& s : spec) {
+    entries.push_back({s.id, uint32_t(values.size() * 4), 4});
+    values.push_back(s.value);
+  }
+  VkSpecializationInfo spec_info{uint32_t(entries.size()), entries.data(), values.size() * 4, values.data()};
+
+  VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+  info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  info.stage.module = module;
+  info.stage.pName = "main";
+  info.stage.pSpecializationInfo = spec.empty() ? nullptr : &spec_info;
+  info.layout = p.layout;
+  VkResult r = vkCreateComputePipelines(ctx.device, ctx.pipeline_cache, 1, &info, nullptr, &p.pipeline);
+  vkDestroyShaderModule(ctx.device, module, nullptr);
+  VK_CHECK(r);
+
+  VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, binding_count};
+  VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pool_info.maxSets = 1;
+  pool_info.poolSizeCount = 1;
+  pool_info.pPoolSizes = &pool_size;
+  VK_CHECK(vkCreateDescriptorPool(ctx.device, &pool_info, nullptr, &p.pool));
+  VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  alloc.descriptorPool = p.pool;
+  alloc.descriptorSetCount = 1;
+  alloc.pSetLayouts = &p.set_layout;
+  VK_CHECK(vkAllocateDescriptorSets(ctx.device, &alloc, &p.set));
+}
+
+void bind_buffers(ComputePipeline& p, const std::vector<const Buffer*>& buffers) {
+  std::vector<VkDescriptorBufferInfo> infos(buffers.size());
+  std::vector<VkWriteDescriptorSet> writes(buffers.size());
+  for (size_t i = 0; i < buffers.size(); ++i) {
+    infos[i] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
+    writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    writes[i].dstSet = p.set;
+    writes[i].dstBinding = uint32_t(i);
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[i].pBufferInfo = &infos[i];
+  }
+  vkUpdateDescriptorSets(p.ctx->device, uint32_t(writes.size()), writes.data(), 0, nullptr);
+}
+
+ComputePipeline::~ComputePipeline() {
+  if (!ctx) return;
+  VkDevice d = ctx->device;
+  if (pool) vkDestroyDescriptorPool(d, pool, nullptr);
+  if (pipeline) vkDestroyPipeline(d, pipeline, nullptr);
+  if (layout) vkDestroyPipelineLayout(d, layout, nullptr);
+  if (set_layout) vkDestroyDescriptorSetLayout(d, set_layout, nullptr);
+}
+
+void compute_barrier(VkCommandBuffer cmd) {
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0,
+                       nullptr, 0, nullptr);
+}
+
+}  // namespace octrace

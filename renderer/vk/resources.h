@@ -1,0 +1,70 @@
+// Buffers and compute pipelines over raw Vulkan: plain structs and free
+// functions. Knows nothing of scenes.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "vk/context.h"
+
+namespace octrace {
+
+// A storage buffer. Device-local, or host-visible when `host` (staging,
+// readback). Frees itself, so an exception half-way through set-up leaks nothing.
+struct Buffer {
+  const VulkanContext* ctx = nullptr;
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkDeviceSize size = 0;
+  void* mapped = nullptr;  // host-visible buffers only
+
+  Buffer() = default;
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+  ~Buffer();
+};
+
+// `what` names the buffer in error messages ("accumulation buffer").
+// Zero-sized requests get a 16-byte buffer so an empty scene still binds.
+void create_buffer(Buffer& b, const VulkanContext& ctx, VkDeviceSize size, bool host, const std::string& what);
+void destroy_buffer(Buffer& b);
+
+// Copies host data into a device buffer through a staging buffer, and back.
+void upload_buffer(const VulkanContext& ctx, Buffer& dst, const void* data, size_t bytes);
+void download_buffer(const VulkanContext& ctx, const Buffer& src, void* data, size_t bytes);
+void fill_buffer(const VulkanContext& ctx, Buffer& dst, uint32_t value);
+
+struct SpecConstant {
+  uint32_t id;
+  uint32_t value;
+};
+
+// A compute pipeline whose set 0 has `binding_count` storage buffers at
+// bindings 0..n-1, with `push_bytes` of push constants.
+struct ComputePipeline {
+  const VulkanContext* ctx = nullptr;
+  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+
+  ComputePipeline() = default;
+  ComputePipeline(const ComputePipeline&) = delete;
+  ComputePipeline& operator=(const ComputePipeline&) = delete;
+  ~ComputePipeline();
+};
+
+void create_compute_pipeline(ComputePipeline& p, const VulkanContext& ctx, const uint32_t* spirv,
+                             size_t spirv_bytes, uint32_t binding_count, uint32_t push_bytes,
+                             const std::vector<SpecConstant>& spec = {});
+// buffers[i] is bound at binding i.
+void bind_buffers(ComputePipeline& p, const std::vector<const Buffer*>& buffers);
+
+// Full-pipeline compute->compute/transfer barrier on all memory: passes are
+// read-modify-write on the accumulation buffers.
+void compute_barrier(VkCommandBuffer cmd);
+
+}  // namespace octrace

@@ -1,0 +1,498 @@
+// The octree's guarantees, the ones the GPU traversal relies on: a front-to-back
+// traversal with early exit finds exactly the closest hit that brute force finds;
+// boxes nest, siblings lie on their own sides of the split planes (so octant
+// order XOR the ray's sign mask is front-to-back); the build is deterministic;
+// the stats add up; bad parameters are errors that name the flag.
+#include "accel/octree.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "core/errors.h"
+
+namespace octrace {
+namespace {
+
+using gpu::GpuOctreeNode;
+using gpu::OCTREE_INTERNAL;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Ray {
+  glm::dvec3 origin;
+  glm::dvec3 dir;  // unit length
+};
+
+// Closest hit; ties in t go to the lower sphere index, so that brute force and
+// the octree agree on coincident spheres.
+struct Hit {
+  double t = kInf;
+  uint32_t sphere = UINT32_MAX;
+
+  bool operator<(const Hit& o) const { return t != o.t ? t < o.t : sphere < o.sphere; }
+  bool operator==(const Hit&) const = default;
+};
+
+// Ray/sphere in double, in the form that keeps precision for small spheres far
+// from the origin (Haines et al., "Precision Improvements for Ray/Sphere
+// Intersection", Ray Tracing Gems ch. 7). The nearest t > 0, or kInf.
+double hit_sphere(const Sphere& s, const Ray& ray) {
+  const glm::dvec3 f = ray.origin - glm::dvec3(s.center);
+  const double b = glm::dot(f, ray.dir);
+  const glm::dvec3 l = f - b * ray.dir;
+  const double r = s.radius;
+  const double disc = r * r - glm::dot(l, l);
+  if (disc < 0.0) return kInf;
+  const double c = glm::dot(f, f) - r * r;
+  const double q = -b - std::copysign(std::sqrt(disc), b);
+  const double t0 = std::min(c / q, q);
+  const double t1 = std::max(c / q, q);
+  if (t0 > 0.0) return t0;
+  if (t1 > 0.0) return t1;
+  return kInf;
+}
+
+void test_sphere(const std::vector<Sphere>& spheres, uint32_t i, const Ray& ray, Hit& best) {
+  const Hit h{hit_sphere(spheres[i], ray), i};
+  if (h.t < kInf && h < best) best = h;
+}
+
+Hit brute_force(const std::vector<Sphere>& spheres, const Ray& ray) {
+  Hit best;
+  for (uint32_t i = 0; i < spheres.size(); ++i) test_sphere(spheres, i, ray, best);
+  return best;
+}
+
+// Entry and exit t of the ray in a box, or an empty interval. A direction
+// component of 0 is handled apart, so no 0 * inf. The box grows by a relative
+// 1e-12 so that a hit exactly on a face is not lost to double rounding of t.
+bool hit_box(const GpuOctreeNode& n, const Ray& ray, double& t_enter, double& t_exit) {
+  t_enter = 0.0;
+  t_exit = kInf;
+  for (int a = 0; a < 3; ++a) {
+    const double pad = 1e-12 * std::max({1.0, std::abs(double(n.lo[a])), std::abs(double(n.hi[a]))});
+    const double lo = double(n.lo[a]) - pad;
+    const double hi = double(n.hi[a]) + pad;
+    if (ray.dir[a] == 0.0) {
+      if (ray.origin[a] < lo || ray.origin[a] > hi) return false;
+      continue;
+    }
+    double t0 = (lo - ray.origin[a]) / ray.dir[a];
+    double t1 = (hi - ray.origin[a]) / ray.dir[a];
+    if (t0 > t1) std::swap(t0, t1);
+    t_enter = std::max(t_enter, t0);
+    t_exit = std::min(t_exit, t1);
+  }
+  return t_enter <= t_exit;
+}
+
+// The traversal the GPU does: big spheres first, then the tree front to back
+// (children in octant order XOR the ray's sign mask, nearest popped first),
+// skipping any node whose entry is beyond the closest hit found so far.
+Hit traverse(const Octree& tree, const std::vector<Sphere>& spheres, const Ray& ray) {
+  Hit best;
+  for (uint32_t i = 0; i < tree.big_count; ++i) test_sphere(spheres, tree.refs[i], ray, best);
+  const uint32_t sign = (std::signbit(ray.dir.x) ? 1u : 0u) | (std::signbit(ray.dir.y) ? 2u : 0u) |
+                        (std::signbit(ray.dir.z) ? 4u : 0u);
+  struct Entry {
+    uint32_t node;
+    double t_enter;
+  };
+  std::vector<Entry> stack;
+  double t0, t1;
+  if (hit_box(tree.nodes[0], ray, t0, t1)) stack.push_back({0, t0});
+  while (!stack.empty()) {
+    const Entry e = stack.back();
+    stack.pop_back();
+    if (e.t_enter > best.t) continue;
+    const GpuOctreeNode& n = tree.nodes[e.node];
+    if (!(n.count_or_mask & OCTREE_INTERNAL)) {
+      for (uint32_t i = 0; i < n.count_or_mask; ++i) test_sphere(spheres, tree.refs[n.first + i], ray, best);
+      continue;
+    }
+    const uint32_t mask = n.count_or_mask & 0xFFu;
+    for (uint32_t j = 8; j-- > 0;) {  // pushed far to near, so the nearest pops first
+      const uint32_t k = j ^ sign;
+      if (!(mask & (1u << k))) continue;
+      const uint32_t child = n.first + std::popcount(mask & ((1u << k) - 1u));
+      if (hit_box(tree.nodes[child], ray, t0, t1) && t0 <= best.t) stack.push_back({child, t0});
+    }
+  }
+  return best;
+}
+
+glm::dvec3 random_unit(std::mt19937_64& rng) {
+  std::normal_distribution<double> g;
+  for (;;) {
+    const glm::dvec3 v(g(rng), g(rng), g(rng));
+    const double len = glm::length(v);
+    if (len > 1e-9) return v / len;
+  }
+}
+
+// Rays that exercise the tree rather than the big spheres: from random points
+// in and around the root box toward random spheres (some along an axis, so the
+// direction has components of +0 and -0), and in random directions.
+std::vector<Ray> make_rays(const Octree& tree, const std::vector<Sphere>& spheres, size_t count, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const GpuOctreeNode& root = tree.nodes[0];
+  const glm::dvec3 lo(root.lo), hi(root.hi);
+  const glm::dvec3 margin = 0.2 * (hi - lo) + 1.0;
+  std::vector<Ray> rays;
+  for (size_t i = 0; i < count; ++i) {
+    glm::dvec3 origin;
+    for (int a = 0; a < 3; ++a) origin[a] = lo[a] - margin[a] + u(rng) * (hi[a] - lo[a] + 2 * margin[a]);
+    if (spheres.empty() || i % 4 == 3) {
+      rays.push_back({origin, random_unit(rng)});
+      continue;
+    }
+    const Sphere& s = spheres[rng() % spheres.size()];
+    const glm::dvec3 target = glm::dvec3(s.center) + 0.9 * double(s.radius) * random_unit(rng);
+    if (i % 4 == 2) {  // along an axis, from outside the sphere; the zeros are +0 or -0
+      glm::dvec3 dir;
+      for (int a = 0; a < 3; ++a) dir[a] = (rng() & 1) ? 0.0 : -0.0;
+      const int a = static_cast<int>(rng() % 3);
+      dir[a] = (rng() & 1) ? 1.0 : -1.0;
+      origin = target - dir * (double(s.radius) * 3.0 + u(rng) * margin[a]);
+      rays.push_back({origin, dir});
+      continue;
+    }
+    rays.push_back({origin, glm::normalize(target - origin)});
+  }
+  return rays;
+}
+
+void expect_same_hits(const Octree& tree, const std::vector<Sphere>& spheres, size_t ray_count) {
+  size_t hits = 0;
+  for (const Ray& ray : make_rays(tree, spheres, ray_count, 7)) {
+    const Hit want = brute_force(spheres, ray);
+    const Hit got = traverse(tree, spheres, ray);
+    ASSERT_EQ(got, want) << "ray from (" << ray.origin.x << ", " << ray.origin.y << ", " << ray.origin.z
+                         << ") dir (" << ray.dir.x << ", " << ray.dir.y << ", " << ray.dir.z << "): octree sphere "
+                         << got.sphere << " t " << got.t << ", brute force sphere " << want.sphere << " t " << want.t;
+    hits += want.t < kInf;
+  }
+  if (!spheres.empty()) {
+    EXPECT_GT(hits, ray_count / 4) << "the rays should mostly hit something";
+  }
+}
+
+bool box_contains(const GpuOctreeNode& n, const glm::vec3& p) {
+  return p.x >= n.lo.x && p.y >= n.lo.y && p.z >= n.lo.z && p.x <= n.hi.x && p.y <= n.hi.y && p.z <= n.hi.z;
+}
+
+bool leaf_holds(const Octree& tree, uint32_t node, const glm::vec3& p, uint32_t sphere) {
+  const GpuOctreeNode& n = tree.nodes[node];
+  if (!box_contains(n, p)) return false;
+  if (!(n.count_or_mask & OCTREE_INTERNAL)) {
+    const auto begin = tree.refs.begin() + n.first;
+    return std::binary_search(begin, begin + n.count_or_mask, sphere);
+  }
+  const uint32_t mask = n.count_or_mask & 0xFFu;
+  for (uint32_t c = 0; c < static_cast<uint32_t>(std::popcount(mask)); ++c)
+    if (leaf_holds(tree, n.first + c, p, sphere)) return true;
+  return false;
+}
+
+// Every point of every non-big sphere's AABB lies in a leaf box that references
+// the sphere: the property that makes the traversal find every hit.
+void expect_spheres_findable(const Octree& tree, const std::vector<Sphere>& spheres) {
+  std::vector<bool> big(spheres.size());
+  for (uint32_t i = 0; i < tree.big_count; ++i) big[tree.refs[i]] = true;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (uint32_t i = 0; i < spheres.size(); ++i) {
+    if (big[i]) continue;
+    const Sphere& s = spheres[i];
+    std::vector<glm::vec3> points = {s.center};
+    for (int c = 0; c < 8; ++c)
+      points.push_back(s.center + s.radius * glm::vec3(c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1));
+    for (int j = 0; j < 4; ++j) points.push_back(s.center + s.radius * glm::vec3(u(rng), u(rng), u(rng)));
+    for (const glm::vec3& p : points)
+      ASSERT_TRUE(leaf_holds(tree, 0, p, i)) << "sphere " << i << " not referenced at (" << p.x << ", " << p.y
+                                             << ", " << p.z << ")";
+  }
+}
+
+bool inside(const GpuOctreeNode& inner, const GpuOctreeNode& outer) {
+  return box_contains(outer, inner.lo) && box_contains(outer, inner.hi);
+}
+
+// The structure the GPU reads: a tree (every node reached once), children
+// consecutive, inside their parent, siblings on their own side of every split
+// plane; leaves in range, references ascending and overlapping the leaf box.
+// Returns the depth of the deepest node.
+uint32_t expect_valid_structure(const Octree& tree, const std::vector<Sphere>& spheres, const OctreeParams& params) {
+  EXPECT_FALSE(tree.nodes.empty());
+  EXPECT_LE(tree.big_count, kMaxBigSpheres);
+  EXPECT_LE(tree.big_count, tree.refs.size());
+  EXPECT_TRUE(std::is_sorted(tree.refs.begin(), tree.refs.begin() + tree.big_count));
+  std::vector<bool> big(spheres.size()), referenced(spheres.size());
+  for (uint32_t i = 0; i < tree.big_count; ++i) big[tree.refs[i]] = true;
+
+  std::vector<int> reached(tree.nodes.size());
+  uint64_t leaf_refs = 0;
+  uint32_t deepest = 0;
+  struct Item {
+    uint32_t node, depth;
+  };
+  std::vector<Item> stack = {{0, 0}};
+  while (!stack.empty()) {
+    const auto [index, depth] = stack.back();
+    stack.pop_back();
+    ++reached[index];
+    deepest = std::max(deepest, depth);
+    const GpuOctreeNode& n = tree.nodes[index];
+    EXPECT_TRUE(n.lo.x <= n.hi.x && n.lo.y <= n.hi.y && n.lo.z <= n.hi.z) << "node " << index;
+    if (!(n.count_or_mask & OCTREE_INTERNAL)) {
+      EXPECT_GE(n.first, tree.big_count);
+      EXPECT_LE(uint64_t(n.first) + n.count_or_mask, tree.refs.size());
+      EXPECT_TRUE(n.count_or_mask > 0 || (index == 0 && tree.refs.size() == tree.big_count)) << "empty leaf " << index;
+      leaf_refs += n.count_or_mask;
+      for (uint32_t i = 0; i < n.count_or_mask; ++i) {
+        const uint32_t s = tree.refs[n.first + i];
+        EXPECT_LT(s, spheres.size());
+        EXPECT_FALSE(big[s]) << "big sphere " << s << " in leaf " << index;
+        if (i > 0) {
+          EXPECT_LT(tree.refs[n.first + i - 1], s) << "leaf " << index << " not ascending";
+        }
+        referenced[s] = true;
+        const glm::vec3 lo = spheres[s].center - spheres[s].radius, hi = spheres[s].center + spheres[s].radius;
+        EXPECT_TRUE(lo.x <= n.hi.x && lo.y <= n.hi.y && lo.z <= n.hi.z && hi.x >= n.lo.x && hi.y >= n.lo.y &&
+                    hi.z >= n.lo.z)
+            << "sphere " << s << " does not overlap leaf " << index;
+      }
+      continue;
+    }
+    EXPECT_LT(depth, params.max_depth);
+    const uint32_t mask = n.count_or_mask & ~OCTREE_INTERNAL;
+    EXPECT_TRUE(mask != 0 && mask <= 0xFF) << "node " << index << " mask " << mask;
+    const uint32_t count = std::popcount(mask);
+    EXPECT_GT(n.first, index);
+    EXPECT_LE(uint64_t(n.first) + count, tree.nodes.size());
+    if (uint64_t(n.first) + count > tree.nodes.size()) continue;
+    uint32_t octant[8];
+    for (uint32_t k = 0, c = 0; k < 8; ++k)
+      if (mask & (1u << k)) octant[c++] = k;
+    for (uint32_t c = 0; c < count; ++c) {
+      const GpuOctreeNode& child = tree.nodes[n.first + c];
+      EXPECT_TRUE(inside(child, n)) << "child " << n.first + c << " outside parent " << index;
+      for (uint32_t d = c + 1; d < count; ++d) {
+        const GpuOctreeNode& other = tree.nodes[n.first + d];
+        for (int a = 0; a < 3; ++a) {
+          const bool c_up = (octant[c] >> a) & 1, d_up = (octant[d] >> a) & 1;
+          if (c_up != d_up) {
+            EXPECT_LE(c_up ? other.hi[a] : child.hi[a], c_up ? child.lo[a] : other.lo[a])
+                << "siblings " << n.first + c << ", " << n.first + d << " overlap on axis " << a;
+          }
+        }
+      }
+      stack.push_back({n.first + c, depth + 1});
+    }
+  }
+  for (size_t i = 0; i < reached.size(); ++i) EXPECT_EQ(reached[i], 1) << "node " << i << " reached " << reached[i];
+  EXPECT_EQ(tree.big_count + leaf_refs, tree.refs.size()) << "leaf ranges do not tile refs";
+  for (size_t i = 0; i < spheres.size(); ++i) EXPECT_TRUE(big[i] || referenced[i]) << "sphere " << i << " lost";
+  return deepest;
+}
+
+void expect_consistent_stats(const Octree& tree, const std::vector<Sphere>& spheres, uint32_t deepest) {
+  const OctreeStats& st = tree.stats;
+  EXPECT_EQ(st.nodes, tree.nodes.size());
+  EXPECT_EQ(st.leaves, std::count_if(tree.nodes.begin(), tree.nodes.end(),
+                                     [](const GpuOctreeNode& n) { return !(n.count_or_mask & OCTREE_INTERNAL); }));
+  EXPECT_EQ(st.max_depth_reached, deepest);
+  EXPECT_EQ(st.refs, tree.refs.size());
+  EXPECT_EQ(st.big_spheres, tree.big_count);
+  EXPECT_EQ(st.bytes, 32 * tree.nodes.size() + 4 * tree.refs.size());
+  const double n = static_cast<double>(spheres.size());
+  EXPECT_DOUBLE_EQ(st.refs_per_sphere, spheres.empty() ? 0.0 : static_cast<double>(st.refs) / n);
+  EXPECT_DOUBLE_EQ(st.bytes_per_sphere, spheres.empty() ? 0.0 : static_cast<double>(st.bytes) / n);
+  EXPECT_GE(st.build_ms, 0.0);
+}
+
+// Every guarantee at once, for one scene and one set of parameters.
+void expect_correct_octree(const std::vector<Sphere>& spheres, const OctreeParams& params, size_t rays = 2000) {
+  const Octree tree = build_octree(spheres, params);
+  const uint32_t deepest = expect_valid_structure(tree, spheres, params);
+  expect_consistent_stats(tree, spheres, deepest);
+  expect_spheres_findable(tree, spheres);
+  expect_same_hits(tree, spheres, rays);
+}
+
+std::vector<Sphere> rtiow(uint64_t n, float radius, uint64_t seed = 1) {
+  return make_rtiow_scene({n, radius, seed}).spheres;
+}
+
+struct RtiowCase {
+  uint64_t spheres;
+  float radius;
+};
+
+class OctreeRtiow : public testing::TestWithParam<RtiowCase> {};
+
+TEST_P(OctreeRtiow, FindsTheSameClosestHitAsBruteForce) {
+  const auto spheres = rtiow(GetParam().spheres, GetParam().radius);
+  for (const OctreeParams params : {OctreeParams{}, OctreeParams{1, 20}, OctreeParams{2, 3}, OctreeParams{64, 16}}) {
+    SCOPED_TRACE("leaf " + std::to_string(params.leaf_size) + " depth " + std::to_string(params.max_depth));
+    expect_correct_octree(spheres, params);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, OctreeRtiow,
+                         testing::Values(RtiowCase{0, 0.2f}, RtiowCase{10, 0.2f}, RtiowCase{488, 0.2f},
+                                         RtiowCase{2000, 0.1f}, RtiowCase{8000, 0.1f}, RtiowCase{4000, 0.4f},
+                                         RtiowCase{30000, 0.05f}),
+                         [](const auto& info) {
+                           return std::to_string(info.param.spheres) + "_r" +
+                                  std::to_string(static_cast<int>(info.param.radius * 100));
+                         });
+
+TEST(Octree, RtiowGroundIsTheOnlyBigSphere) {
+  for (const uint64_t n : {0, 488, 8000}) {
+    const auto spheres = rtiow(n, 0.1f);
+    const Octree tree = build_octree(spheres, {});
+    ASSERT_EQ(tree.big_count, 1u) << n << " spheres";
+    EXPECT_EQ(spheres[tree.refs[0]].radius, 1000.0f);
+  }
+}
+
+TEST(Octree, EmptySceneIsAnEmptyRootLeaf) {
+  const Octree tree = build_octree({}, {});
+  ASSERT_EQ(tree.nodes.size(), 1u);
+  EXPECT_EQ(tree.nodes[0].count_or_mask, 0u);
+  EXPECT_TRUE(tree.refs.empty());
+  EXPECT_EQ(tree.big_count, 0u);
+  expect_correct_octree({}, {});
+}
+
+TEST(Octree, OneSphere) {
+  const std::vector<Sphere> spheres = {{{1, 2, 3}, 0.5f, 0}};
+  const Octree tree = build_octree(spheres, {});
+  EXPECT_EQ(tree.big_count, 1u);
+  expect_correct_octree(spheres, {});
+}
+
+TEST(Octree, BigSpheresStopAtSixteen) {
+  // Concentric spheres, each twice the radius of the next: all big by the rule.
+  std::vector<Sphere> spheres;
+  for (int i = 0; i < 20; ++i) spheres.push_back({{0, 0, 0}, std::ldexp(1.0f, 10 - i), 0});
+  const Octree tree = build_octree(spheres, {});
+  EXPECT_EQ(tree.big_count, kMaxBigSpheres);
+  expect_correct_octree(spheres, {});
+}
+
+TEST(Octree, FieldOfEqualSpheresHasNoBigSphere) {
+  std::vector<Sphere> spheres;
+  for (int x = 0; x < 10; ++x)
+    for (int z = 0; z < 10; ++z) spheres.push_back({{x, 0.5f, z}, 0.4f, 0});
+  EXPECT_EQ(build_octree(spheres, {}).big_count, 0u);
+}
+
+TEST(Octree, CoincidentSpheres) {
+  const std::vector<Sphere> same(1000, Sphere{{1, 2, 3}, 0.5f, 0});
+  expect_correct_octree(same, {});
+  expect_correct_octree(same, {1, 20});
+  auto mixed = rtiow(2000, 0.1f);
+  mixed.insert(mixed.end(), 500, Sphere{{2.5f, 0.1f, -3.0f}, 0.1f, 0});
+  expect_correct_octree(mixed, {1, 20});
+}
+
+TEST(Octree, SpheresCentredOnSplitPlanes) {
+  // Integer grid, symmetric about 0: split planes pass through centres, and
+  // neighbours (r = 0.5) touch exactly on them.
+  for (const float radius : {0.5f, 0.25f}) {
+    std::vector<Sphere> spheres;
+    for (int x = -8; x <= 8; ++x)
+      for (int y = -8; y <= 8; ++y)
+        for (int z = -8; z <= 8; ++z) spheres.push_back({{x, y, z}, radius, 0});
+    expect_correct_octree(spheres, {});
+    expect_correct_octree(spheres, {1, 20});
+  }
+}
+
+TEST(Octree, FlatAndLinearScenes) {
+  std::vector<Sphere> plane, line;
+  for (int x = 0; x < 100; ++x)
+    for (int z = 0; z < 100; ++z) plane.push_back({{x * 0.01f, 0.0f, z * 0.01f}, 0.001f, 0});
+  for (int x = 0; x < 1000; ++x) line.push_back({{x * 0.01f, 0.0f, 0.0f}, 0.004f, 0});
+  expect_correct_octree(plane, {});
+  expect_correct_octree(plane, {1, 20});
+  expect_correct_octree(line, {1, 20});
+}
+
+TEST(Octree, HugeCoordinates) {
+  auto spheres = rtiow(2000, 0.1f);
+  for (Sphere& s : spheres) s.center += glm::vec3(1e5f, 1e5f, -1e5f);
+  expect_correct_octree(spheres, {});
+  expect_correct_octree(spheres, {1, 20});
+}
+
+TEST(Octree, ReferencesStayWithinEightPerSphere) {
+  // Overlapping spheres far smaller than a float step at 1e5 in x: the box is
+  // flat in x, and every sphere straddles the z midpoint. Once, this doubled
+  // the references at every level.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<float> u(-5e-6f, 5e-6f);
+  std::vector<Sphere> line(10000);
+  for (Sphere& s : line) s = {{1e5f + u(rng), u(rng), 0.0f}, 1e-7f, 0};
+  for (const OctreeParams params : {OctreeParams{}, OctreeParams{1, 20}}) {
+    const Octree tree = build_octree(line, params);
+    EXPECT_LE(tree.refs.size(), 8 * line.size());
+    expect_correct_octree(line, params, 500);
+  }
+}
+
+TEST(Octree, SameInputSameOutput) {
+  // Large enough to be built by several threads.
+  const auto spheres = rtiow(300000, 0.02f);
+  const Octree a = build_octree(spheres, {});
+  for (int i = 0; i < 3; ++i) {
+    const Octree b = build_octree(spheres, {});
+    ASSERT_EQ(a.nodes.size(), b.nodes.size());
+    EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(GpuOctreeNode)), 0);
+    EXPECT_EQ(a.refs, b.refs);
+    EXPECT_EQ(a.big_count, b.big_count);
+  }
+  const uint32_t deepest = expect_valid_structure(a, spheres, {});
+  expect_consistent_stats(a, spheres, deepest);
+  expect_spheres_findable(a, spheres);
+  expect_same_hits(a, spheres, 500);
+}
+
+TEST(Octree, AtMost64BytesPerSphere) {
+  for (const RtiowCase c : {RtiowCase{488, 0.2f}, RtiowCase{8000, 0.1f}, RtiowCase{1000000, 0.01f}}) {
+    const Octree tree = build_octree(rtiow(c.spheres, c.radius), {});
+    EXPECT_LE(tree.stats.bytes_per_sphere, 64.0) << c.spheres << " spheres of radius " << c.radius;
+  }
+}
+
+TEST(Octree, BadParametersNameTheFlag) {
+  const auto spheres = rtiow(10, 0.2f);
+  const auto message = [&](OctreeParams params) -> std::string {
+    try {
+      build_octree(spheres, params);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  EXPECT_EQ(message({0, 16}), "--octree-leaf: must be >= 1, got 0");
+  EXPECT_EQ(message({8, 0}), "--octree-depth: must be in 1..20, got 0");
+  EXPECT_EQ(message({8, 21}), "--octree-depth: must be in 1..20, got 21");
+  EXPECT_EQ(message({1, 20}), "no error");
+}
+
+}  // namespace
+}  // namespace octrace

@@ -1,0 +1,186 @@
+// The command line as a user meets it: bad input gives one clear line naming
+// what is wrong, a non-zero exit, and no output file.
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "io/image.h"
+#include "test_util.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+using octrace::test::RunResult;
+using octrace::test::run_octrace;
+
+std::string tmp(const std::string& name) { return std::string(OCTRACE_TEST_TMP) + "/cli_" + name; }
+
+std::string write_file(const std::string& name, const std::string& text) {
+  std::string path = tmp(name);
+  std::ofstream(path) << text;
+  return path;
+}
+
+const char* VALID_SCENE = R"({
+  "camera": {"lookfrom": [0,0,5], "lookat": [0,0,0], "vup": [0,1,0], "vfov": 40, "aperture": 0, "focus_dist": 5},
+  "sky": {"type": "uniform", "radiance": [1,1,1]},
+  "materials": [{"type": "lambertian", "albedo": [0.5,0.5,0.5]}],
+  "spheres": [{"center": [0,0,0], "radius": 1, "material": 0}]
+})";
+
+// A bad-input case: the arguments, a substring the error must contain, the
+// expected exit code.
+// `scene`, when set, is written to a file of the test's own (the test binary
+// runs its cases as parallel processes) and passed as --scene.
+struct BadInput {
+  const char* label;
+  std::string args;
+  std::string message;
+  std::string scene = "";
+  int code = 2;
+};
+
+void PrintTo(const BadInput& c, std::ostream* os) { *os << c.label; }
+
+class BadInputTest : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(BadInputTest, ClearMessageNonZeroExitNoOutput) {
+  const BadInput& c = GetParam();
+  std::string out = tmp(std::string(c.label) + ".png");
+  fs::remove(out);
+  std::string args = c.args;
+  if (!c.scene.empty()) args += " --scene " + write_file(std::string(c.label) + ".json", c.scene);
+  RunResult r = run_octrace("render --size 8x8 --spp 1 --quiet " + args + " --out " + out);
+  EXPECT_EQ(r.code, c.code) << r.output;
+  EXPECT_NE(r.output.find(c.message), std::string::npos) << "expected \"" << c.message << "\" in: " << r.output;
+  // One line: the message, nothing else (no stack trace, no usage dump).
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_FALSE(fs::exists(out)) << "an output file was created";
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  text.replace(text.find(from), from.size(), to);
+  return text;
+}
+
+const BadInput BAD_INPUTS[] = {
+    {"size_zero", "--size 0x10", "--size 0x10: width and height must be >= 1"},
+    {"size_format", "--size big", "--size: expected WIDTHxHEIGHT"},
+    {"size_negative", "--size -5x10", "--size: expected WIDTHxHEIGHT"},
+    {"size_absurd", "--size 200000x200000", "--size 200000x200000"},
+    {"size_unallocatable", "--size 100000x100000", "the accumulation buffers need"},
+    {"spp_zero", "--spp 0", "--spp: must be >= 1"},
+    {"spp_text", "--spp many", "--spp"},
+    {"depth_zero", "--depth 0", "--depth: must be >= 1"},
+    {"radius_negative", "--radius -1", "--radius"},
+    {"radius_nan", "--radius nan", "--radius"},
+    {"spheres_negative", "--spheres -3", "--spheres"},
+    {"device_unknown", "--device banana", "--device"},
+    {"device_index", "--device 99", "--device: index 99 out of range"},
+    {"unknown_flag", "--frobnicate", "frobnicate"},
+    {"accel_unknown", "--accel kdtree", "--accel: expected octree or brute"},
+    {"precision_unknown", "--precision fp8", "--precision: expected fp32, fp16 or fp16-all"},
+    {"effects_unknown", "--effects some", "--effects: expected auto or all"},
+    {"first_sample_overflow", "--first-sample 4294967295 --spp 2", "--first-sample"},
+    {"fp16_radiance_overflow", "--precision fp16", "materials[0]: radiance above 65504",
+     replaced(VALID_SCENE, "{\"type\": \"lambertian\", \"albedo\": [0.5,0.5,0.5]}",
+              "{\"type\": \"emissive\", \"radiance\": [1e5,1,1]}")},
+    {"state_folder", "--state /nonexistent/dir/s", "/nonexistent/dir/s.mean.pfm"},
+    {"scene_and_spheres", "--scene x.json --spheres 5", "excludes"},
+    {"scene_missing", "--scene /nonexistent/s.json", "/nonexistent/s.json"},
+    {"json_syntax", "", "json_syntax.json", "{\"camera\": "},
+    {"json_missing_radius", "", "spheres[0].radius", replaced(VALID_SCENE, "\"radius\": 1, ", "")},
+    {"json_wrong_type", "", "spheres[0].radius", replaced(VALID_SCENE, "\"radius\": 1", "\"radius\": \"big\"")},
+    {"json_negative_radius", "", "spheres[0].radius", replaced(VALID_SCENE, "\"radius\": 1", "\"radius\": -1")},
+    {"json_huge_number", "", "spheres[0].radius", replaced(VALID_SCENE, "\"radius\": 1", "\"radius\": 1e999")},
+    {"json_material_index", "", "spheres[0].material", replaced(VALID_SCENE, "\"material\": 0", "\"material\": 3")},
+    {"json_sky_type", "", "sky.type", replaced(VALID_SCENE, "\"uniform\"", "\"plaid\"")},
+    {"json_material_type", "", "materials[0].type", replaced(VALID_SCENE, "\"lambertian\"", "\"velvet\"")},
+    {"json_camera_vfov", "", "camera.vfov", replaced(VALID_SCENE, "\"vfov\": 40", "\"vfov\": -40")},
+    {"out_extension", "--out " + tmp("img.bmp"), "unknown image format"},
+    {"out_folder", "--out /nonexistent/dir/x.png", "/nonexistent/dir/x.png"},
+};
+
+INSTANTIATE_TEST_SUITE_P(Cli, BadInputTest, ::testing::ValuesIn(BAD_INPUTS),
+                         [](const auto& info) { return std::string(info.param.label); });
+
+TEST(Cli, ValidSceneRendersAndDumpRoundTrips) {
+  std::string scene = write_file("valid.json", VALID_SCENE);
+  std::string a = tmp("valid_a.pfm"), b = tmp("valid_b.pfm"), dumped = tmp("dumped.json");
+  RunResult r = run_octrace("render --size 16x8 --spp 2 --quiet --scene " + scene + " --out " + a + " --dump-scene " +
+                      dumped);
+  ASSERT_EQ(r.code, 0) << r.output;
+  r = run_octrace("render --size 16x8 --spp 2 --quiet --scene " + dumped + " --out " + b);
+  ASSERT_EQ(r.code, 0) << r.output;
+  r = run_octrace("compare " + a + " " + b + " --json");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("\"rmse\": 0.0"), std::string::npos) << r.output;
+}
+
+TEST(Cli, JsonSummaryHasTimingsAndDevice) {
+  RunResult r = run_octrace("render --size 16x8 --spp 2 --spheres 10 --json --out " + tmp("summary.png"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* key : {"\"device\"", "\"render\"", "\"pipeline\"", "\"upload\"", "\"scene\"",
+                          "\"paths_per_second\"", "\"nonfinite_samples\": 0", "\"spp\": 2", "\"depth\": 50"})
+    EXPECT_NE(r.output.find(key), std::string::npos) << key << " missing in " << r.output;
+}
+
+TEST(Cli, CompareRejectsSizeMismatchAndMissingFiles) {
+  std::string a = tmp("cmp_a.pfm"), b = tmp("cmp_b.pfm");
+  ASSERT_EQ(run_octrace("render --size 16x8 --spp 1 --quiet --spheres 5 --out " + a).code, 0);
+  ASSERT_EQ(run_octrace("render --size 8x8 --spp 1 --quiet --spheres 5 --out " + b).code, 0);
+  RunResult r = run_octrace("compare " + a + " " + b);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("16x8"), std::string::npos) << r.output;
+  r = run_octrace("compare " + a + " " + tmp("nope.pfm"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("nope.pfm"), std::string::npos) << r.output;
+}
+
+// The accumulation state is what a render is: renders over disjoint ranges of
+// sample indices (as on two machines) merge into the render of the whole
+// range. Tolerance 1e-5 relative: the merge weights two fp32 means in double,
+// the single render keeps one Kahan-compensated fp32 sum; both are within a
+// few ulps of the exact mean of the same samples.
+TEST(Cli, StatesOfDisjointSampleRangesMergeIntoTheWholeRender) {
+  const std::string args = "render --size 32x20 --spheres 40 --quiet ";
+  std::string whole = tmp("whole.pfm"), merged = tmp("merged.pfm"), a = tmp("state_a"), b = tmp("state_b");
+  ASSERT_EQ(run_octrace(args + "--spp 8 --out " + whole).code, 0);
+  ASSERT_EQ(run_octrace(args + "--spp 3 --state " + a).code, 0);
+  ASSERT_EQ(run_octrace(args + "--spp 5 --first-sample 3 --state " + b).code, 0);
+  RunResult r = run_octrace("merge " + a + " " + b + " --out " + merged);
+  ASSERT_EQ(r.code, 0) << r.output;
+  octrace::Image w = octrace::read_image(whole), m = octrace::read_image(merged);
+  ASSERT_EQ(w.rgb.size(), m.rgb.size());
+  for (size_t i = 0; i < w.rgb.size(); ++i)
+    ASSERT_NEAR(m.rgb[i], w.rgb[i], 1e-5 * std::max(1.0f, std::abs(w.rgb[i]))) << "value " << i;
+}
+
+TEST(Cli, MergeRejectsMissingAndMismatchedStates) {
+  std::string small = tmp("state_small"), large = tmp("state_large");
+  ASSERT_EQ(run_octrace("render --size 8x8 --spp 1 --quiet --spheres 5 --state " + small).code, 0);
+  ASSERT_EQ(run_octrace("render --size 16x8 --spp 1 --quiet --spheres 5 --state " + large).code, 0);
+  RunResult r = run_octrace("merge " + small + " " + large + " --out " + tmp("never.png"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("sizes differ"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(tmp("never.png")));
+  r = run_octrace("merge " + tmp("no_such_state") + " --out " + tmp("never.png"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("no_such_state.mean.pfm"), std::string::npos) << r.output;
+}
+
+TEST(Cli, DevicesListsLavapipeWithFp16Support) {
+  RunResult r = run_octrace("devices");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("llvmpipe"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("shaderFloat16"), std::string::npos) << r.output;
+}
+
+}  // namespace

@@ -1,0 +1,454 @@
+// The rtiow generator, scene validation and the JSON format: what a user sees
+// (sphere counts, placement, determinism, lossless files, error messages).
+#include "scene/scene.h"
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "core/errors.h"
+
+namespace octrace {
+namespace {
+
+constexpr int kBig = 4;  // ground + three big spheres
+
+Scene rtiow(uint64_t spheres, float radius, uint64_t seed = 1) {
+  RtiowParams p;
+  p.spheres = spheres;
+  p.radius = radius;
+  p.seed = seed;
+  return make_rtiow_scene(p);
+}
+
+// The message of the InputError that `f` throws, or a failure if it throws none.
+template <typename F>
+std::string input_error(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError thrown";
+  return {};
+}
+
+std::string parse_error(const std::string& json) {
+  return input_error([&] { parse_scene_json(json, "scene.json"); });
+}
+
+// A valid scene file with `sphere` as its only sphere, to vary one field at a time.
+std::string one_sphere(const std::string& sphere) {
+  return R"({"materials": [{"type": "lambertian", "albedo": [0.5, 0.5, 0.5]}], "spheres": [)" + sphere + "]}";
+}
+
+uint32_t bits(float f) {
+  uint32_t u;
+  std::memcpy(&u, &f, sizeof u);
+  return u;
+}
+
+// Every float of both scenes has the same bit pattern (== would let -0 equal 0).
+void expect_bit_identical(const Scene& a, const Scene& b) {
+  std::vector<float> fa, fb;
+  const auto collect = [](const Scene& s, std::vector<float>& out) {
+    const auto add = [&](glm::vec3 v) { out.insert(out.end(), {v.x, v.y, v.z}); };
+    add(s.camera.lookfrom), add(s.camera.lookat), add(s.camera.vup);
+    out.insert(out.end(), {s.camera.vfov, s.camera.aperture, s.camera.focus_dist});
+    add(s.sky.down), add(s.sky.up), add(s.sky.radiance);
+    for (const Material& m : s.materials) add(m.albedo), add(m.radiance), out.insert(out.end(), {m.fuzz, m.ior});
+    for (const Sphere& sp : s.spheres) add(sp.center), out.push_back(sp.radius);
+  };
+  collect(a, fa);
+  collect(b, fb);
+  ASSERT_EQ(fa.size(), fb.size());
+  for (size_t i = 0; i < fa.size(); ++i) ASSERT_EQ(bits(fa[i]), bits(fb[i])) << "float " << i << ": " << fa[i];
+  EXPECT_EQ(a, b);
+}
+
+std::string test_path(const std::string& name) {
+  std::filesystem::create_directories(OCTRACE_TEST_TMP);
+  return std::string(OCTRACE_TEST_TMP) + "/" + name;
+}
+
+// ---------------------------------------------------------------------------
+// rtiow
+// ---------------------------------------------------------------------------
+
+TEST(Rtiow, HasTheBigSpheresOfTheBook) {
+  const Scene s = rtiow(0, 0.2f);
+  ASSERT_EQ(s.spheres.size(), 4u);
+  const auto expect_sphere = [&](int i, glm::vec3 center, float radius) {
+    EXPECT_EQ(s.spheres[i].center, center) << i;
+    EXPECT_EQ(s.spheres[i].radius, radius) << i;
+  };
+  expect_sphere(0, {0, -1000, 0}, 1000);
+  expect_sphere(1, {0, 1, 0}, 1);
+  expect_sphere(2, {-4, 1, 0}, 1);
+  expect_sphere(3, {4, 1, 0}, 1);
+  const auto material = [&](int i) { return s.materials[s.spheres[i].material]; };
+  EXPECT_EQ(material(0).type, MaterialType::Lambertian);
+  EXPECT_EQ(material(0).albedo, glm::vec3(0.5f));
+  EXPECT_EQ(material(1).type, MaterialType::Dielectric);
+  EXPECT_EQ(material(1).ior, 1.5f);
+  EXPECT_EQ(material(2).type, MaterialType::Lambertian);
+  EXPECT_EQ(material(2).albedo, glm::vec3(0.4f, 0.2f, 0.1f));
+  EXPECT_EQ(material(3).type, MaterialType::Metal);
+  EXPECT_EQ(material(3).albedo, glm::vec3(0.7f, 0.6f, 0.5f));
+  EXPECT_EQ(material(3).fuzz, 0.0f);
+  EXPECT_EQ(s.camera, Camera{});
+  EXPECT_EQ(s.camera.lookfrom, glm::vec3(13, 2, 3));
+}
+
+TEST(Rtiow, HasExactlyTheRequestedSphereCount) {
+  for (uint64_t n : {0, 1, 2, 488, 10000}) {
+    const Scene s = rtiow(n, 0.05f);
+    EXPECT_EQ(s.spheres.size(), kBig + n) << n;
+    EXPECT_NO_THROW(validate_scene(s, "rtiow")) << n;
+  }
+}
+
+TEST(Rtiow, IsDeterministicForASeedAndDiffersAcrossSeeds) {
+  EXPECT_EQ(rtiow(488, 0.2f, 7), rtiow(488, 0.2f, 7));
+  EXPECT_NE(rtiow(488, 0.2f, 7).spheres, rtiow(488, 0.2f, 8).spheres);
+  EXPECT_NE(rtiow(1, 0.2f, 7).spheres, rtiow(1, 0.2f, 8).spheres);
+}
+
+// Small spheres do not overlap each other nor the big ones, sit on the ground and
+// stay inside the 20x20 field; checked exactly (in double) on the floats stored.
+void expect_well_placed(const Scene& s, float radius) {
+  const size_t n = s.spheres.size();
+  for (size_t i = kBig; i < n; ++i) {
+    const Sphere& a = s.spheres[i];
+    ASSERT_EQ(a.radius, radius);
+    ASSERT_EQ(a.center.y, radius) << "sphere " << i << " does not stand on the ground";
+    ASSERT_LE(std::abs(double(a.center.x)) + radius, 10.0) << "sphere " << i << " outside the field";
+    ASSERT_LE(std::abs(double(a.center.z)) + radius, 10.0) << "sphere " << i << " outside the field";
+    for (size_t j = 0; j < n; ++j) {
+      if (j == i) continue;
+      const Sphere& b = s.spheres[j];
+      const glm::dvec3 d = glm::dvec3(a.center) - glm::dvec3(b.center);
+      const double reach = double(a.radius) + double(b.radius);
+      ASSERT_GE(d.x * d.x + d.y * d.y + d.z * d.z, reach * reach) << "spheres " << i << " and " << j << " overlap";
+    }
+  }
+}
+
+TEST(Rtiow, SmallSpheresDoNotOverlapAndStayInTheField) {
+  expect_well_placed(rtiow(488, 0.2f), 0.2f);
+  expect_well_placed(rtiow(10000, 0.05f, 3), 0.05f);
+  expect_well_placed(rtiow(1, 0.2f), 0.2f);
+  expect_well_placed(rtiow(5, 1.5f), 1.5f);
+}
+
+TEST(Rtiow, SpreadsOverTheWholeField) {
+  const Scene s = rtiow(488, 0.2f);
+  int quadrant[4] = {};
+  for (size_t i = kBig; i < s.spheres.size(); ++i)
+    ++quadrant[(s.spheres[i].center.x > 0 ? 1 : 0) + (s.spheres[i].center.z > 0 ? 2 : 0)];
+  for (int q : quadrant) EXPECT_GT(q, 488 / 4 - 40);
+}
+
+TEST(Rtiow, MaterialMixIsAbout80_15_5) {
+  const uint64_t n = 100000;
+  const Scene s = rtiow(n, 0.02f);
+  double counts[3] = {};
+  for (size_t i = kBig; i < s.spheres.size(); ++i) {
+    const Material& m = s.materials[s.spheres[i].material];
+    ++counts[static_cast<int>(m.type)];
+    if (m.type == MaterialType::Lambertian) {
+      ASSERT_TRUE(m.albedo.x >= 0 && m.albedo.x < 1);
+    } else if (m.type == MaterialType::Metal) {
+      ASSERT_TRUE(m.albedo.y >= 0.5f && m.albedo.y <= 1) << m.albedo.y;
+      ASSERT_TRUE(m.fuzz >= 0 && m.fuzz <= 0.5f) << m.fuzz;
+    } else {
+      ASSERT_EQ(m.type, MaterialType::Dielectric);
+      ASSERT_EQ(m.ior, 1.5f);
+    }
+  }
+  EXPECT_NEAR(counts[0] / n, 0.80, 0.01);
+  EXPECT_NEAR(counts[1] / n, 0.15, 0.01);
+  EXPECT_NEAR(counts[2] / n, 0.05, 0.01);
+  // Glass spheres share one material; the others each have their own.
+  EXPECT_NEAR(double(s.materials.size()), kBig + 0.95 * n, 0.01 * n);
+}
+
+TEST(Rtiow, StillMakesNSpheresWhenTheyCannotFitApart) {
+  // 10000 spheres of radius 0.2 cover more than the field: they overlap, but all are made.
+  const Scene dense = rtiow(10000, 0.2f);
+  EXPECT_EQ(dense.spheres.size(), kBig + 10000u);
+  EXPECT_NO_THROW(validate_scene(dense, "rtiow"));
+  // Radius 50: the big spheres' keep-out zones cover the whole field.
+  EXPECT_EQ(rtiow(10, 50.0f).spheres.size(), kBig + 10u);
+}
+
+TEST(Rtiow, MakesAMillionSpheres) {
+  const Scene s = rtiow(1000000, 0.01f);
+  EXPECT_EQ(s.spheres.size(), kBig + 1000000u);
+  EXPECT_NO_THROW(validate_scene(s, "rtiow"));
+}
+
+TEST(Rtiow, RefusesBadParameters) {
+  EXPECT_EQ(input_error([] { rtiow(10, -1.0f); }), "--radius: must be a finite number > 0, got -1");
+  EXPECT_EQ(input_error([] { rtiow(10, 0.0f); }), "--radius: must be a finite number > 0, got 0");
+  EXPECT_EQ(input_error([] { rtiow(10, NAN); }), "--radius: must be a finite number > 0, got nan");
+  EXPECT_EQ(input_error([] { rtiow(10, INFINITY); }), "--radius: must be a finite number > 0, got inf");
+  EXPECT_EQ(input_error([] { rtiow(100000001, 0.01f); }),
+            "--spheres: at most 100000000 small spheres, got 100000001");
+}
+
+// ---------------------------------------------------------------------------
+// validate_scene (scenes built in code)
+// ---------------------------------------------------------------------------
+
+TEST(Validate, NamesTheSourceAndTheField) {
+  Scene s = rtiow(20, 0.2f);
+  s.spheres[12].radius = -1;
+  EXPECT_EQ(input_error([&] { validate_scene(s, "mine"); }), "mine: spheres[12].radius: must be a finite number > 0, got -1");
+  s = rtiow(20, 0.2f);
+  s.spheres[5].material = 9999;
+  EXPECT_EQ(input_error([&] { validate_scene(s, "mine"); }),
+            "mine: spheres[5].material: index 9999 out of range (" + std::to_string(s.materials.size()) + " materials)");
+  s = rtiow(0, 0.2f);
+  s.spheres[1].center.y = NAN;
+  EXPECT_EQ(input_error([&] { validate_scene(s, "mine"); }), "mine: spheres[1].center: must be 3 finite numbers, got [0, nan, 0]");
+  s = rtiow(0, 0.2f);
+  s.materials[3].fuzz = 1.5f;
+  EXPECT_EQ(input_error([&] { validate_scene(s, "mine"); }), "mine: materials[3].fuzz: must be a number in [0, 1], got 1.5");
+  s = rtiow(0, 0.2f);
+  s.materials[0].albedo.z = -0.5f;
+  EXPECT_EQ(input_error([&] { validate_scene(s, "mine"); }),
+            "mine: materials[0].albedo: must be 3 finite numbers >= 0, got [0.5, 0.5, -0.5]");
+  s = rtiow(0, 0.2f);
+  s.materials[1].ior = 0;
+  EXPECT_EQ(input_error([&] { validate_scene(s, "mine"); }), "mine: materials[1].ior: must be a finite number > 0, got 0");
+  s = rtiow(0, 0.2f);
+  s.sky.up.x = INFINITY;
+  EXPECT_EQ(input_error([&] { validate_scene(s, "mine"); }), "mine: sky.up: must be 3 finite numbers >= 0, got [inf, 0.7, 1]");
+}
+
+TEST(Validate, RefusesCamerasThatCannotSee) {
+  const auto camera_error = [](auto change) {
+    Scene s = rtiow(0, 0.2f);
+    change(s.camera);
+    return input_error([&] { validate_scene(s, "cam"); });
+  };
+  EXPECT_EQ(camera_error([](Camera& c) { c.vfov = 0; }), "cam: camera.vfov: must be a finite number in (0, 180) degrees, got 0");
+  EXPECT_EQ(camera_error([](Camera& c) { c.vfov = 180; }), "cam: camera.vfov: must be a finite number in (0, 180) degrees, got 180");
+  EXPECT_EQ(camera_error([](Camera& c) { c.aperture = -0.1f; }), "cam: camera.aperture: must be a finite number >= 0, got -0.1");
+  EXPECT_EQ(camera_error([](Camera& c) { c.focus_dist = 0; }), "cam: camera.focus_dist: must be a finite number > 0, got 0");
+  EXPECT_EQ(camera_error([](Camera& c) { c.lookat = c.lookfrom; }), "cam: camera.lookat: must differ from camera.lookfrom");
+  EXPECT_EQ(camera_error([](Camera& c) { c.vup = glm::vec3(0); }), "cam: camera.vup: must not be the zero vector");
+  EXPECT_EQ(camera_error([](Camera& c) { c.vup = c.lookat - c.lookfrom; }),
+            "cam: camera.vup: must not be parallel to the view direction (lookat - lookfrom), got [-13, -2, -3]");
+  EXPECT_EQ(camera_error([](Camera& c) { c.lookfrom = {0, 10, 0}; }),
+            "cam: camera.vup: must not be parallel to the view direction (lookat - lookfrom), got [0, 1, 0]");
+}
+
+// ---------------------------------------------------------------------------
+// JSON round trip
+// ---------------------------------------------------------------------------
+
+TEST(Json, RtiowRoundTripsBitExactly) {
+  const Scene s = rtiow(10000, 0.05f, 42);
+  expect_bit_identical(parse_scene_json(scene_to_json(s), "rt.json"), s);
+}
+
+// Every material and sky type, and floats that are hard to print: not exactly
+// representable, tiny, huge, subnormal, negative zero.
+Scene every_kind() {
+  Scene s;
+  s.camera.lookfrom = {0.1f, -0.0f, 3.4028235e38f};
+  s.camera.lookat = {1e-7f, 2.5f, 1e-40f};
+  s.camera.vup = {0.0f, 1.0f, 0.3f};
+  s.camera.vfov = 179.9f;
+  s.camera.aperture = 0.0f;
+  s.camera.focus_dist = 1.17549435e-38f;
+  Material m;
+  m.albedo = {0.2f, 1.0f / 3.0f, 0.999999f};
+  s.materials.push_back(m);
+  m = Material{};
+  m.type = MaterialType::Metal;
+  m.albedo = {0.7f, 0.6f, 0.5f};
+  m.fuzz = 0.123456789f;
+  s.materials.push_back(m);
+  m = Material{};
+  m.type = MaterialType::Dielectric;
+  m.ior = 1.333f;
+  s.materials.push_back(m);
+  m = Material{};
+  m.type = MaterialType::Emissive;
+  m.radiance = {4.0f, 16777217.0f, 1e20f};
+  s.materials.push_back(m);
+  for (uint32_t i = 0; i < 4; ++i) s.spheres.push_back({{float(i) * 0.1f, -1000.0f, 1e-5f}, 0.3f + float(i), i});
+  return s;
+}
+
+TEST(Json, EveryMaterialAndSkyRoundTripsBitExactly) {
+  Scene s = every_kind();
+  s.sky.type = SkyType::Gradient;
+  s.sky.down = {0.9f, 0.8f, 0.7f};
+  s.sky.up = {0.1f, 0.2f, 0.3f};
+  expect_bit_identical(parse_scene_json(scene_to_json(s), "rt.json"), s);
+
+  s = every_kind();
+  s.sky.type = SkyType::Uniform;
+  s.sky.radiance = {0.25f, 0.5f, 2.0f};
+  expect_bit_identical(parse_scene_json(scene_to_json(s), "rt.json"), s);
+
+  s = every_kind();
+  s.sky.type = SkyType::None;
+  expect_bit_identical(parse_scene_json(scene_to_json(s), "rt.json"), s);
+}
+
+TEST(Json, WritesShortNumbersAndOneSpherePerLine) {
+  const std::string text = scene_to_json(rtiow(3, 0.2f));
+  EXPECT_NE(text.find(R"("aperture": 0.1,)"), std::string::npos) << text;
+  EXPECT_NE(text.find(R"(    {"center": [0, -1000, 0], "radius": 1000, "material": 0},)"), std::string::npos) << text;
+  EXPECT_NE(text.find(R"(    {"type": "metal", "albedo": [0.7, 0.6, 0.5], "fuzz": 0},)"), std::string::npos) << text;
+  size_t lines = 0;
+  for (char c : text) lines += c == '\n';
+  EXPECT_EQ(lines, 3 + (2 + 4 + 3) + (2 + 4 + 3) + 1) << text;  // {, camera, sky; materials; spheres; }
+}
+
+TEST(Json, SaveAndLoadRoundTripAndLeaveNoTemporaryFile) {
+  const std::string dir = test_path("save_load");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const Scene s = rtiow(488, 0.2f, 5);
+  save_scene_json(s, dir + "/scene.json");
+  save_scene_json(s, dir + "/scene.json");  // overwrites
+  expect_bit_identical(load_scene_json(dir + "/scene.json"), s);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1);
+}
+
+TEST(Json, SaveToAMissingFolderIsARuntimeError) {
+  const std::string path = test_path("no_such_folder/scene.json");
+  try {
+    save_scene_json(rtiow(0, 0.2f), path);
+    ADD_FAILURE() << "no error";
+  } catch (const RuntimeError& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": cannot write: No such file or directory");
+  }
+}
+
+TEST(Json, OmittedOptionalFieldsTakeTheirDefaults) {
+  const Scene s = parse_scene_json(R"({"materials": [{"type": "metal", "albedo": [1, 1, 1]}, {"type": "dielectric"}],
+                                       "spheres": [], "camera": {"vfov": 40}})",
+                                   "scene.json");
+  Camera camera;
+  camera.vfov = 40;
+  EXPECT_EQ(s.camera, camera);
+  EXPECT_EQ(s.sky, Sky{});
+  EXPECT_EQ(s.materials[0].fuzz, 0.0f);
+  EXPECT_EQ(s.materials[1].ior, 1.5f);
+  EXPECT_TRUE(s.spheres.empty());
+}
+
+// ---------------------------------------------------------------------------
+// JSON errors: file, path, expectation
+// ---------------------------------------------------------------------------
+
+TEST(JsonErrors, MissingRequiredField) {
+  EXPECT_EQ(parse_error(one_sphere(R"({"center": [0, 0, 0], "material": 0})")),
+            "scene.json: spheres[0].radius: missing required field");
+  EXPECT_EQ(parse_error(R"({"spheres": []})"), "scene.json: materials: missing required field");
+  EXPECT_EQ(parse_error(R"({"materials": [{"albedo": [1, 1, 1]}], "spheres": []})"),
+            "scene.json: materials[0].type: missing required field");
+  EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "sky": {"type": "uniform"}})"),
+            "scene.json: sky.radiance: missing required field");
+}
+
+TEST(JsonErrors, WrongType) {
+  EXPECT_EQ(parse_error(R"({"camera": {"lookfrom": [1, 2]}, "materials": [], "spheres": []})"),
+            "scene.json: camera.lookfrom: expected an array of 3 numbers, got [1,2]");
+  EXPECT_EQ(parse_error(R"({"camera": {"lookfrom": "far"}, "materials": [], "spheres": []})"),
+            "scene.json: camera.lookfrom: expected an array of 3 numbers, got \"far\"");
+  EXPECT_EQ(parse_error(one_sphere(R"({"center": [0, 0, 0], "radius": "1", "material": 0})")),
+            "scene.json: spheres[0].radius: expected a number, got \"1\"");
+  EXPECT_EQ(parse_error(one_sphere(R"({"center": [0, 0, 0], "radius": 1, "material": 1.5})")),
+            "scene.json: spheres[0].material: expected a material index (an integer >= 0), got 1.5");
+  EXPECT_EQ(parse_error(one_sphere(R"({"center": [0, 0, 0], "radius": 1, "material": -1})")),
+            "scene.json: spheres[0].material: expected a material index (an integer >= 0), got -1");
+  EXPECT_EQ(parse_error(one_sphere("[1, 2, 3]")), "scene.json: spheres[0]: expected an object, got [1,2,3]");
+  EXPECT_EQ(parse_error(one_sphere("7")), "scene.json: spheres[0]: expected an object, got 7");
+  EXPECT_EQ(parse_error(R"({"materials": {}, "spheres": []})"), "scene.json: materials: expected an array, got {}");
+  EXPECT_EQ(parse_error(R"({"materials": [{"type": "lambertian", "albedo": [1, 1, 1]}, "red"], "spheres": []})"),
+            "scene.json: materials[1]: expected an object, got \"red\"");
+  EXPECT_EQ(parse_error(R"({"materials": [], "spheres": 3})"), "scene.json: spheres: expected an array, got 3");
+  EXPECT_EQ(parse_error("[]"), "scene.json: expected a JSON object at the top level, got []");
+}
+
+TEST(JsonErrors, NumbersBeyondFloatRange) {
+  EXPECT_EQ(parse_error(one_sphere(R"({"center": [0, 1e999, 0], "radius": 1, "material": 0})")),
+            "scene.json: spheres[0].center[1]: number out of range of a 32-bit float, got 1e999");
+  EXPECT_EQ(parse_error(one_sphere(R"({"center": [0, 0, 0], "radius": -1e39, "material": 0})")),
+            "scene.json: spheres[0].radius: number out of range of a 32-bit float, got -1e39");
+  EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "camera": {"vfov": 1e39}})"),
+            "scene.json: camera.vfov: number out of range of a 32-bit float, got 1e39");
+}
+
+TEST(JsonErrors, ValuesOutOfRange) {
+  const std::string spheres = R"({"center": [0, 0, 0], "radius": 1, "material": 0}, )";
+  std::string many;
+  for (int i = 0; i < 12; ++i) many += spheres;
+  EXPECT_EQ(parse_error(one_sphere(many + R"({"center": [0, 0, 0], "radius": -1, "material": 0})")),
+            "scene.json: spheres[12].radius: must be a finite number > 0, got -1");
+  EXPECT_EQ(parse_error(one_sphere(R"({"center": [0, 0, 0], "radius": 1, "material": 7})")),
+            "scene.json: spheres[0].material: index 7 out of range (1 material)");
+  EXPECT_EQ(parse_error(R"({"materials": [{"type": "metal", "albedo": [1, 1, 1], "fuzz": 2}], "spheres": []})"),
+            "scene.json: materials[0].fuzz: must be a number in [0, 1], got 2");
+  EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "camera": {"vfov": 200}})"),
+            "scene.json: camera.vfov: must be a finite number in (0, 180) degrees, got 200");
+}
+
+TEST(JsonErrors, UnknownTypes) {
+  EXPECT_EQ(parse_error(R"({"materials": [{"type": "lambertian", "albedo": [1, 1, 1]}, {"type": "glas", "ior": 1.5}],
+                             "spheres": []})"),
+            "scene.json: materials[1].type: unknown material type \"glas\" (expected lambertian, metal, dielectric, emissive)");
+  EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "sky": {"type": "sunset"}})"),
+            "scene.json: sky.type: unknown sky type \"sunset\" (expected gradient, uniform, none)");
+  EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "sky": {"type": 1}})"),
+            "scene.json: sky.type: unknown sky type 1 (expected gradient, uniform, none)");
+}
+
+TEST(JsonErrors, UnknownKeys) {
+  EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "camera": {"lokfrom": [1, 2, 3]}})"),
+            "scene.json: camera.lokfrom: unknown key (expected lookfrom, lookat, vup, vfov, aperture, focus_dist)");
+  EXPECT_EQ(parse_error(R"({"materials": [{"type": "dielectric", "fuzz": 0}], "spheres": []})"),
+            "scene.json: materials[0].fuzz: unknown key (expected type, ior)");
+  EXPECT_EQ(parse_error(one_sphere(R"({"center": [0, 0, 0], "radius": 1, "material": 0, "colour": 1})")),
+            "scene.json: spheres[0].colour: unknown key (expected center, radius, material)");
+  EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "lights": []})"),
+            "scene.json: lights: unknown key (expected camera, sky, materials, spheres)");
+  EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "spheres": []})"), "scene.json: spheres: appears twice");
+  EXPECT_EQ(parse_error(R"({"materials": [], "materials": [], "spheres": []})"), "scene.json: materials: appears twice");
+}
+
+TEST(JsonErrors, SyntaxErrorsGiveLineAndColumn) {
+  const std::string message = parse_error("{\n  \"materials\": [],\n  \"spheres\": [,]\n}");
+  EXPECT_EQ(message.rfind("scene.json: invalid JSON at line 3, column 15: syntax error", 0), 0u) << message;
+  const std::string truncated = parse_error(R"({"materials": [], "spheres": [)");
+  EXPECT_EQ(truncated.rfind("scene.json: invalid JSON at line 1, column 31: ", 0), 0u) << truncated;
+  const std::string nan = parse_error(R"({"materials": [], "spheres": [], "camera": {"vfov": NaN}})");
+  EXPECT_EQ(nan.rfind("scene.json: invalid JSON at line 1, column ", 0), 0u) << nan;
+}
+
+TEST(JsonErrors, MissingFile) {
+  const std::string path = test_path("does_not_exist.json");
+  EXPECT_EQ(input_error([&] { load_scene_json(path); }), path + ": cannot open file: No such file or directory");
+}
+
+TEST(JsonErrors, LoadNamesTheFile) {
+  const std::string path = test_path("bad_radius.json");
+  std::ofstream(path) << one_sphere(R"({"center": [0, 0, 0], "radius": 0, "material": 0})");
+  EXPECT_EQ(input_error([&] { load_scene_json(path); }),
+            path + ": spheres[0].radius: must be a finite number > 0, got 0");
+}
+
+}  // namespace
+}  // namespace octrace
