@@ -4,13 +4,25 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace octrace {
 
-// Something the user gave us is wrong: a flag, a scene file, an image path.
+// Something the user gave us is wrong: a scene file, an image path, a setting.
 // The message names the input ("scene.json: spheres[12].radius: must be > 0").
 struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
+};
+
+// A bad value of one setting of the library's API (a field of RenderSettings,
+// the device selection, a generator parameter). `setting` is the library's own
+// name for it ("spp", "octree.leaf_size", "device") and the message starts
+// with that name ("spp: must be >= 1, got 0"), never with a CLI flag: a front
+// end that knows the setting by another name (app/ maps it to its flag)
+// replaces that prefix.
+struct SettingError : InputError {
+  SettingError(std::string name, const std::string& rest) : InputError(name + rest), setting(std::move(name)) {}
+  std::string setting;
 };
 
 // The input was fine but the machine could not do it: no device, device lost,
