@@ -1,10 +1,12 @@
 // octrace: command-line front end. Parses arguments, calls the renderer
 // library, prints results. Errors from the library arrive as exceptions and
 // leave as one line: exit 2 for bad input, 1 for a runtime failure.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -134,12 +136,50 @@ struct RenderOptions {
   }
 };
 
+// The library names a setting as its API does ("octree.leaf_size"); the user
+// typed a flag, so its message names the flag. A setting without one is
+// printed as the library named it.
+std::string message_for_cli(const SettingError& e) {
+  static const std::map<std::string, std::string> flags = {
+      {"size", "--size"},
+      {"spp", "--spp"},
+      {"max_depth", "--depth"},
+      {"first_sample", "--first-sample"},
+      {"rr_depth", "--rr-depth"},
+      {"sample_seed", "--sample-seed"},
+      {"octree.leaf_size", "--octree-leaf"},
+      {"octree.max_depth", "--octree-depth"},
+      {"precision", "--precision"},
+      {"accel", "--accel"},
+      {"effects", "--effects"},
+      {"device", "--device"},
+      {"rtiow.radius", "--radius"},
+      {"rtiow.spheres", "--spheres"},
+  };
+  std::string message = e.what();
+  if (auto it = flags.find(e.setting); it != flags.end()) message.replace(0, e.setting.size(), it->second);
+  if (e.setting == "device") message += " (see `octrace devices`)";
+  return message;
+}
+
+constexpr Precision kPrecisions[] = {Precision::FP32, Precision::FP16, Precision::FP16All};
+
+DeviceRequirements requirements_of(Precision p) { return {p != Precision::FP32, false}; }
+
+// What the device is, and which precision variants it runs (with every
+// requirement it fails for those it does not).
 json device_json(const DeviceInfo& d) {
-  return {{"index", d.index},           {"name", d.name},
-          {"type", d.type},             {"driver", d.driver},
-          {"api_version", d.api_version}, {"software", d.software},
-          {"shader_float16", d.shader_float16}, {"storage_buffer_16bit_access", d.storage_16bit},
-          {"fp16_variant", d.supports_fp16()}};
+  json j = {{"index", d.index},           {"name", d.name},
+            {"type", d.type},             {"driver", d.driver},
+            {"api_version", d.api_version}, {"software", d.software},
+            {"shader_float16", d.shader_float16}, {"storage_buffer_16bit_access", d.storage_16bit},
+            {"fp16_variant", d.supports_fp16()}};
+  for (Precision p : kPrecisions) {
+    auto unmet = unmet_requirements(d, requirements_of(p));
+    j["variants"][precision_name(p)] = unmet.empty();
+    j["unmet"][precision_name(p)] = unmet;
+  }
+  return j;
 }
 
 // A progress line on stderr, rewritten in place on a terminal and printed at
@@ -282,9 +322,21 @@ int cmd_merge(const std::vector<std::string>& inputs, const std::vector<std::str
 
 int cmd_devices(bool as_json) {
   auto devices = list_devices();
+  // Per device, the variants that a headless `--device auto` runs on it.
+  std::vector<std::vector<std::string>> auto_picks(devices.size());
+  for (Precision p : kPrecisions) {
+    try {
+      auto_picks[select_device(devices, "auto", requirements_of(p))].push_back(precision_name(p));
+    } catch (const std::runtime_error&) {
+      // No device runs this variant; each device's unmet list says why.
+    }
+  }
   if (as_json) {
     json j = json::array();
-    for (const auto& d : devices) j.push_back(device_json(d));
+    for (const auto& d : devices) {
+      j.push_back(device_json(d));
+      j.back()["auto_picks"] = auto_picks[d.index];
+    }
     std::cout << j.dump(2) << "\n";
     return 0;
   }
@@ -296,8 +348,16 @@ int cmd_devices(bool as_json) {
     std::printf("%u  %s\n", d.index, d.name.c_str());
     std::printf("   type      %s%s\n", d.type.c_str(), d.software ? " (software: timings are not a GPU's)" : "");
     std::printf("   driver    %s, Vulkan %s\n", d.driver.c_str(), d.api_version.c_str());
-    std::printf("   fp16      %s (shaderFloat16 %s, storageBuffer16BitAccess %s)\n",
-                d.supports_fp16() ? "yes" : "no", d.shader_float16 ? "yes" : "no", d.storage_16bit ? "yes" : "no");
+    std::printf("   features  shaderFloat16 %s, storageBuffer16BitAccess %s\n", d.shader_float16 ? "yes" : "no",
+                d.storage_16bit ? "yes" : "no");
+    const auto& picks = auto_picks[d.index];
+    for (Precision p : kPrecisions) {
+      auto unmet = unmet_requirements(d, requirements_of(p));
+      std::string runs = unmet.empty() ? "yes" : "no: ";
+      for (size_t k = 0; k < unmet.size(); ++k) runs += (k ? ", " : "") + unmet[k];
+      if (std::find(picks.begin(), picks.end(), precision_name(p)) != picks.end()) runs += ", picked by --device auto";
+      std::printf("   %-9s %s\n", precision_name(p), runs.c_str());
+    }
   }
   return 0;
 }
@@ -351,7 +411,7 @@ int main(int argc, char** argv) {
   view_cmd->remove_option(view_cmd->get_option("--spp"));  // the window accumulates until --max-spp
   view_opts.add_to(*view_cmd);
 
-  auto* devices_cmd = app.add_subcommand("devices", "List Vulkan devices and their fp16 support");
+  auto* devices_cmd = app.add_subcommand("devices", "List Vulkan devices and the precision variants each can run");
   devices_cmd->add_flag("--json", as_json, "Machine-readable output");
 
   std::string compare_a, compare_b;
@@ -443,6 +503,9 @@ int main(int argc, char** argv) {
       if (!bench.csv.empty()) check_output_folder(bench.csv);
       code = run_bench(bench);
     }
+  } catch (const SettingError& e) {
+    std::fprintf(stderr, "octrace: error: %s\n", message_for_cli(e).c_str());
+    return 2;
   } catch (const InputError& e) {
     std::fprintf(stderr, "octrace: error: %s\n", e.what());
     return 2;

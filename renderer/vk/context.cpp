@@ -126,7 +126,18 @@ bool find_compute_queue(VkPhysicalDevice physical, uint32_t* family, uint32_t* t
   return false;
 }
 
-DeviceInfo describe(VkPhysicalDevice physical, uint32_t index) {
+bool has_device_extension(VkPhysicalDevice physical, const char* name) {
+  uint32_t count = 0;
+  vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr);
+  std::vector<VkExtensionProperties> extensions(count);
+  vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, extensions.data());
+  for (const auto& e : extensions)
+    if (std::strcmp(e.extensionName, name) == 0) return true;
+  return false;
+}
+
+// `presents` (a window's test of a queue family), when given, fills info.presents.
+DeviceInfo describe(VkPhysicalDevice physical, uint32_t index, const std::function<bool(uint32_t)>& presents) {
   VkPhysicalDeviceProperties props;
   vkGetPhysicalDeviceProperties(physical, &props);
   DeviceInfo info;
@@ -138,7 +149,6 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index) {
                      std::to_string(VK_API_VERSION_MINOR(props.apiVersion)) + "." +
                      std::to_string(VK_API_VERSION_PATCH(props.apiVersion));
   info.vulkan12 = props.apiVersion >= VK_API_VERSION_1_2;
-  info.max_storage_buffer = props.limits.maxStorageBufferRange;
 
   if (info.vulkan12) {
     VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
@@ -158,34 +168,11 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index) {
   }
 
   uint32_t family = 0, timestamp_bits = 0;
-  find_compute_queue(physical, &family, &timestamp_bits);
+  info.compute = find_compute_queue(physical, &family, &timestamp_bits);
   info.timestamps = timestamp_bits > 0 && props.limits.timestampPeriod > 0;
-
-  VkPhysicalDeviceMemoryProperties memory;
-  vkGetPhysicalDeviceMemoryProperties(physical, &memory);
-  for (uint32_t i = 0; i < memory.memoryHeapCount; ++i)
-    if (memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
-      info.device_memory = std::max<uint64_t>(info.device_memory, memory.memoryHeaps[i].size);
+  info.swapchain = has_device_extension(physical, VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  info.presents = presents && find_compute_queue(physical, &family, &timestamp_bits, presents);
   return info;
-}
-
-// What, if anything, keeps this device from running octrace with these options.
-std::string unsuitable_reason(const DeviceInfo& d, const ContextOptions& options) {
-  if (!d.vulkan12) return "Vulkan " + d.api_version + " < 1.2";
-  if (!d.timestamps) return "no timestamp queries on its compute queue";
-  if (options.need_fp16 && !d.shader_float16) return "no shaderFloat16";
-  if (options.need_fp16 && !d.storage_16bit) return "no storageBuffer16BitAccess";
-  return "";
-}
-
-bool has_device_extension(VkPhysicalDevice physical, const char* name) {
-  uint32_t count = 0;
-  vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr);
-  std::vector<VkExtensionProperties> extensions(count);
-  vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, extensions.data());
-  for (const auto& e : extensions)
-    if (std::strcmp(e.extensionName, name) == 0) return true;
-  return false;
 }
 
 int auto_rank(const DeviceInfo& d) {
@@ -234,12 +221,64 @@ void throw_vk_error(VkResult result, const char* what) {
       throw RuntimeError("Vulkan device lost during " + where +
                          " (the driver reset the device: a pass took too long or the GPU faulted)");
     case VK_ERROR_OUT_OF_DEVICE_MEMORY:
-      throw RuntimeError("out of device memory in " + where + " (try a smaller --size or scene)");
+      throw RuntimeError("out of device memory in " + where + " (try a smaller image or scene)");
     case VK_ERROR_OUT_OF_HOST_MEMORY:
       throw RuntimeError("out of host memory in " + where);
     default:
       throw RuntimeError(where + " failed: " + vk_result_name(result));
   }
+}
+
+std::vector<std::string> unmet_requirements(const DeviceInfo& d, const DeviceRequirements& req) {
+  std::vector<std::string> unmet;
+  if (!d.vulkan12) unmet.push_back("Vulkan " + d.api_version + " < 1.2");
+  if (!d.compute) unmet.push_back("no compute queue");
+  else if (!d.timestamps) unmet.push_back("no timestamp queries on its compute queue");
+  if (req.fp16 && d.vulkan12 && !d.shader_float16) unmet.push_back("no shaderFloat16");
+  if (req.fp16 && d.vulkan12 && !d.storage_16bit) unmet.push_back("no storageBuffer16BitAccess");
+  if (req.present && !d.swapchain) unmet.push_back("no VK_KHR_swapchain");
+  if (req.present && d.compute && !d.presents)
+    unmet.push_back("no queue family with compute that can present to the window");
+  return unmet;
+}
+
+uint32_t select_device(const std::vector<DeviceInfo>& devices, const std::string& selection,
+                       const DeviceRequirements& req) {
+  if (devices.empty())
+    throw RuntimeError("no Vulkan device found; install mesa-vulkan-drivers for the CPU device (lavapipe)");
+  std::vector<uint32_t> candidates;
+  if (selection == "auto" || selection == "cpu" || selection == "gpu") {
+    for (uint32_t i = 0; i < devices.size(); ++i)
+      if (selection == "auto" || (selection == "cpu") == devices[i].software) candidates.push_back(i);
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [&](uint32_t a, uint32_t b) { return auto_rank(devices[a]) < auto_rank(devices[b]); });
+    if (candidates.empty())
+      throw SettingError("device", " " + selection + ": no " + (selection == "cpu" ? "CPU (software)" : "GPU") +
+                                       " device found");
+  } else {
+    char* end = nullptr;
+    unsigned long idx = std::strtoul(selection.c_str(), &end, 10);
+    if (selection.empty() || *end != '\0')
+      throw SettingError("device", ": expected auto, cpu, gpu or a device index, got \"" + selection + "\"");
+    if (idx >= devices.size())
+      throw SettingError("device", ": index " + selection + " out of range (" + std::to_string(devices.size()) +
+                                       (devices.size() == 1 ? " device)" : " devices)"));
+    candidates.push_back(uint32_t(idx));
+  }
+
+  // The first candidate that fits; else every candidate with every reason.
+  std::string reasons;
+  bool fits_without_fp16 = false;
+  for (uint32_t i : candidates) {
+    auto unmet = unmet_requirements(devices[i], req);
+    if (unmet.empty()) return i;
+    fits_without_fp16 |= unmet_requirements(devices[i], {false, req.present}).empty();
+    reasons += (reasons.empty() ? "" : "; ") + std::to_string(i) + " " + devices[i].name + ": ";
+    for (size_t k = 0; k < unmet.size(); ++k) reasons += (k ? ", " : "") + unmet[k];
+  }
+  // Only the 16-bit features missing: the choice of precision is what failed.
+  if (fits_without_fp16) throw SettingError("precision", " fp16: no suitable device: " + reasons);
+  throw RuntimeError("no suitable Vulkan device: " + reasons);
 }
 
 bool validation_requested_by_env() {
@@ -255,7 +294,7 @@ std::vector<DeviceInfo> list_devices() {
   std::vector<DeviceInfo> result;
   try {
     auto devices = physical_devices(instance);
-    for (uint32_t i = 0; i < devices.size(); ++i) result.push_back(describe(devices[i], i));
+    for (uint32_t i = 0; i < devices.size(); ++i) result.push_back(describe(devices[i], i, {}));
   } catch (...) {
     destroy_instance(instance, messenger);
     throw;
@@ -268,67 +307,20 @@ void create_context(VulkanContext& ctx, const ContextOptions& options) {
   ctx.instance = create_instance(options.validation || validation_requested_by_env(), &ctx.messenger,
                                  options.instance_extensions);
   auto devices = physical_devices(ctx.instance);
-  if (devices.empty())
-    throw RuntimeError("no Vulkan device found; install mesa-vulkan-drivers for the CPU device (lavapipe)");
 
   // A window needs the swapchain extension and a compute family that presents.
-  auto presents = [&](VkPhysicalDevice physical) {
+  auto presents = [&](VkPhysicalDevice physical) -> std::function<bool(uint32_t)> {
+    if (!options.can_present) return {};
     return [&, physical](uint32_t family) { return options.can_present(ctx.instance, physical, family); };
   };
   std::vector<DeviceInfo> infos;
-  for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], i));
-
-  // Candidates per --device, then the first that is suitable. When none is,
-  // the error lists each candidate with the requirement it failed.
-  std::vector<uint32_t> candidates;
-  const std::string& sel = options.device;
-  if (sel == "auto" || sel == "cpu" || sel == "gpu") {
-    for (uint32_t i = 0; i < infos.size(); ++i) {
-      bool cpu = infos[i].software;
-      if (sel == "auto" || (sel == "cpu") == cpu) candidates.push_back(i);
-    }
-    std::stable_sort(candidates.begin(), candidates.end(),
-                     [&](uint32_t a, uint32_t b) { return auto_rank(infos[a]) < auto_rank(infos[b]); });
-  } else {
-    char* end = nullptr;
-    unsigned long idx = std::strtoul(sel.c_str(), &end, 10);
-    if (sel.empty() || *end != '\0')
-      throw InputError("--device: expected auto, cpu, gpu or a device index, got \"" + sel + "\"");
-    if (idx >= infos.size())
-      throw InputError("--device: index " + sel + " out of range (" + std::to_string(infos.size()) +
-                       " devices; see `octrace devices`)");
-    candidates.push_back(uint32_t(idx));
-  }
-  if (candidates.empty())
-    throw InputError("--device " + sel + ": no " + (sel == "cpu" ? "CPU (software)" : "GPU") +
-                     " device found (see `octrace devices`)");
-
-  int chosen = -1;
-  std::string reasons;
-  for (uint32_t i : candidates) {
-    std::string why = unsuitable_reason(infos[i], options);
-    uint32_t family = 0, bits = 0;
-    if (why.empty() && options.can_present && !has_device_extension(devices[i], VK_KHR_SWAPCHAIN_EXTENSION_NAME))
-      why = "no VK_KHR_swapchain";
-    if (why.empty() && options.can_present && !find_compute_queue(devices[i], &family, &bits, presents(devices[i])))
-      why = "no queue family with compute that can present to the window";
-    if (why.empty()) {
-      chosen = int(i);
-      break;
-    }
-    reasons += (reasons.empty() ? "" : "; ") + std::to_string(i) + " " + infos[i].name + ": " + why;
-  }
-  if (chosen < 0) {
-    if (options.need_fp16)
-      throw InputError("--precision fp16: no suitable device (" + reasons + ")");
-    throw RuntimeError("no suitable Vulkan device (" + reasons + ")");
-  }
+  for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], i, presents(devices[i])));
+  uint32_t chosen = select_device(infos, options.device, {options.need_fp16, bool(options.can_present)});
 
   ctx.physical = devices[chosen];
   ctx.info = infos[chosen];
   uint32_t timestamp_bits = 0;
-  find_compute_queue(ctx.physical, &ctx.queue_family, &timestamp_bits,
-                     options.can_present ? presents(ctx.physical) : std::function<bool(uint32_t)>{});
+  find_compute_queue(ctx.physical, &ctx.queue_family, &timestamp_bits, presents(ctx.physical));
   vkGetPhysicalDeviceMemoryProperties(ctx.physical, &ctx.memory);
   VkPhysicalDeviceProperties props;
   vkGetPhysicalDeviceProperties(ctx.physical, &props);

@@ -31,15 +31,38 @@ struct DeviceInfo {
   std::string driver;  // driver name and info, e.g. "llvmpipe Mesa 22.3.6 (LLVM 15.0.6)"
   std::string api_version;
   bool software = false;         // a CPU implementation (lavapipe, SwiftShader)
+  bool vulkan12 = false;         // device API >= 1.2 (we need it)
+  bool compute = false;          // a queue family with compute
+  bool timestamps = false;       // timestamps on the compute queue
+  // Queried through the Vulkan 1.1/1.2 feature structs, so only on 1.2 devices.
   bool shader_float16 = false;   // VkPhysicalDeviceVulkan12Features::shaderFloat16
   bool storage_16bit = false;    // VkPhysicalDeviceVulkan11Features::storageBuffer16BitAccess
-  bool timestamps = false;       // timestamps on the compute queue
-  bool vulkan12 = false;         // device API >= 1.2 (we need it)
-  uint64_t max_storage_buffer = 0;  // maxStorageBufferRange, bytes
-  uint64_t device_memory = 0;       // largest device-local heap, bytes
+  bool swapchain = false;        // VK_KHR_swapchain
+  bool presents = false;         // a compute queue family presents to the window; known only when
+                                 // selecting for a window (ContextOptions::can_present)
 
   bool supports_fp16() const { return shader_float16 && storage_16bit; }
 };
+
+// What a run needs of a device beyond Vulkan 1.2, a compute queue and timestamps.
+struct DeviceRequirements {
+  bool fp16 = false;     // shaderFloat16 + storageBuffer16BitAccess (the fp16 and fp16-all variants)
+  bool present = false;  // a window: VK_KHR_swapchain and a compute queue family that presents
+};
+
+// Every requirement `d` fails, in words ("no shaderFloat16"); empty when it
+// fits. Below Vulkan 1.2 the 16-bit features are unknown, so the version is
+// then the only reason given for them.
+std::vector<std::string> unmet_requirements(const DeviceInfo& d, const DeviceRequirements& req);
+
+// The device that `selection` (auto | cpu | gpu | INDEX) picks: an index
+// picks that device; auto, cpu and gpu the first that fits among their
+// candidates, GPUs (discrete, integrated, virtual, other) before CPU devices.
+// Throws SettingError "device" for a selection that names no device,
+// SettingError "precision" when only the 16-bit features are missing, and
+// RuntimeError otherwise; both list each candidate with every unmet requirement.
+uint32_t select_device(const std::vector<DeviceInfo>& devices, const std::string& selection,
+                       const DeviceRequirements& req);
 
 struct ContextOptions {
   std::string device = "auto";  // auto | cpu | gpu | INDEX
@@ -82,9 +105,8 @@ struct VulkanContext {
 // Every device the loader reports, with what octrace needs to know about it.
 std::vector<DeviceInfo> list_devices();
 
-// Picks a device per options.device and creates it. Throws InputError for a
-// selection that matches nothing (the message says what each device lacked)
-// and RuntimeError when Vulkan itself fails.
+// Picks a device per options.device (select_device) and creates it. Throws
+// RuntimeError when Vulkan itself fails.
 void create_context(VulkanContext& ctx, const ContextOptions& options);
 
 // Messages the validation layer reported so far in this process (warnings and

@@ -183,4 +183,21 @@ TEST(Cli, DevicesListsLavapipeWithFp16Support) {
   EXPECT_NE(r.output.find("shaderFloat16"), std::string::npos) << r.output;
 }
 
+// Which device runs which variant, and the one `--device auto` takes: lavapipe
+// runs fp32, so exactly one device is marked for it.
+TEST(Cli, DevicesSaysWhichVariantsEachDeviceRuns) {
+  RunResult r = run_octrace("devices");
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* line : {"   fp32      ", "   fp16      ", "   fp16-all  "})
+    EXPECT_NE(r.output.find(line), std::string::npos) << line << " missing in " << r.output;
+  const std::string picked = "fp32      yes, picked by --device auto";
+  auto first = r.output.find(picked);
+  ASSERT_NE(first, std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(picked, first + 1), std::string::npos) << r.output;
+  r = run_octrace("devices --json");
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* key : {"\"variants\"", "\"unmet\"", "\"auto_picks\"", "\"fp16-all\"", "\"fp16_variant\""})
+    EXPECT_NE(r.output.find(key), std::string::npos) << key << " missing in " << r.output;
+}
+
 }  // namespace
