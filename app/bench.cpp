@@ -1,7 +1,6 @@
 #include "bench.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <sstream>
 #include <map>
@@ -25,8 +24,6 @@ struct Row {
   double build_ms = 0, bytes_per_sphere = 0, refs_per_sphere = 0;
   std::optional<double> speedup;  // brute median / octree median, same spheres, radius, precision
 };
-
-const char* accel_label(Accel a) { return a == Accel::Octree ? "octree" : "brute"; }
 
 // The rtiow scene with its materials replaced, one family per effect mix:
 // rtiow (all effects), lambertian / metal (fuzz 0) / glass (small spheres
@@ -112,9 +109,9 @@ int run_effects_bench(const VulkanContext& ctx, const BenchOptions& o, const Ren
       std::vector<double> a, g;
       for (uint32_t rep = 0; rep <= o.repeat; ++rep) {
         specialised.reset();
-        double ta = specialised.run_passes(0, s.spp);
+        double ta = specialised.run_passes(pass_settings(scene, s), 0, s.spp);
         general.reset();
-        double tg = general.run_passes(0, s.spp);
+        double tg = general.run_passes(pass_settings(scene, s), 0, s.spp);
         if (rep == 0) continue;  // warm-up
         a.push_back(ta);
         g.push_back(tg);
@@ -135,7 +132,7 @@ int run_effects_bench(const VulkanContext& ctx, const BenchOptions& o, const Ren
               "replaced per family; render = device time, median of %u runs after a warm-up, auto and all "
               "alternated.\n\n",
               ctx.info.name.c_str(), ctx.info.type.c_str(), ctx.info.driver.c_str(), settings.width,
-              settings.height, settings.spp, settings.max_depth, (unsigned long long)n, radius, o.repeat);
+              settings.height, settings.spp, settings.bounce_limit, (unsigned long long)n, radius, o.repeat);
   std::printf("| family | precision | features | auto ms (min-max) | all ms (min-max) | all / auto |\n");
   std::printf("|---|---|---|---:|---:|---:|\n");
   for (const auto& r : rows) {
@@ -173,7 +170,7 @@ int run_bench(const BenchOptions& o) {
   if (!o.quiet)
     std::fprintf(stderr, "bench on %s (%s): %dx%d, %u spp, depth %u, %u repeats after a warm-up\n",
                  ctx.info.name.c_str(), ctx.info.type.c_str(), settings.width, settings.height, settings.spp,
-                 settings.max_depth, o.repeat);
+                 settings.bounce_limit, o.repeat);
 
   std::vector<Row> rows;
   // Last measured median per (accel, radius, precision) and its sphere count:
@@ -197,7 +194,7 @@ int run_bench(const BenchOptions& o) {
               rows.push_back(row);
               if (!o.quiet)
                 std::fprintf(stderr, "  %8llu spheres r=%g %-6s %s: skipped, %s\n", (unsigned long long)n, radius,
-                             accel_label(accel), precision_name(precision), row.skip_reason.c_str());
+                             accel_name(accel), precision_name(precision), row.skip_reason.c_str());
               continue;
             }
           }
@@ -208,19 +205,19 @@ int run_bench(const BenchOptions& o) {
           std::vector<double> times;
           for (uint32_t rep = 0; rep <= o.repeat; ++rep) {
             tracer.reset();
-            double ms = tracer.run_passes(0, s.spp);
+            double ms = tracer.run_passes(pass_settings(scene, s), 0, s.spp);
             if (rep > 0) times.push_back(ms);  // repetition 0 is the warm-up
           }
           row.median_ms = median(times);
           row.min_ms = *std::min_element(times.begin(), times.end());
           row.max_ms = *std::max_element(times.begin(), times.end());
           row.build_ms = tracer.setup_timings().accel_build_ms;
-          row.bytes_per_sphere = tracer.octree_stats().bytes_per_sphere;
-          row.refs_per_sphere = tracer.octree_stats().refs_per_sphere;
+          row.bytes_per_sphere = tracer.octree_stats().bytes_per_primitive;
+          row.refs_per_sphere = tracer.octree_stats().refs_per_primitive;
           last[key] = {n, row.median_ms};
           if (!o.quiet)
             std::fprintf(stderr, "  %8llu spheres r=%g %-6s %s: %.2f ms (min %.2f, max %.2f)\n",
-                         (unsigned long long)n, radius, accel_label(accel), precision_name(precision), row.median_ms,
+                         (unsigned long long)n, radius, accel_name(accel), precision_name(precision), row.median_ms,
                          row.min_ms, row.max_ms);
           rows.push_back(row);
         }
@@ -238,12 +235,12 @@ int run_bench(const BenchOptions& o) {
   std::printf("Device: %s (%s, %s). Image %dx%d, %u spp, depth %u; render = device time of the passes "
               "(timestamp queries), median of %u runs after a warm-up.\n\n",
               ctx.info.name.c_str(), ctx.info.type.c_str(), ctx.info.driver.c_str(), settings.width,
-              settings.height, settings.spp, settings.max_depth, o.repeat);
+              settings.height, settings.spp, settings.bounce_limit, o.repeat);
   std::printf("| spheres | radius | accel | precision | render ms (median) | min | max | speedup vs brute | "
               "octree build ms | octree bytes/sphere |\n");
   std::printf("|---:|---:|---|---|---:|---:|---:|---:|---:|---:|\n");
   for (const Row& r : rows) {
-    std::printf("| %llu | %g | %s | %s | ", (unsigned long long)r.spheres, r.radius, accel_label(r.accel),
+    std::printf("| %llu | %g | %s | %s | ", (unsigned long long)r.spheres, r.radius, accel_name(r.accel),
                 precision_name(r.precision));
     if (r.skipped) {
       std::printf("skipped: %s | | | | | |\n", r.skip_reason.c_str());
@@ -261,8 +258,8 @@ int run_bench(const BenchOptions& o) {
            "max_ms,speedup,build_ms,bytes_per_sphere,refs_per_sphere\n";
     for (const Row& r : rows) {
       f << '"' << ctx.info.name << "\"," << (ctx.info.software ? 1 : 0) << ',' << settings.width << ','
-        << settings.height << ',' << settings.spp << ',' << settings.max_depth << ',' << o.repeat << ','
-        << r.spheres << ',' << r.radius << ',' << accel_label(r.accel) << ',' << precision_name(r.precision) << ','
+        << settings.height << ',' << settings.spp << ',' << settings.bounce_limit << ',' << o.repeat << ','
+        << r.spheres << ',' << r.radius << ',' << accel_name(r.accel) << ',' << precision_name(r.precision) << ','
         << (r.skipped ? 1 : 0) << ',';
       if (r.skipped) {
         f << ",,,,,,\n";

@@ -20,6 +20,7 @@
 #include "bench.h"
 #include "io/image.h"
 #include "io/atomic_file.h"
+#include "core/clock.h"
 #include "render/path_tracer.h"
 #include "render/render_state.h"
 #include "scene/scene.h"
@@ -31,11 +32,6 @@ using json = nlohmann::json;
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // Flags that choose and describe the scene, shared by every command that renders.
 struct SceneOptions {
@@ -80,14 +76,6 @@ void parse_size(const std::string& text, RenderSettings& s) {
   s.height = std::stoi(text.substr(x + 1));
 }
 
-Accel parse_accel(const std::string& name) {
-  if (name == "octree") return Accel::Octree;
-  if (name == "brute") return Accel::Brute;
-  throw InputError("--accel: expected octree or brute, got \"" + name + "\"");
-}
-
-const char* accel_name(Accel a) { return a == Accel::Octree ? "octree" : "brute"; }
-
 struct RenderOptions {
   std::string size = "1200x800";
   std::string accel = "octree";
@@ -104,12 +92,12 @@ struct RenderOptions {
     cmd.add_option("--effects", effects,
                    "auto: a pipeline specialised to the scene's effects; all: the general pipeline")
         ->capture_default_str();
-    cmd.add_option("--octree-leaf", settings.octree.leaf_size, "Octree: split cells holding more spheres than this")
+    cmd.add_option("--octree-leaf", settings.octree.leaf_size, "Octree: split cells holding more primitives than this")
         ->capture_default_str();
     cmd.add_option("--octree-depth", settings.octree.max_depth, "Octree: maximum depth")->capture_default_str();
     cmd.add_option("--size", size, "Image size WIDTHxHEIGHT")->capture_default_str();
     cmd.add_option("--spp", settings.spp, "Samples (passes) per pixel")->capture_default_str();
-    cmd.add_option("--depth", settings.max_depth, "Bounce limit; a path that reaches it contributes 0")
+    cmd.add_option("--depth", settings.bounce_limit, "Bounce limit; a path that reaches it contributes 0")
         ->capture_default_str();
     cmd.add_option("--sample-seed", settings.sample_seed, "Seed of the sampler (independent noise)")
         ->capture_default_str();
@@ -128,7 +116,7 @@ struct RenderOptions {
     s.accel = parse_accel(accel);
     s.precision = parse_precision(precision);
     if (effects != "auto" && effects != "all")
-      throw InputError("--effects: expected auto or all, got \"" + effects + "\"");
+      throw SettingError("effects", ": expected auto or all, got \"" + effects + "\"");
     s.all_effects = effects == "all";
     parse_size(size, s);
     validate_settings(s);
@@ -143,7 +131,7 @@ std::string message_for_cli(const SettingError& e) {
   static const std::map<std::string, std::string> flags = {
       {"size", "--size"},
       {"spp", "--spp"},
-      {"max_depth", "--depth"},
+      {"bounce_limit", "--depth"},
       {"first_sample", "--first-sample"},
       {"rr_depth", "--rr-depth"},
       {"sample_seed", "--sample-seed"},
@@ -227,9 +215,7 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
   VulkanContext ctx;
   create_context(ctx, {render_opts.device, settings.precision != Precision::FP32, render_opts.validation});
   double device_ms = ms_since(start);
-  if (ctx.info.software && !quiet && !as_json)
-    std::fprintf(stderr, "octrace: rendering on %s, a CPU (software) Vulkan device: its timings are not a GPU's\n",
-                 ctx.info.name.c_str());
+  if (ctx.info.software && !quiet && !as_json) std::fprintf(stderr, "octrace: %s\n", software_device_note(ctx.info).c_str());
 
   Progress progress(!quiet);
   RenderResult result = render(ctx, scene, settings, [&](uint32_t d, uint32_t t) { progress.update(d, t); });
@@ -250,7 +236,7 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
               {"width", settings.width},
               {"height", settings.height},
               {"spp", settings.spp},
-              {"depth", settings.max_depth},
+              {"depth", settings.bounce_limit},
               {"sample_seed", settings.sample_seed},
               {"accel", accel_name(settings.accel)},
               {"precision", precision_name(settings.precision)},
@@ -274,9 +260,9 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
       j["octree"] = {{"leaf_size", settings.octree.leaf_size}, {"max_depth", settings.octree.max_depth},
                      {"build_ms", o.build_ms},         {"nodes", o.nodes},
                      {"leaves", o.leaves},             {"depth_reached", o.max_depth_reached},
-                     {"refs", o.refs},                 {"big_spheres", o.big_spheres},
-                     {"refs_per_sphere", o.refs_per_sphere}, {"bytes", o.bytes},
-                     {"bytes_per_sphere", o.bytes_per_sphere}};
+                     {"refs", o.refs},                 {"big_spheres", o.big_primitives},
+                     {"refs_per_sphere", o.refs_per_primitive}, {"bytes", o.bytes},
+                     {"bytes_per_sphere", o.bytes_per_primitive}};
     }
     std::cout << j.dump(2) << "\n";
   } else if (!quiet) {
@@ -284,11 +270,11 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
     std::printf("scene     %s: %zu spheres, %zu materials\n", scene_opts.describe().c_str(), scene.spheres.size(),
                 scene.materials.size());
     std::printf("image     %dx%d, %u spp, depth %u, sample seed %u, %s\n", settings.width, settings.height,
-                settings.spp, settings.max_depth, settings.sample_seed, precision_name(settings.precision));
+                settings.spp, settings.bounce_limit, settings.sample_seed, precision_name(settings.precision));
     if (settings.accel == Accel::Octree)
       std::printf("octree    %u nodes, %u leaves, depth %u, %.2f refs/sphere, %.1f bytes/sphere, %u big spheres\n",
                   result.octree.nodes, result.octree.leaves, result.octree.max_depth_reached,
-                  result.octree.refs_per_sphere, result.octree.bytes_per_sphere, result.octree.big_spheres);
+                  result.octree.refs_per_primitive, result.octree.bytes_per_primitive, result.octree.big_primitives);
     std::printf("times     scene %.1f ms, %s build %.1f ms, upload %.1f ms, pipeline %.1f ms, render %.1f ms (device)\n",
                 scene_ms, accel_name(settings.accel), t.accel_build_ms, t.upload_ms, t.pipeline_ms,
                 t.render_device_ms);
@@ -443,7 +429,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bench_cmd->add_option("--size", bench_size, "Image size (default 1200x800 on a GPU, 400x225 on a CPU device)");
   bench_cmd->add_option("--spp", bench.settings.spp, "Samples per pixel")->capture_default_str();
-  bench_cmd->add_option("--depth", bench.settings.max_depth, "Bounce limit")->capture_default_str();
+  bench_cmd->add_option("--depth", bench.settings.bounce_limit, "Bounce limit")->capture_default_str();
   bench_cmd->add_option("--octree-leaf", bench.settings.octree.leaf_size, "Octree leaf size")->capture_default_str();
   bench_cmd->add_option("--octree-depth", bench.settings.octree.max_depth, "Octree maximum depth")
       ->capture_default_str();

@@ -33,12 +33,16 @@ struct ViewOptions {
   uint32_t max_spp = 0;     // stop accumulating here; 0: never
   std::string screenshot;   // written when max_spp is reached: the window's pixels
   bool exit_after_spp = false;
+  uint32_t orbit_test = 0;  // scripted camera moves, for timing; 0: none
 
   void add_to(CLI::App& cmd) {
     cmd.add_option("--max-spp", max_spp, "Stop accumulating at this many samples per pixel (0: never)")
         ->capture_default_str();
     cmd.add_option("--screenshot", screenshot, "When --max-spp is reached, write the window's pixels here (.png)");
     cmd.add_flag("--exit-after-spp", exit_after_spp, "Quit when --max-spp is reached (after --screenshot)");
+    cmd.add_option("--orbit-test", orbit_test,
+                   "Timing: orbit the camera by 1 degree after each frame that showed the last move, N times, "
+                   "then quit and print the time from a move to its first pass");
     cmd.footer(std::string("\n") + kViewKeys);
   }
 };

@@ -1,6 +1,7 @@
 // Writes a distinct value into every field of every shared struct, as the
 // GLSL compiler lays them out. The layout test reads the buffers back through
 // the C++ structs: any disagreement in offsets shows as a wrong value.
+// Compiled with OCTRACE_PRECISION=1 so that the half material exists too.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -8,41 +9,67 @@
 
 layout(local_size_x = 1) in;
 
-layout(std430, binding = 0) buffer B0 { FrameParams frame; };
-layout(std430, binding = 1) buffer B1 { GpuSphere spheres[2]; };
-layout(std430, binding = 2) buffer B2 { GpuMaterial materials[2]; };
-layout(std430, binding = 3) buffer B3 { RenderStats stats[2]; };
+layout(std430, binding = 0) buffer B0 { SceneParams scene; };
+layout(std430, binding = 1) buffer B1 { PassParams pass; };
+layout(std430, binding = 2) buffer B2 { ResolveParams resolve; };
+layout(std430, binding = 3) buffer B3 { GpuSphere spheres[2]; };
+layout(std430, binding = 4) buffer B4 { GpuMaterial materials[2]; };
+layout(std430, binding = 5) buffer B5 { GpuMaterialHalf materials_half[2]; };
+layout(std430, binding = 6) buffer B6 { GpuOctreeNode nodes[2]; };
+layout(std430, binding = 7) buffer B7 { RenderStats stats[2]; };
 
 void main() {
-  frame.cam_origin = vec3(1, 2, 3);
-  frame.lens_radius = 4;
-  frame.lens_u = vec3(5, 6, 7);
-  frame.width = 8;
-  frame.lens_v = vec3(9, 10, 11);
-  frame.height = 12;
-  frame.pixel00 = vec3(13, 14, 15);
-  frame.max_depth = 16;
-  frame.pixel_du = vec3(17, 18, 19);
-  frame.sample_seed = 20;
-  frame.pixel_dv = vec3(21, 22, 23);
-  frame.sphere_count = 24;
-  frame.sky_a = vec3(25, 26, 27);
-  frame.sky_type = 28;
-  frame.sky_b = vec3(29, 30, 31);
-  frame.big_count = 32;
+  scene.sky_a = vec3(1, 2, 3);
+  scene.sky_type = 4;
+  scene.sky_b = vec3(5, 6, 7);
+  scene.sphere_count = 8;
+  scene.big_count = 9;
+  scene.pad0 = 10;
+  scene.pad1 = 11;
+  scene.pad2 = 12;
+
+  pass.cam_origin = vec3(1, 2, 3);
+  pass.lens_radius = 4;
+  pass.lens_u = vec3(5, 6, 7);
+  pass.width = 8;
+  pass.lens_v = vec3(9, 10, 11);
+  pass.height = 12;
+  pass.pixel00 = vec3(13, 14, 15);
+  pass.bounce_limit = 16;
+  pass.pixel_du = vec3(17, 18, 19);
+  pass.sample_seed = 20;
+  pass.pixel_dv = vec3(21, 22, 23);
+  pass.sample_index = 24;
+  pass.rr_depth = 25;
+  pass.pad0 = 26;
+  pass.pad1 = 27;
+  pass.pad2 = 28;
+
+  resolve.width = 1;
+  resolve.height = 2;
+  resolve.pad0 = 3;
+  resolve.pad1 = 4;
+
   for (int i = 0; i < 2; ++i) {
     float o = 100.0 * float(i + 1);
+    uint u = uint(o);
     spheres[i].center = vec3(o + 1, o + 2, o + 3);
     spheres[i].radius = o + 4;
     materials[i].color = vec3(o + 5, o + 6, o + 7);
-    materials[i].type = uint(o) + 8;
+    materials[i].type = u + 8;
     materials[i].fuzz = o + 9;
     materials[i].ior = o + 10;
-    materials[i].pad0 = uint(o) + 11;
-    materials[i].pad1 = uint(o) + 12;
-    stats[i].nonfinite_samples = uint(o) + 13;
-    stats[i].pad0 = uint(o) + 14;
-    stats[i].pad1 = uint(o) + 15;
-    stats[i].pad2 = uint(o) + 16;
+    materials[i].pad0 = u + 11;
+    materials[i].pad1 = u + 12;
+    stats[i].nonfinite_samples = u + 13;
+    stats[i].pad0 = u + 14;
+    stats[i].pad1 = u + 15;
+    stats[i].pad2 = u + 16;
+    materials_half[i].color_type = f16vec4(o + 17, o + 18, o + 19, o + 20);
+    materials_half[i].params = f16vec4(o + 21, o + 22, o + 23, o + 24);
+    nodes[i].lo = vec3(o + 25, o + 26, o + 27);
+    nodes[i].first = u + 28;
+    nodes[i].hi = vec3(o + 29, o + 30, o + 31);
+    nodes[i].count_or_mask = u + 32;
   }
 }

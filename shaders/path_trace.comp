@@ -1,5 +1,5 @@
 // One path-tracing pass: one sample per pixel, added to the accumulation
-// buffers. Materials follow "Ray Tracing in One Weekend" v4 (see DESIGN.md).
+// buffers. Materials follow "Ray Tracing in One Weekend" v4 (docs/design.md).
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -8,7 +8,7 @@
 
 layout(local_size_x = WORKGROUP_SIZE, local_size_y = WORKGROUP_SIZE) in;
 
-layout(std430, binding = BINDING_FRAME) readonly buffer FrameBuf { FrameParams params; };
+layout(std430, binding = BINDING_SCENE) readonly buffer SceneBuf { SceneParams scene; };
 layout(std430, binding = BINDING_SPHERES) readonly buffer SphereBuf { GpuSphere spheres[]; };
 layout(std430, binding = BINDING_SPHERE_MATERIALS) readonly buffer SphereMatBuf { uint sphere_materials[]; };
 #if OCTRACE_PRECISION >= 1
@@ -23,9 +23,9 @@ layout(std430, binding = BINDING_STATS) buffer StatsBuf { RenderStats stats; };
 layout(std430, binding = BINDING_OCTREE_NODES) readonly buffer NodeBuf { GpuOctreeNode octree_nodes[]; };
 layout(std430, binding = BINDING_OCTREE_REFS) readonly buffer RefBuf { uint octree_refs[]; };
 
-layout(push_constant) uniform Push { PassConstants pass; };
+layout(push_constant) uniform Push { PassParams pass; };
 
-// The scene's features (renderer/scene_features.h), as specialization
+// The scene's features (renderer/scene/features.h), as specialization
 // constants: the driver compiles out the code of effects the scene lacks.
 // Defaults are the general pipeline (`--effects all`). Every effect draws its
 // random numbers from its own bounce's stream, so leaving one out changes no
@@ -40,95 +40,36 @@ layout(constant_id = SPEC_SKY) const uint SKY = SKY_RUNTIME;
 layout(constant_id = SPEC_ANY_LIGHT) const bool ANY_LIGHT = true;
 
 #include "sampling/rng.glsl"
-#include "geometry/sphere.glsl"
+#include "sampling/warp.glsl"
+#include "geometry/camera.glsl"
 #include "accel/closest_hit.glsl"
-
-// A direction uniform on the unit sphere (z uniform in [-1,1], phi uniform):
-// the distribution the book's rejection-sampled random_unit_vector has, from
-// a fixed count of two numbers.
-vec3 random_unit_vector(inout Rng rng) {
-  float z = 1.0 - 2.0 * rng_next(rng);
-  float phi = 2.0 * PI * rng_next(rng);
-  float r = sqrt(max(0.0, 1.0 - z * z));
-  return vec3(r * cos(phi), r * sin(phi), z);
-}
-
-vec2 random_in_unit_disk(inout Rng rng) {
-  float r = sqrt(rng_next(rng));
-  float phi = 2.0 * PI * rng_next(rng);
-  return r * vec2(cos(phi), sin(phi));
-}
-
-// A material as the shading code uses it, in the variant's precision.
-struct Material {
-  real3 color;  // albedo or radiance
-  uint type;
-  real fuzz;
-  real ior;
-};
-
-Material load_material(uint i) {
-#if OCTRACE_PRECISION >= 1
-  GpuMaterialHalf m = materials[i];
-  return Material(m.color_type.rgb, uint(m.color_type.a), m.params.x, m.params.y);
-#else
-  GpuMaterial m = materials[i];
-  return Material(m.color, m.type, m.fuzz, m.ior);
-#endif
-}
-
-real3 sky_radiance(vec3 dir) {
-  uint sky = SKY == SKY_RUNTIME ? params.sky_type : SKY;
-  if (sky == SKY_GRADIENT) {
-    real t = real(0.5 * (dir.y + 1.0));
-    return (real(1.0) - t) * real3(params.sky_a) + t * real3(params.sky_b);
-  }
-  if (sky == SKY_UNIFORM) return real3(params.sky_a);
-  return real3(0.0);
-}
-
-// Schlick's approximation of the Fresnel reflectance.
-dreal schlick(dreal cosine, dreal eta) {
-  dreal r0 = (dreal(1.0) - eta) / (dreal(1.0) + eta);
-  r0 = r0 * r0;
-  dreal x = dreal(1.0) - cosine;
-  return r0 + (dreal(1.0) - r0) * (x * x) * (x * x) * x;
-}
-
-Ray camera_ray(uvec2 pixel, uint pixel_index) {
-  Rng rng = rng_init(params.sample_seed, pixel_index, pass.sample_index, CAMERA_BOUNCE);
-  vec2 jitter = vec2(rng_next(rng), rng_next(rng));
-  vec2 lens = HAS_DEFOCUS ? random_in_unit_disk(rng) * params.lens_radius : vec2(0.0);
-  vec3 origin = params.cam_origin + lens.x * params.lens_u + lens.y * params.lens_v;
-  vec3 target = params.pixel00 + (float(pixel.x) + jitter.x) * params.pixel_du +
-                (float(pixel.y) + jitter.y) * params.pixel_dv;
-  return Ray(origin, normalize(target - origin));
-}
+#include "shading/materials.glsl"
+#include "shading/sky.glsl"
 
 vec3 trace_path(Ray ray, uint pixel_index) {
   real3 radiance = real3(0.0);
   real3 throughput = real3(1.0);
-  uint from_sphere = NO_SPHERE;
+  uint from_prim = NO_PRIM;
   bool into_from = false;
-  for (uint bounce = 0; bounce < params.max_depth; ++bounce) {
+  for (uint bounce = 0; bounce < pass.bounce_limit; ++bounce) {
     Hit hit;
-    if (!closest_hit(ray, from_sphere, into_from, hit)) {
+    if (!closest_hit(ray, from_prim, into_from, hit)) {
       if (SKY != SKY_NONE) radiance += throughput * sky_radiance(ray.dir);
       break;
     }
-    GpuSphere s = spheres[hit.sphere];
-    Material m = load_material(sphere_materials[hit.sphere]);
-    vec3 p = ray.origin + hit.t * ray.dir;
-    vec3 outward = safe_normalize(p - s.center, -ray.dir);
-    bool front_face = dot(ray.dir, outward) < 0.0;
-    vec3 n = front_face ? outward : -outward;
+    Surface surf = surface_at(ray, hit);
+    Material m = load_material(surf.material);
+    // Sides are decided by the geometric normal; scattering uses the shading
+    // normal turned to the side the ray came from.
+    bool front_face = dot(ray.dir, surf.ng) < 0.0;
+    vec3 n = front_face ? surf.ns : -surf.ns;
 
     if (HAS_EMISSIVE && m.type == MAT_EMISSIVE) {
       radiance += throughput * m.color;
       break;
     }
 
-    Rng rng = rng_init(params.sample_seed, pixel_index, pass.sample_index, bounce);
+    Rng rng = rng_init(pass.sample_seed, pixel_index, pass.sample_index, bounce);
     // Directions are worked out in dreal and re-normalised in fp32 for the
     // next intersection test.
     dreal3 dn = dreal3(n);
@@ -169,20 +110,20 @@ vec3 trace_path(Ray ray, uint pixel_index) {
     // Russian roulette (--rr-depth): unbiased, since a surviving path is
     // weighted by 1/p.
     if (bounce + 1u >= pass.rr_depth) {
-      Rng rr = rng_init(params.sample_seed, pixel_index, pass.sample_index, bounce | RR_STREAM);
+      Rng rr = rng_init(pass.sample_seed, pixel_index, pass.sample_index, bounce | RR_STREAM);
       float p = min(float(max(max(throughput.r, throughput.g), throughput.b)), 0.95);
       if (rng_next(rr) >= p) break;
       throughput /= real(p);
     }
     // A reflection leaves on n's side, a refraction on the other. A direction
     // rounded onto the wrong side (worked out in half, a rounding error of
-    // ~1e-3 does it at grazing angles) would enter an opaque sphere and leak
+    // ~1e-3 does it at grazing angles) would enter an opaque surface and leak
     // light from inside it: mirror it back across the tangent plane.
     if ((dot(dir, n) < 0.0) != refracted) dir = reflect(dir, n);
     // The new ray leaves into the side its direction points to.
-    bool inward = dot(dir, outward) < 0.0;
-    ray = Ray(offset_ray_origin(p, inward ? -outward : outward, hit.t), dir);
-    from_sphere = hit.sphere;
+    bool inward = dot(dir, surf.ng) < 0.0;
+    ray = Ray(offset_ray_origin(surf.p, inward ? -surf.ng : surf.ng, hit.t), dir);
+    from_prim = hit.prim;
     into_from = inward;
   }
   return vec3(radiance);
@@ -190,8 +131,8 @@ vec3 trace_path(Ray ray, uint pixel_index) {
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
-  if (pixel.x >= params.width || pixel.y >= params.height) return;
-  uint index = pixel.y * params.width + pixel.x;
+  if (pixel.x >= pass.width || pixel.y >= pass.height) return;
+  uint index = pixel.y * pass.width + pixel.x;
 
   // A scene with no emitter under a black sky is black: nothing to trace.
   vec3 value = ANY_LIGHT ? trace_path(camera_ray(pixel, index), index) : vec3(0.0);

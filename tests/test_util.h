@@ -5,11 +5,15 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <cstdlib>
 #include <memory>
 #include <string>
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "render/path_tracer.h"
@@ -59,6 +63,24 @@ inline RunResult run_octrace(const std::string& args, const std::string& env = "
   int status = pclose(pipe);
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+// Ray/sphere in double, in the form that keeps precision for small spheres far
+// from the origin (Haines et al., "Precision Improvements for Ray/Sphere
+// Intersection", Ray Tracing Gems ch. 7): the nearest t > 0 along the unit
+// direction d, or +infinity. The tests' reference for the shader's float test.
+inline double ray_sphere(glm::dvec3 o, glm::dvec3 d, glm::dvec3 center, double r) {
+  const glm::dvec3 f = o - center;
+  const double b = glm::dot(f, d);
+  const glm::dvec3 l = f - b * d;
+  const double disc = r * r - glm::dot(l, l);
+  if (disc < 0.0) return std::numeric_limits<double>::infinity();
+  const double c = glm::dot(f, f) - r * r;
+  const double q = -b - std::copysign(std::sqrt(disc), b);
+  const double t0 = std::min(c / q, q), t1 = std::max(c / q, q);
+  if (t0 > 0.0) return t0;
+  if (t1 > 0.0) return t1;
+  return std::numeric_limits<double>::infinity();
 }
 
 // Materials for scenes built in tests.

@@ -8,32 +8,18 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
-#include <chrono>
 #include <limits>
 #include <numeric>
 #include <string>
 #include <thread>
 
-#include <glm/common.hpp>
-
+#include "core/clock.h"
 #include "core/errors.h"
 
 namespace octrace {
 namespace {
 
-struct Box {
-  glm::vec3 lo{std::numeric_limits<float>::max()};
-  glm::vec3 hi{-std::numeric_limits<float>::max()};
-
-  void extend(const Box& b) {
-    lo = glm::min(lo, b.lo);
-    hi = glm::max(hi, b.hi);
-  }
-  bool empty() const { return lo.x > hi.x; }
-  float max_extent() const { return empty() ? 0.0f : std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}); }
-};
-
-Box sphere_box(const Sphere& s) { return {s.center - s.radius, s.center + s.radius}; }
+using Box = Aabb;
 
 // Half the surface area, in double: extents of 1e-3 at coordinates of 1e5 lose
 // nothing to the products.
@@ -42,12 +28,12 @@ double half_area(const Box& b) {
   return e.x * e.y + e.y * e.z + e.z * e.x;
 }
 
-// A sphere reference as the build moves it around: its AABB travels with it so
-// that splitting reads memory in order.
+// A primitive reference as the build moves it around: its AABB travels with
+// it so that splitting reads memory in order.
 struct Ref {
   glm::vec3 lo;
   glm::vec3 hi;
-  uint32_t sphere;
+  uint32_t prim;
 };
 
 // Octant sets: kLower[a] = the octants on the low side of axis a.
@@ -61,8 +47,8 @@ struct Split {
   size_t total = 0;  // references in all children together
 };
 
-// The cost of visiting a node in sphere tests: a box test costs about what a
-// sphere test does, and a node is twice a sphere's bytes. With 1 instead, the
+// The cost of visiting a node in primitive tests: a box test costs about what
+// a sphere test does, and a node is twice a sphere's bytes. With 1 instead, the
 // 1M-sphere rtiow field is cut to leaves of 4 copies of the same few spheres
 // (58 bytes per sphere instead of 21).
 constexpr double kNodeCost = 2.0;
@@ -71,24 +57,25 @@ constexpr double kNodeCost = 2.0;
 // splits (child references / node references) stays within this.
 constexpr double kMaxDuplication = 8.0;
 
-// What a node's split depends on besides its references. `budget` bounds the
-// references its subtree's leaves may hold: the root has kMaxDuplication times
-// its references; a split shares its budget among the children in proportion
-// to their references, and may not produce more references than the budget.
-struct Node {
+// The build's view of a node: what its split depends on besides its
+// references. `budget` bounds the references its subtree's leaves may hold:
+// the root has kMaxDuplication times its references; a split shares its
+// budget among the children in proportion to their references, and may not
+// produce more references than the budget.
+struct BuildNode {
   Box box;
   uint32_t depth;
   double budget;
 };
 
-Node child_node(const Node& parent, const Split& split, int k) {
+BuildNode child_node(const BuildNode& parent, const Split& split, int k) {
   return {split.box[k], parent.depth + 1, parent.budget * split.count[k] / static_cast<double>(split.total)};
 }
 
 // Decides whether the node (references `refs`, box and depth in `node`) splits (octree.h
 // "How it is built"). If it does, fills `split` and the octant set of each
 // reference in `octants`.
-bool plan_split(const Ref* refs, size_t n, const Node& node, const OctreeParams& params, uint8_t* octants,
+bool plan_split(const Ref* refs, size_t n, const BuildNode& node, const OctreeParams& params, uint8_t* octants,
                 Split& split) {
   if (n <= params.leaf_size || node.depth >= params.max_depth) return false;
   const Box& box = node.box;
@@ -143,7 +130,7 @@ bool plan_split(const Ref* refs, size_t n, const Node& node, const OctreeParams&
 }
 
 // Copies each reference into the ranges of its octants, keeping their order
-// (so leaf references stay in ascending sphere order). Child k's range starts
+// (so leaf references stay in ascending primitive order). Child k's range starts
 // at dst + offset[k].
 void scatter(const Ref* refs, size_t n, const uint8_t* octants, const Split& split, Ref* dst) {
   size_t offset[8];
@@ -174,7 +161,7 @@ class SubtreeBuilder {
  public:
   explicit SubtreeBuilder(const OctreeParams& params) : params_(params) {}
 
-  Subtree build(const std::vector<Ref>& refs, const Node& root) {
+  Subtree build(const std::vector<Ref>& refs, const BuildNode& root) {
     out_ = {};
     out_.nodes.push_back(make_node(root.box));
     reserve(refs.size());
@@ -190,7 +177,7 @@ class SubtreeBuilder {
   }
 
   // The node's references are scratch_[begin, end); scratch_ from `top` on is free.
-  void build_node(uint32_t index, size_t begin, size_t end, size_t top, const Node& node) {
+  void build_node(uint32_t index, size_t begin, size_t end, size_t top, const BuildNode& node) {
     const size_t n = end - begin;
     out_.max_depth = std::max(out_.max_depth, node.depth);
     reserve(n);
@@ -198,7 +185,7 @@ class SubtreeBuilder {
     if (!plan_split(scratch_.data() + begin, n, node, params_, octants_.data(), split)) {
       out_.nodes[index].first = static_cast<uint32_t>(out_.refs.size());
       out_.nodes[index].count_or_mask = static_cast<uint32_t>(n);
-      for (size_t i = begin; i < end; ++i) out_.refs.push_back(scratch_[i].sphere);
+      for (size_t i = begin; i < end; ++i) out_.refs.push_back(scratch_[i].prim);
       ++out_.leaves;
       return;
     }
@@ -229,31 +216,32 @@ class SubtreeBuilder {
 struct Pending {
   uint32_t index;  // in the top nodes
   std::vector<Ref> refs;
-  Node node;
+  BuildNode node;
   bool splittable = true;
 };
 
-// The first sphere indices in order of decreasing radius that are big
-// (octree.h "Big spheres"), in ascending index order.
-std::vector<uint32_t> find_big_spheres(const std::vector<Sphere>& spheres) {
-  const size_t n = spheres.size();
+// The first primitives in order of decreasing box size that are big
+// (octree.h "Big primitives"), in ascending index order.
+std::vector<uint32_t> find_big_primitives(std::span<const Aabb> boxes) {
+  const size_t n = boxes.size();
   std::vector<uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
-  const size_t candidates = std::min<size_t>(n, kMaxBigSpheres + 1);
+  const size_t candidates = std::min<size_t>(n, kMaxBigPrimitives + 1);
   std::partial_sort(order.begin(), order.begin() + candidates, order.end(), [&](uint32_t a, uint32_t b) {
-    return spheres[a].radius != spheres[b].radius ? spheres[a].radius > spheres[b].radius : a < b;
+    const float sa = boxes[a].max_extent(), sb = boxes[b].max_extent();
+    return sa != sb ? sa > sb : a < b;
   });
-  // after[i] = AABB of every sphere after candidate i in the order.
+  // after[i] = AABB of every primitive after candidate i in the order.
   std::vector<Box> after(candidates);
   Box rest;
-  for (size_t i = candidates; i < n; ++i) rest.extend(sphere_box(spheres[order[i]]));
+  for (size_t i = candidates; i < n; ++i) rest.extend(boxes[order[i]]);
   for (size_t i = candidates; i-- > 0;) {
     after[i] = rest;
-    rest.extend(sphere_box(spheres[order[i]]));
+    rest.extend(boxes[order[i]]);
   }
   std::vector<uint32_t> big;
-  for (size_t i = 0; i < std::min<size_t>(candidates, kMaxBigSpheres); ++i) {
-    if (!(2.0f * spheres[order[i]].radius > 0.5f * after[i].max_extent())) break;
+  for (size_t i = 0; i < std::min<size_t>(candidates, kMaxBigPrimitives); ++i) {
+    if (!(boxes[order[i]].max_extent() > 0.5f * after[i].max_extent())) break;
     big.push_back(order[i]);
   }
   std::sort(big.begin(), big.end());
@@ -262,31 +250,31 @@ std::vector<uint32_t> find_big_spheres(const std::vector<Sphere>& spheres) {
 
 void check_params(const OctreeParams& params) {
   if (params.leaf_size < 1)
-    throw InputError("--octree-leaf: must be >= 1, got " + std::to_string(params.leaf_size));
+    throw SettingError("octree.leaf_size", ": must be >= 1, got " + std::to_string(params.leaf_size));
   if (params.max_depth < 1 || params.max_depth > kMaxOctreeDepth)
-    throw InputError("--octree-depth: must be in 1.." + std::to_string(kMaxOctreeDepth) + ", got " +
+    throw SettingError("octree.max_depth", ": must be in 1.." + std::to_string(kMaxOctreeDepth) + ", got " +
                      std::to_string(params.max_depth));
 }
 
 }  // namespace
 
-Octree build_octree(const std::vector<Sphere>& spheres, const OctreeParams& params) {
+Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params) {
   check_params(params);
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = Clock::now();
   Octree tree;
 
-  const std::vector<uint32_t> big = find_big_spheres(spheres);
+  const std::vector<uint32_t> big = find_big_primitives(boxes);
   tree.refs = big;
   tree.big_count = static_cast<uint32_t>(big.size());
 
   Pending root{0, {}, {}};
-  root.refs.reserve(spheres.size() - big.size());
-  for (uint32_t i = 0, b = 0; i < spheres.size(); ++i) {
+  root.refs.reserve(boxes.size() - big.size());
+  for (uint32_t i = 0, b = 0; i < boxes.size(); ++i) {
     if (b < big.size() && big[b] == i) {
       ++b;
       continue;
     }
-    const Box box = sphere_box(spheres[i]);
+    const Box& box = boxes[i];
     root.refs.push_back({box.lo, box.hi, i});
     root.node.box.extend(box);
   }
@@ -362,7 +350,8 @@ Octree build_octree(const std::vector<Sphere>& spheres, const OctreeParams& para
     const uint64_t ref_base = tree.refs.size();
     if (node_base + s.nodes.size() > std::numeric_limits<uint32_t>::max() ||
         ref_base + s.refs.size() >= gpu::OCTREE_INTERNAL)
-      throw RuntimeError("octree: more than 2^31 references or 2^32 nodes; raise --octree-leaf");
+      throw SettingError("octree.leaf_size", ": the octree would need more than 2^31 references or 2^32 nodes; "
+                                             "raise the leaf size");
     const auto fix = [&](gpu::GpuOctreeNode n) {
       n.first += static_cast<uint32_t>((n.count_or_mask & gpu::OCTREE_INTERNAL) ? node_base : ref_base);
       return n;
@@ -377,13 +366,13 @@ Octree build_octree(const std::vector<Sphere>& spheres, const OctreeParams& para
   OctreeStats& st = tree.stats;
   st.nodes = static_cast<uint32_t>(tree.nodes.size());
   st.refs = tree.refs.size();
-  st.big_spheres = tree.big_count;
+  st.big_primitives = tree.big_count;
   st.bytes = tree.nodes.size() * sizeof(gpu::GpuOctreeNode) + tree.refs.size() * sizeof(uint32_t);
-  if (!spheres.empty()) {
-    st.refs_per_sphere = static_cast<double>(st.refs) / static_cast<double>(spheres.size());
-    st.bytes_per_sphere = static_cast<double>(st.bytes) / static_cast<double>(spheres.size());
+  if (!boxes.empty()) {
+    st.refs_per_primitive = static_cast<double>(st.refs) / static_cast<double>(boxes.size());
+    st.bytes_per_primitive = static_cast<double>(st.bytes) / static_cast<double>(boxes.size());
   }
-  st.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  st.build_ms = ms_since(start);
   return tree;
 }
 

@@ -1,20 +1,24 @@
-// The sphere octree: built on the CPU, encoded as two flat arrays that are
-// uploaded as they are (shaders/shared.h GpuOctreeNode, a uint array of sphere
-// indices). No Vulkan and no materials in here: only centres and radii.
+// The octree: built on the CPU over primitive boxes, encoded as two flat
+// arrays that are uploaded as they are (shaders/shared/shared.h GpuOctreeNode,
+// a uint array of primitive ids). Boxes in, node arrays out: no Vulkan, no
+// materials and no primitive kinds in here; a primitive is its box and its
+// index in the span the build was given.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
-#include "scene/scene.h"
+#include <span>
+
+#include "accel/aabb.h"
 #include "shared/shared.h"
 
 namespace octrace {
 
-// --octree-leaf K, --octree-depth D. Placeholders until a sweep picks the defaults.
+// The defaults come from tools/sweep_octree.sh (docs/performance.md).
 struct OctreeParams {
   uint32_t leaf_size = 8;   // a node with more references than this splits ...
-  uint32_t max_depth = 16;  // ... while its depth (root = 0) is below this, 1..20
+  uint32_t max_depth = 16;  // ... while its tree depth (root = 0) is below this, 1..20
 };
 
 struct OctreeStats {
@@ -22,10 +26,10 @@ struct OctreeStats {
   uint32_t nodes = 0;                 // nodes.size()
   uint32_t leaves = 0;                // nodes without OCTREE_INTERNAL (the root of an empty tree counts)
   uint32_t max_depth_reached = 0;     // depth of the deepest node, root = 0
-  uint64_t refs = 0;                  // refs.size(): big spheres plus every leaf reference
-  uint32_t big_spheres = 0;           // big_count
-  double refs_per_sphere = 0;         // refs / sphere count (0 for an empty scene)
-  double bytes_per_sphere = 0;        // bytes / sphere count (0 for an empty scene)
+  uint64_t refs = 0;                  // refs.size(): big primitives plus every leaf reference
+  uint32_t big_primitives = 0;        // big_count
+  double refs_per_primitive = 0;      // refs / primitive count (0 for an empty scene)
+  double bytes_per_primitive = 0;     // bytes / primitive count (0 for an empty scene)
   uint64_t bytes = 0;                 // nodes * 32 + refs * 4: what the GPU holds for the octree
 };
 
@@ -39,13 +43,13 @@ struct OctreeStats {
 //   0      4      8      12      16     20     24     28              32
 //
 //   lo, hi          the node's box: its cell clipped to the union of the AABBs
-//                   of the spheres below it. Never outside the cell, so sibling
+//                   of the primitives below it. Never outside the cell, so sibling
 //                   boxes are disjoint (touching at most on the split planes).
 //   count_or_mask   internal node: OCTREE_INTERNAL | child mask, bit k set when
 //                   octant k has a child; octant k = (x >= mid.x)
 //                   | (y >= mid.y) << 1 | (z >= mid.z) << 2.
 //                   leaf: the number of references (< OCTREE_INTERNAL; 0 only
-//                   for the root of a tree with no spheres in it, whose box
+//                   for the root of a tree with no primitives in it, whose box
 //                   is then the point lo = hi = 0).
 //   first           internal node: index of its first child in `nodes`; the
 //                   present children follow consecutively in octant order.
@@ -62,12 +66,13 @@ struct OctreeStats {
 //
 //     nodes: ... [ leaf  | first = r | 3 ] ...
 //     refs:  [ big 0 | .. | big B-1 | ... | s7 | s12 | s40 | ... ]
-//                                         ^ r   (ascending sphere indices)
+//                                         ^ r   (ascending primitive ids)
 //
-//   refs[0, big_count) are the "big" spheres, tested before traversal and not in
-//   the tree; leaf ranges follow. A sphere is referenced by every leaf whose
-//   cell its AABB overlaps, so no leaf has a capacity and the tree has no sphere
-//   limit (the price is duplicated references, reported as refs_per_sphere).
+//   refs[0, big_count) are the "big" primitives, tested before traversal and not in
+//   the tree; leaf ranges follow. A primitive is referenced by every leaf whose
+//   cell its AABB overlaps, so no leaf has a capacity and the tree has no
+//   primitive limit (the price is duplicated references, reported as
+//   refs_per_primitive).
 //
 // Why this layout. Two 16-byte halves that each hold a vec3 and a uint match
 // std430 with no padding, so one struct serves host and GLSL. The box is stored
@@ -81,11 +86,11 @@ struct OctreeStats {
 // (Revelles et al. 2000, "An efficient parametric algorithm for octree
 // traversal"), because the siblings' boxes lie on their own side of the planes.
 //
-// How it is built. The root's cell is the AABB of the non-big spheres (from the
+// How it is built. The root's cell is the AABB of the non-big primitives (from the
 // scene, no constants). A node splits at the midpoint of its box into the
-// octants its references' AABBs overlap: the low half [lo, mid] takes a sphere
+// octants its references' AABBs overlap: the low half [lo, mid] takes a primitive
 // whose AABB has lo < mid, the high half [mid, hi] one whose AABB has hi >= mid
-// (so every point of a sphere's AABB lies in a child that holds it). Splitting
+// (so every point of a primitive's AABB lies in a child that holds it). Splitting
 // at the box rather than the cell midpoint skips the empty levels above a small
 // cluster. An axis is split only if its box extent is at least half the largest
 // one (a flat field of spheres is split like a quadtree; a zero extent never)
@@ -94,37 +99,38 @@ struct OctreeStats {
 // below max_depth, and only if
 //   - the split lowers the expected cost of a ray that meets the node:
 //     sum over children of area_k * (count_k + 2) < area * count (surface area
-//     heuristic, MacDonald and Booth 1990; 2 = a node visit in sphere tests).
+//     heuristic, MacDonald and Booth 1990; 2 = a node visit in primitive tests).
 //     This is what stops a split that makes no progress: when every child holds
-//     all the references (coincident spheres) the children's areas add up to at
+//     all the references (coincident primitives) the children's areas add up to at
 //     least the node's; and
 //   - the references it creates stay within its budget: along any path from the
 //     root the product of the splits' duplication factors (child references /
 //     node references) is at most 8, so the references never exceed 8 per
-//     sphere, whatever the input (a hard bound, where the heuristic is not).
+//     primitive, whatever the input (a hard bound, where the heuristic is not).
 // The top levels are split on the calling thread, the subtrees below them in
 // parallel; the result depends only on the input.
 //
-// Big spheres. Sort by radius, descending (ties by index). Sphere i of that
-// order is big when its diameter exceeds half the largest extent of the AABB of
-// all spheres after it in the order (a sphere that would fill the whole tree of
-// the rest, such as the rtiow ground of radius 1000 next to a 22x22 field). The
-// list stops at the first sphere that is not big, and at 16 spheres. With no
-// spheres after it, a sphere is big: a scene of one sphere is just that list.
+// Big primitives. Sort by box size (the longest side), descending (ties by
+// index). Primitive i of that order is big when its size exceeds half the
+// largest extent of the AABB of all primitives after it in the order (one that
+// would fill the whole tree of the rest, such as the rtiow ground sphere of
+// radius 1000 next to a 22x22 field). The list stops at the first primitive
+// that is not big, and at 16. With none after it, a primitive is big: a scene
+// of one sphere is just that list.
 // ---------------------------------------------------------------------------
 struct Octree {
-  std::vector<gpu::GpuOctreeNode> nodes;  // nodes[0] is the root, present even with no spheres
-  std::vector<uint32_t> refs;             // refs[0, big_count): big spheres; then leaf ranges
+  std::vector<gpu::GpuOctreeNode> nodes;  // nodes[0] is the root, present even with no primitives
+  std::vector<uint32_t> refs;             // refs[0, big_count): big primitives; then leaf ranges
   uint32_t big_count = 0;
   OctreeStats stats;
 };
 
-inline constexpr uint32_t kMaxBigSpheres = 16;
+inline constexpr uint32_t kMaxBigPrimitives = 16;
 inline constexpr uint32_t kMaxOctreeDepth = 20;  // 2^-20 of the root extent is near float resolution
 
-// Builds the octree over `spheres` (finite centres, radius > 0: validate_scene).
+// Builds the octree over `boxes` (finite, non-empty; primitive i is boxes[i]).
 // Uses the hardware threads; the result depends only on the input.
-// Throws InputError naming the flag for bad params.
-Octree build_octree(const std::vector<Sphere>& spheres, const OctreeParams& params);
+// Throws SettingError ("octree.leaf_size", "octree.max_depth") for bad params.
+Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params);
 
 }  // namespace octrace

@@ -1,9 +1,12 @@
-// The C++ view of shaders/shared.h, checked against std430: sizes and offsets
-// of every field. The layout-probe test checks the GLSL compiler agrees.
+// The C++ view of shaders/shared/shared.h, checked against std430: sizes and
+// offsets of every field of every shared struct, and the enums of the scene
+// tied to the constants the shaders switch on. The layout-probe test
+// (tests/render/layout_test.cpp) checks that the GLSL compiler agrees.
 #pragma once
 
 #include <cstddef>
 
+#include "scene/scene.h"
 #include "shared/shared.h"
 
 namespace octrace::gpu {
@@ -15,34 +18,60 @@ static_assert(sizeof(GpuMaterial) == 32);
 static_assert(offsetof(GpuMaterial, type) == 12);
 static_assert(offsetof(GpuMaterial, fuzz) == 16);
 static_assert(offsetof(GpuMaterial, ior) == 20);
-
-static_assert(sizeof(RenderStats) == 16);
+static_assert(offsetof(GpuMaterial, pad0) == 24);
+static_assert(offsetof(GpuMaterial, pad1) == 28);
 
 static_assert(sizeof(GpuMaterialHalf) == 16);
 static_assert(offsetof(GpuMaterialHalf, params) == 8);
+
+static_assert(sizeof(RenderStats) == 16);
+static_assert(offsetof(RenderStats, pad0) == 4);
+static_assert(offsetof(RenderStats, pad1) == 8);
+static_assert(offsetof(RenderStats, pad2) == 12);
 
 static_assert(sizeof(GpuOctreeNode) == 32);
 static_assert(offsetof(GpuOctreeNode, first) == 12);
 static_assert(offsetof(GpuOctreeNode, hi) == 16);
 static_assert(offsetof(GpuOctreeNode, count_or_mask) == 28);
 
-static_assert(sizeof(FrameParams) == 128);
-static_assert(offsetof(FrameParams, lens_radius) == 12);
-static_assert(offsetof(FrameParams, lens_u) == 16);
-static_assert(offsetof(FrameParams, width) == 28);
-static_assert(offsetof(FrameParams, lens_v) == 32);
-static_assert(offsetof(FrameParams, height) == 44);
-static_assert(offsetof(FrameParams, pixel00) == 48);
-static_assert(offsetof(FrameParams, max_depth) == 60);
-static_assert(offsetof(FrameParams, pixel_du) == 64);
-static_assert(offsetof(FrameParams, sample_seed) == 76);
-static_assert(offsetof(FrameParams, pixel_dv) == 80);
-static_assert(offsetof(FrameParams, sphere_count) == 92);
-static_assert(offsetof(FrameParams, sky_a) == 96);
-static_assert(offsetof(FrameParams, sky_type) == 108);
-static_assert(offsetof(FrameParams, sky_b) == 112);
-static_assert(offsetof(FrameParams, big_count) == 124);
+static_assert(sizeof(SceneParams) == 48);
+static_assert(offsetof(SceneParams, sky_type) == 12);
+static_assert(offsetof(SceneParams, sky_b) == 16);
+static_assert(offsetof(SceneParams, sphere_count) == 28);
+static_assert(offsetof(SceneParams, big_count) == 32);
+static_assert(offsetof(SceneParams, pad0) == 36);
+static_assert(offsetof(SceneParams, pad1) == 40);
+static_assert(offsetof(SceneParams, pad2) == 44);
 
-static_assert(sizeof(PassConstants) == 8);
+static_assert(sizeof(PassParams) == 112);
+static_assert(offsetof(PassParams, lens_radius) == 12);
+static_assert(offsetof(PassParams, lens_u) == 16);
+static_assert(offsetof(PassParams, width) == 28);
+static_assert(offsetof(PassParams, lens_v) == 32);
+static_assert(offsetof(PassParams, height) == 44);
+static_assert(offsetof(PassParams, pixel00) == 48);
+static_assert(offsetof(PassParams, bounce_limit) == 60);
+static_assert(offsetof(PassParams, pixel_du) == 64);
+static_assert(offsetof(PassParams, sample_seed) == 76);
+static_assert(offsetof(PassParams, pixel_dv) == 80);
+static_assert(offsetof(PassParams, sample_index) == 92);
+static_assert(offsetof(PassParams, rr_depth) == 96);
+static_assert(offsetof(PassParams, pad0) == 100);
+static_assert(offsetof(PassParams, pad1) == 104);
+static_assert(offsetof(PassParams, pad2) == 108);
+// Vulkan guarantees at least 128 bytes of push constants on every device.
+static_assert(sizeof(PassParams) <= 128);
+
+static_assert(sizeof(ResolveParams) == 16);
+static_assert(offsetof(ResolveParams, height) == 4);
+
+// The scene's enums are the shaders' constants.
+static_assert(uint32_t(MaterialType::Lambertian) == MAT_LAMBERTIAN);
+static_assert(uint32_t(MaterialType::Metal) == MAT_METAL);
+static_assert(uint32_t(MaterialType::Dielectric) == MAT_DIELECTRIC);
+static_assert(uint32_t(MaterialType::Emissive) == MAT_EMISSIVE);
+static_assert(uint32_t(SkyType::Gradient) == SKY_GRADIENT);
+static_assert(uint32_t(SkyType::Uniform) == SKY_UNIFORM);
+static_assert(uint32_t(SkyType::None) == SKY_NONE);
 
 }  // namespace octrace::gpu

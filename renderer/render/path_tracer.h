@@ -1,15 +1,17 @@
-// Renders a Scene on a VulkanContext: uploads the scene, runs one compute
-// dispatch per sample pass into fp32 accumulation buffers, reads the mean back.
+// Renders a Scene on a VulkanContext. The scene and its acceleration structure
+// are uploaded once (render/gpu_scene.h); the camera, the bounce limit, the
+// sampler's seed and the sample index are per pass (push constants); each pass
+// adds one sample per pixel to fp32 accumulation buffers; the mean is read back.
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <string>
 
-#include "scene/features.h"
-#include "io/image.h"
 #include "accel/octree.h"
+#include "io/image.h"
+#include "render/settings.h"
+#include "scene/features.h"
 #include "scene/scene.h"
 #include "vk/context.h"
 
@@ -17,38 +19,16 @@ namespace octrace {
 
 struct Buffer;
 
-enum class Accel { Brute, Octree };
-
-// Which quantities the shading code keeps in half (shaders/precision.glsl).
-enum class Precision { FP32, FP16, FP16All };
-const char* precision_name(Precision p);
-// "fp32" | "fp16" | "fp16-all"; throws InputError naming --precision.
-Precision parse_precision(const std::string& name);
-
-struct RenderSettings {
-  Accel accel = Accel::Octree;
-  Precision precision = Precision::FP32;
-  // false: the pipeline is specialised to the scene's features (`--effects
-  // auto`); true: the general pipeline with every effect (`--effects all`).
-  bool all_effects = false;
-  // Russian roulette from this bounce on (0: off): a path survives with
-  // probability p = min(max throughput, 0.95) and carries 1/p more, so the
-  // expectation is unchanged and the noise grows; paths end sooner.
-  uint32_t rr_depth = 0;
-  OctreeParams octree;
-  int width = 1200;
-  int height = 800;
-  uint32_t spp = 10;
-  uint32_t max_depth = 50;
+// What may change from one pass to the next without touching the scene on the
+// device, its acceleration structure or the pipeline.
+struct PassSettings {
+  Camera camera;
+  uint32_t bounce_limit = 50;
   uint32_t sample_seed = 1;
-  // The first sample index of this render: runs with disjoint ranges of
-  // sample indices (on other devices or machines) merge into one render.
-  uint32_t first_sample = 0;
+  uint32_t rr_depth = 0;  // Russian roulette from this bounce on (0: off)
 };
-
-// Checks sizes and counts before anything is allocated; throws InputError
-// naming the flag ("--size 0x10: width and height must be >= 1").
-void validate_settings(const RenderSettings& settings);
+// The scene's camera with the settings' bounce limit, seed and roulette.
+PassSettings pass_settings(const Scene& scene, const RenderSettings& settings);
 
 struct RenderTimings {
   double accel_build_ms = 0;   // octree build on the CPU (wall)
@@ -67,17 +47,21 @@ struct RenderResult {
   uint32_t min_samples = 0;       // smallest per-pixel sample count
   uint64_t nonfinite_samples = 0; // NaN/Inf samples rejected (0 for a clean render)
   RenderTimings timings;
-  OctreeStats octree;             // zeros for --accel brute
+  OctreeStats octree;             // zeros for Accel::Brute
   SceneFeatures features;         // what the pipeline was specialised to
 };
 
 // Called after each batch of passes: passes done, total passes.
 using ProgressFn = std::function<void(uint32_t done, uint32_t total)>;
 
-// A scene uploaded to a device with its pipeline, ready to run passes; reusable
-// for several renders (benchmarks, the preview window).
+// A scene uploaded to a device with its pipeline and an accumulation state,
+// ready to run passes; reusable for several renders (benchmarks, the preview
+// window, whose camera moves cost nothing but a restart of the accumulation).
 class PathTracer {
  public:
+  // Validates the settings, uploads the scene (and the octree for
+  // Accel::Octree), creates the pipeline of settings.precision and
+  // all_effects, and a cleared accumulation state of width x height.
   PathTracer(const VulkanContext& ctx, const Scene& scene, const RenderSettings& settings);
   ~PathTracer();
   PathTracer(const PathTracer&) = delete;
@@ -85,16 +69,27 @@ class PathTracer {
 
   // Clears the accumulation buffers and the statistics.
   void reset();
+  // A new, cleared accumulation state of another size; the scene and the
+  // pipeline stay. The device must be idle.
+  void resize(int width, int height);
+  // Another acceleration structure, precision or effects over the same scene
+  // on the device (`scene` is the one the tracer was made with: an octree
+  // not built yet is built from it); the accumulation is cleared. The device
+  // must be idle. Throws InputError for what the scene or device cannot do,
+  // and then keeps the configuration it had.
+  void reconfigure(const Scene& scene, Accel accel, Precision precision, bool all_effects);
   // Adds passes [first_sample, first_sample + count) in one submission and
   // waits; returns their device time in milliseconds.
-  double run_passes(uint32_t first_sample, uint32_t count);
+  double run_passes(const PassSettings& pass, uint32_t first_sample, uint32_t count);
   // Records the same passes into `cmd` without submitting, for a caller that
-  // adds its own work to the submission (the preview window's resolve pass).
-  void record_passes(VkCommandBuffer cmd, uint32_t first_sample, uint32_t count) const;
-  // The accumulation buffers a resolve pass reads (layout in shaders/shared.h):
+  // adds its own work to the submission (the preview's resolve pass).
+  void record_passes(VkCommandBuffer cmd, const PassSettings& pass, uint32_t first_sample, uint32_t count) const;
+  // The accumulation buffers a resolve pass reads (layout in shared/shared.h):
   // Kahan sum with the sample count in .w, and the compensation terms.
   const Buffer& accum_sum() const;
   const Buffer& accum_comp() const;
+  // The settings in force (width, height, accel, precision and effects follow
+  // resize and reconfigure).
   const RenderSettings& settings() const;
   RenderResult read_result();
   const RenderTimings& setup_timings() const;

@@ -1,4 +1,4 @@
-// The accumulation state as files: what a render *is* (DESIGN.md). A state is
+// The accumulation state as files: what a render *is* (docs/design.md). A state is
 // the per-pixel mean and the per-pixel sample count, written as two PFMs
 // (PREFIX.mean.pfm, linear; PREFIX.count.pfm, the count in every channel,
 // exact up to 2^24). States of the same scene from independent runs (other

@@ -38,7 +38,7 @@ constexpr double kFieldHalf = 10.0;
 constexpr double kGap = 1e-5;
 constexpr uint64_t kMaxSpheres = 100'000'000;
 
-// The three radius-1 spheres standing on the ground at y = 1 (DESIGN.md).
+// The three radius-1 spheres standing on the ground at y = 1 (docs/design.md).
 constexpr double kBigX[3] = {0.0, -4.0, 4.0};
 
 struct Grid {
@@ -209,10 +209,10 @@ void validate_material(const Material& m, const std::string& source, size_t inde
 
 Scene make_rtiow_scene(const RtiowParams& params) {
   if (!(std::isfinite(params.radius) && params.radius > 0.0f))
-    throw InputError("--radius: must be a finite number > 0, got " + format(params.radius));
+    throw SettingError("rtiow.radius", ": must be a finite number > 0, got " + format(params.radius));
   if (params.spheres > kMaxSpheres)
-    throw InputError("--spheres: at most " + std::to_string(kMaxSpheres) + " small spheres, got " +
-                     std::to_string(params.spheres));
+    throw SettingError("rtiow.spheres", ": at most " + std::to_string(kMaxSpheres) + " small spheres, got " +
+                                            std::to_string(params.spheres));
 
   Scene scene;  // the camera defaults are the study's rtiow camera
   const auto lambertian = [](glm::vec3 albedo) { Material m; m.albedo = albedo; return m; };

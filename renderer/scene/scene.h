@@ -1,5 +1,5 @@
 // The scene as plain CPU structs: what the renderer draws, independent of Vulkan.
-// Sources: the built-in `rtiow` generator and the JSON format of DESIGN.md.
+// Sources: the built-in `rtiow` generator and the JSON format (README "Scene format").
 #pragma once
 
 #include <cstdint>
@@ -73,10 +73,11 @@ struct RtiowParams {
 // The "Ray Tracing in One Weekend" final scene, generalised to any sphere count
 // (up to 100,000,000). Small spheres overlap neither each other nor the big ones
 // unless there is no room for that many of that radius (scene.cpp says how).
-// Throws InputError for parameters that cannot make a scene (radius <= 0, ...).
+// Throws SettingError ("rtiow.radius", "rtiow.spheres") for parameters that
+// cannot make a scene (radius <= 0, ...).
 Scene make_rtiow_scene(const RtiowParams& params);
 
-// JSON (DESIGN.md "Scene description"). `source` names the input in error
+// JSON (README "Scene format"). `source` names the input in error
 // messages ("scene.json: spheres[12].radius: must be a finite number > 0, got -1").
 Scene parse_scene_json(const std::string& text, const std::string& source);
 Scene load_scene_json(const std::string& path);

@@ -1,4 +1,4 @@
-// Scene <-> JSON, the format of DESIGN.md "Scene description (JSON)".
+// Scene <-> JSON, the format of README "Scene format".
 //
 // Required and optional fields:
 //   top level     "materials" and "spheres" are required (either may be empty);

@@ -281,6 +281,10 @@ uint32_t select_device(const std::vector<DeviceInfo>& devices, const std::string
   throw RuntimeError("no suitable Vulkan device: " + reasons);
 }
 
+std::string software_device_note(const DeviceInfo& d) {
+  return "rendering on " + d.name + ", a CPU (software) Vulkan device: its timings are not a GPU's";
+}
+
 bool validation_requested_by_env() {
   const char* v = std::getenv("OCTRACE_VALIDATION");
   return v && std::strcmp(v, "0") != 0 && *v;

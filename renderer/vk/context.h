@@ -77,6 +77,10 @@ struct ContextOptions {
   std::function<bool(VkInstance, VkPhysicalDevice, uint32_t family)> can_present;
 };
 
+// One line for a render on a software device, so that its timings are not
+// mistaken for a GPU's ("rendering on llvmpipe (...), a CPU (software) ...").
+std::string software_device_note(const DeviceInfo& d);
+
 // The validation layer is on when asked for or when OCTRACE_VALIDATION=1.
 bool validation_requested_by_env();
 

@@ -2,6 +2,8 @@
 
 #include <cstring>
 
+#include "core/text.h"
+
 namespace octrace {
 
 namespace {
@@ -10,10 +12,6 @@ uint32_t find_memory_type(const VulkanContext& ctx, uint32_t type_bits, VkMemory
   for (uint32_t i = 0; i < ctx.memory.memoryTypeCount; ++i)
     if ((type_bits & (1u << i)) && (ctx.memory.memoryTypes[i].propertyFlags & want) == want) return i;
   return UINT32_MAX;
-}
-
-std::string mib(VkDeviceSize bytes) {
-  return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB";
 }
 
 }  // namespace
@@ -30,7 +28,7 @@ void create_buffer(Buffer& b, const VulkanContext& ctx, VkDeviceSize size, bool 
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   VkResult r = vkCreateBuffer(ctx.device, &info, nullptr, &b.buffer);
   if (r != VK_SUCCESS)
-    throw RuntimeError("cannot create " + what + " of " + mib(size) + ": " + vk_result_name(r));
+    throw RuntimeError("cannot create " + what + " of " + mib_string(size) + ": " + vk_result_name(r));
 
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(ctx.device, b.buffer, &req);
@@ -47,7 +45,7 @@ void create_buffer(Buffer& b, const VulkanContext& ctx, VkDeviceSize size, bool 
   alloc.memoryTypeIndex = type;
   r = vkAllocateMemory(ctx.device, &alloc, nullptr, &b.memory);
   if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY)
-    throw RuntimeError("out of memory allocating " + mib(size) + " for the " + what);
+    throw RuntimeError("out of memory allocating " + mib_string(size) + " for the " + what);
   if (r != VK_SUCCESS) throw RuntimeError("cannot allocate the " + what + ": " + vk_result_name(r));
   VK_CHECK(vkBindBufferMemory(ctx.device, b.buffer, b.memory, 0));
   if (host) VK_CHECK(vkMapMemory(ctx.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
@@ -92,13 +90,10 @@ void download_buffer(const VulkanContext& ctx, const Buffer& src, void* data, si
   std::memcpy(data, staging.mapped, bytes);
 }
 
-void fill_buffer(const VulkanContext& ctx, Buffer& dst, uint32_t value) {
-  submit_and_wait(ctx, [&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, dst.buffer, 0, VK_WHOLE_SIZE, value); });
-}
-
 void create_compute_pipeline(ComputePipeline& p, const VulkanContext& ctx, const uint32_t* spirv,
                              size_t spirv_bytes, uint32_t binding_count, uint32_t push_bytes,
                              const std::vector<SpecConstant>& spec) {
+  destroy_compute_pipeline(p);
   p.ctx = &ctx;
   std::vector<VkDescriptorSetLayoutBinding> bindings(binding_count);
   for (uint32_t i = 0; i < binding_count; ++i) {
@@ -158,28 +153,38 @@ void create_compute_pipeline(ComputePipeline& p, const VulkanContext& ctx, const
   VK_CHECK(vkAllocateDescriptorSets(ctx.device, &alloc, &p.set));
 }
 
-void bind_buffers(ComputePipeline& p, const std::vector<const Buffer*>& buffers) {
+void bind_buffers(ComputePipeline& p, std::initializer_list<BufferBinding> buffers) {
   std::vector<VkDescriptorBufferInfo> infos(buffers.size());
   std::vector<VkWriteDescriptorSet> writes(buffers.size());
-  for (size_t i = 0; i < buffers.size(); ++i) {
-    infos[i] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
+  size_t i = 0;
+  for (const BufferBinding& b : buffers) {
+    infos[i] = {b.buffer->buffer, 0, VK_WHOLE_SIZE};
     writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     writes[i].dstSet = p.set;
-    writes[i].dstBinding = uint32_t(i);
+    writes[i].dstBinding = b.binding;
     writes[i].descriptorCount = 1;
     writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     writes[i].pBufferInfo = &infos[i];
+    ++i;
   }
   vkUpdateDescriptorSets(p.ctx->device, uint32_t(writes.size()), writes.data(), 0, nullptr);
 }
 
-ComputePipeline::~ComputePipeline() {
-  if (!ctx) return;
-  VkDevice d = ctx->device;
-  if (pool) vkDestroyDescriptorPool(d, pool, nullptr);
-  if (pipeline) vkDestroyPipeline(d, pipeline, nullptr);
-  if (layout) vkDestroyPipelineLayout(d, layout, nullptr);
-  if (set_layout) vkDestroyDescriptorSetLayout(d, set_layout, nullptr);
+ComputePipeline::~ComputePipeline() { destroy_compute_pipeline(*this); }
+
+void destroy_compute_pipeline(ComputePipeline& p) {
+  if (!p.ctx) return;
+  VkDevice d = p.ctx->device;
+  if (p.pool) vkDestroyDescriptorPool(d, p.pool, nullptr);
+  if (p.pipeline) vkDestroyPipeline(d, p.pipeline, nullptr);
+  if (p.layout) vkDestroyPipelineLayout(d, p.layout, nullptr);
+  if (p.set_layout) vkDestroyDescriptorSetLayout(d, p.set_layout, nullptr);
+  p.pool = VK_NULL_HANDLE;
+  p.pipeline = VK_NULL_HANDLE;
+  p.layout = VK_NULL_HANDLE;
+  p.set_layout = VK_NULL_HANDLE;
+  p.set = VK_NULL_HANDLE;
+  p.ctx = nullptr;
 }
 
 void compute_barrier(VkCommandBuffer cmd) {

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -34,7 +35,6 @@ void destroy_buffer(Buffer& b);
 // Copies host data into a device buffer through a staging buffer, and back.
 void upload_buffer(const VulkanContext& ctx, Buffer& dst, const void* data, size_t bytes);
 void download_buffer(const VulkanContext& ctx, const Buffer& src, void* data, size_t bytes);
-void fill_buffer(const VulkanContext& ctx, Buffer& dst, uint32_t value);
 
 struct SpecConstant {
   uint32_t id;
@@ -57,11 +57,19 @@ struct ComputePipeline {
   ~ComputePipeline();
 };
 
+// (Re)creates `p` (what it held before is destroyed first).
 void create_compute_pipeline(ComputePipeline& p, const VulkanContext& ctx, const uint32_t* spirv,
                              size_t spirv_bytes, uint32_t binding_count, uint32_t push_bytes,
                              const std::vector<SpecConstant>& spec = {});
-// buffers[i] is bound at binding i.
-void bind_buffers(ComputePipeline& p, const std::vector<const Buffer*>& buffers);
+void destroy_compute_pipeline(ComputePipeline& p);
+
+// Binds each buffer at its binding number (the BINDING_* constants of
+// shaders/shared/shared.h name them).
+struct BufferBinding {
+  uint32_t binding;
+  const Buffer* buffer;
+};
+void bind_buffers(ComputePipeline& p, std::initializer_list<BufferBinding> buffers);
 
 // Full-pipeline compute->compute/transfer barrier on all memory: passes are
 // read-modify-write on the accumulation buffers.

@@ -89,7 +89,6 @@ bool create_swapchain(Swapchain& sc, const VulkanContext& ctx, VkSurfaceKHR surf
     sc.swapchain = VK_NULL_HANDLE;
     throw_vk_error(r, "vkCreateSwapchainKHR");
   }
-  sc.format = format.format;
   sc.bgra = format.format == VK_FORMAT_B8G8R8A8_UNORM || format.format == VK_FORMAT_B8G8R8A8_SRGB;
   sc.extent = extent;
 
@@ -134,6 +133,46 @@ bool present_image(const Swapchain& sc, uint32_t index) {
   if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR) return false;
   VK_CHECK(r);
   return true;
+}
+
+void record_copy_to_image(VkCommandBuffer cmd, VkBuffer pixels, VkImage image, VkExtent2D extent) {
+  // The image's old contents are not needed. Its transition waits at the
+  // transfer stage, the stage the submission waits on the acquire semaphore.
+  VkImageMemoryBarrier to_dst{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+  to_dst.srcAccessMask = 0;
+  to_dst.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  to_dst.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  to_dst.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  to_dst.srcQueueFamilyIndex = to_dst.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  to_dst.image = image;
+  to_dst.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
+                       nullptr, 1, &to_dst);
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {extent.width, extent.height, 1};
+  vkCmdCopyBufferToImage(cmd, pixels, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+  VkImageMemoryBarrier to_present = to_dst;
+  to_present.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  to_present.dstAccessMask = 0;
+  to_present.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  to_present.newLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0, 0, nullptr,
+                       0, nullptr, 1, &to_present);
+}
+
+void submit_image_write(const Swapchain& sc, VkCommandBuffer cmd, VkSemaphore acquired, uint32_t index,
+                        VkFence fence) {
+  VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  submit.waitSemaphoreCount = 1;
+  submit.pWaitSemaphores = &acquired;
+  submit.pWaitDstStageMask = &wait_stage;
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &cmd;
+  submit.signalSemaphoreCount = 1;
+  submit.pSignalSemaphores = &sc.written[index];
+  VK_CHECK(vkQueueSubmit(sc.ctx->queue, 1, &submit, fence));
 }
 
 }  // namespace octrace

@@ -18,7 +18,6 @@ struct Swapchain {
   const VulkanContext* ctx = nullptr;
   VkSurfaceKHR surface = VK_NULL_HANDLE;  // not owned
   VkSwapchainKHR swapchain = VK_NULL_HANDLE;
-  VkFormat format = VK_FORMAT_UNDEFINED;
   bool bgra = false;  // bytes in memory order B, G, R, A
   VkExtent2D extent{};
   std::vector<VkImage> images;
@@ -44,6 +43,13 @@ void destroy_swapchain(Swapchain& sc);
 // Acquires the next image, signalling `acquired`. Returns false when the
 // swapchain is out of date (then nothing is signalled: recreate and retry).
 bool acquire_image(const Swapchain& sc, VkSemaphore acquired, uint32_t* index);
+// Records the copy of `pixels` (packed 8-bit, the swapchain's byte order)
+// into a swapchain image, with its layout transitions for the present.
+void record_copy_to_image(VkCommandBuffer cmd, VkBuffer pixels, VkImage image, VkExtent2D extent);
+// Submits `cmd`, which writes image `index`, after `acquired` and signalling
+// the image's `written` semaphore (and `fence`).
+void submit_image_write(const Swapchain& sc, VkCommandBuffer cmd, VkSemaphore acquired, uint32_t index,
+                        VkFence fence);
 // Presents image `index` after its `written` semaphore. Returns false when the
 // swapchain is out of date or suboptimal and should be recreated.
 bool present_image(const Swapchain& sc, uint32_t index);

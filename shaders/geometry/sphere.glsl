@@ -1,14 +1,9 @@
-// Ray/sphere intersection and ray spawning, in fp32.
-#ifndef OCTRACE_GEOMETRY_GLSL
-#define OCTRACE_GEOMETRY_GLSL
+// Spheres: ray/sphere intersection and the surface at a hit, in fp32.
+#ifndef OCTRACE_SPHERE_GLSL
+#define OCTRACE_SPHERE_GLSL
 
-const float PI = 3.14159265358979323846;
-const float INF = 3.402823466e38;  // FLT_MAX: "no hit" for t
-
-struct Ray {
-  vec3 origin;
-  vec3 dir;  // unit length
-};
+#include "geometry/ray.glsl"
+#include "geometry/surface.glsl"
 
 // Ray/sphere in the numerically stable form of Haines et al., "Precision
 // Improvements for Ray/Sphere Intersection" (Ray Tracing Gems, ch. 7):
@@ -41,32 +36,14 @@ float intersect_sphere(Ray ray, vec3 center, float radius, float t_max, bool ski
   return INF;
 }
 
-// Moves a hit point off its surface along the geometric normal `n` (pointing
-// to the side the new ray leaves into) by more than the point's rounding
-// error, so that a surface through the same point (a coincident or touching
-// sphere) is not met at a distance that is only rounding. In the spirit of
-// Wächter & Binder, "A Fast and Robust Method for Avoiding Self-Intersection"
-// (Ray Tracing Gems, ch. 6), with the bound taken from the ray instead of a
-// fixed ulp count per coordinate: p = origin + t*dir is rounded to a few ulps
-// of max(|origin|, |p|) <= max|p_i| + t, and the stable sphere test's t (Haines)
-// is off by a few ulps of t, so OFFSET_ULPS ulps of (max|p_i| + t) cover both
-// however far the ray came (a fixed count of p's own ulps does not: a camera
-// 20x farther away than |p| lost paths between coincident spheres) and stay
-// small where p is small (a scene of r = 1e-4 spheres near the origin) or far
-// from the origin (at 1e5 the offset is 16 * 1.2e-7 * 1e5 = 0.2 units where
-// W&B's 256 ulps per coordinate jumped 2 units, across the contact gaps the
-// translated scenes have). Self-hits need no offset at all: the skip_near /
-// skip_all rule of intersect_sphere removes them exactly.
-vec3 offset_ray_origin(vec3 p, vec3 n, float t) {
-  const float OFFSET_ULPS = 8.0;
-  float scale = max(max(abs(p.x), abs(p.y)), abs(p.z)) + t;
-  return p + (OFFSET_ULPS * 1.1920929e-7 * scale) * n;
-}
-
-// Normalises, or returns `fallback` for a vector too short to have a direction.
-vec3 safe_normalize(vec3 v, vec3 fallback) {
-  float len2 = dot(v, v);
-  return len2 > 1e-30 ? v * inversesqrt(len2) : fallback;
+// The surface of sphere `s` at distance t along the ray. The outward normal
+// is the unit vector from the centre (the ray's reverse for a point at the
+// centre, which only a sphere of radius 0 has). Spheres carry no texture
+// coordinates yet: uv is 0.
+Surface sphere_surface(Ray ray, float t, GpuSphere s, uint material) {
+  vec3 p = ray.origin + t * ray.dir;
+  vec3 outward = safe_normalize(p - s.center, -ray.dir);
+  return Surface(p, outward, outward, material, vec2(0.0));
 }
 
 #endif

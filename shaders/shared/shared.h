@@ -2,7 +2,7 @@
 // Each struct is written once, here. Rules that keep the two views identical:
 // a vec3 is always followed by a 4-byte scalar (std430 aligns vec3 to 16 bytes,
 // glm to 4), and every struct is a multiple of 16 bytes. The C++ side checks
-// sizes and offsets with static_assert (renderer/gpu_layout.h); the layout
+// sizes and offsets with static_assert (renderer/render/gpu_layout.h); the layout
 // probe test checks them against the GLSL compiler's view.
 #ifndef OCTRACE_SHARED_H
 #define OCTRACE_SHARED_H
@@ -38,8 +38,12 @@ OCT_CONST(uint, SKY_NONE, 2u);
 
 OCT_CONST(uint, WORKGROUP_SIZE, 8u);  // 8x8 invocations per workgroup
 
-// Descriptor bindings of the path-tracing pipeline (set 0).
-OCT_CONST(uint, BINDING_FRAME, 0u);
+// Kinds of primitive a hit can name (Hit.kind in shaders/accel/closest_hit.glsl).
+OCT_CONST(uint, PRIM_SPHERE, 0u);
+
+// Descriptor bindings of the path-tracing pipeline (set 0). The host binds by
+// these names (render/path_tracer.cpp), the shader declares by them.
+OCT_CONST(uint, BINDING_SCENE, 0u);
 OCT_CONST(uint, BINDING_SPHERES, 1u);
 OCT_CONST(uint, BINDING_SPHERE_MATERIALS, 2u);
 OCT_CONST(uint, BINDING_MATERIALS, 3u);
@@ -51,8 +55,16 @@ OCT_CONST(uint, BINDING_OCTREE_NODES, 8u);
 OCT_CONST(uint, BINDING_OCTREE_REFS, 9u);
 OCT_CONST(uint, BINDING_COUNT, 10u);
 
+// Descriptor bindings of the resolve pipeline (resolve.comp).
+OCT_CONST(uint, RESOLVE_BINDING_ACCUM_SUM, 0u);
+OCT_CONST(uint, RESOLVE_BINDING_ACCUM_COMP, 1u);
+OCT_CONST(uint, RESOLVE_BINDING_PIXELS, 2u);
+OCT_CONST(uint, RESOLVE_BINDING_COUNT, 3u);
+// Its one specialization constant: swap red and blue (B8G8R8A8 swapchains).
+OCT_CONST(uint, RESOLVE_SPEC_SWAP_RB, 0u);
+
 // Specialization constants of the path-tracing pipeline: the accel, and the
-// scene's features (renderer/features.h) so that absent effects compile out.
+// scene's features (renderer/scene/features.h) so that absent effects compile out.
 OCT_CONST(uint, SPEC_ACCEL, 0u);
 OCT_CONST(uint, SPEC_LAMBERTIAN, 1u);
 OCT_CONST(uint, SPEC_METAL, 2u);
@@ -106,7 +118,7 @@ struct GpuMaterialHalf {
 #endif
 
 // 32 bytes. One octree node; nodes[0] is the root. The octree is described in
-// renderer/octree.h (encoding, drawing, why).
+// renderer/accel/octree.h (encoding, drawing, why).
 //   lo, hi: the node's box: its cell clipped to the bounds of what it holds.
 //   Internal node: `count_or_mask` = OCTREE_INTERNAL | child mask (bit k set =
 //     octant k present; octant k = (x >= mid) | (y >= mid) << 1 | (z >= mid) << 2);
@@ -130,10 +142,26 @@ struct RenderStats {
   uint pad2;
 };
 
-// 128 bytes. Everything a pass needs besides the scene arrays. The camera is
-// precomputed on the host: a pixel (x, y) (top row first) maps to the point
-// pixel00 + x*pixel_du + y*pixel_dv on the focus plane.
-struct FrameParams {
+// 48 bytes. What the passes need of the scene besides its arrays; uploaded
+// once with the scene (a camera move or a new bounce limit does not touch it).
+struct SceneParams {
+  vec3 sky_a;         // gradient: down; uniform: radiance
+  uint sky_type;      // SKY_*
+  vec3 sky_b;         // gradient: up
+  uint sphere_count;
+  uint big_count;     // octree: refs[0, big_count) are primitives tested before traversal
+  uint pad0;
+  uint pad1;
+  uint pad2;
+};
+
+// 112 bytes, the push constants of one pass: everything that may change from
+// one pass to the next without touching the scene (the camera, the image
+// size, the bounce limit, the sampler's seed and the sample index). The camera
+// is precomputed on the host (render/camera.h): a pixel (x, y) (top row
+// first) maps to the point pixel00 + x*pixel_du + y*pixel_dv on the focus
+// plane; the lens is a disc of lens_radius spanned by lens_u, lens_v.
+struct PassParams {
   vec3 cam_origin;
   float lens_radius;  // aperture / 2
   vec3 lens_u;        // unit camera right
@@ -141,22 +169,23 @@ struct FrameParams {
   vec3 lens_v;        // unit camera up
   uint height;
   vec3 pixel00;       // top-left corner of the focus-plane viewport
-  uint max_depth;
+  uint bounce_limit;  // a path that reaches it contributes 0
   vec3 pixel_du;
   uint sample_seed;
   vec3 pixel_dv;
-  uint sphere_count;
-  vec3 sky_a;         // gradient: down; uniform: radiance
-  uint sky_type;      // SKY_*
-  vec3 sky_b;         // gradient: up
-  uint big_count;     // octree: refs[0, big_count) are spheres tested before traversal
+  uint sample_index;  // the sample this pass adds to every pixel
+  uint rr_depth;      // Russian roulette from this bounce on (0xffffffff: never)
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
-// Push constants: the index of the sample this dispatch adds to every pixel,
-// and the bounce from which Russian roulette runs (0xffffffff: never).
-struct PassConstants {
-  uint sample_index;
-  uint rr_depth;
+// 16 bytes, the push constants of the resolve pass.
+struct ResolveParams {
+  uint width;
+  uint height;
+  uint pad0;
+  uint pad1;
 };
 
 // Russian roulette draws from a stream of its own (bounce | RR_STREAM), so

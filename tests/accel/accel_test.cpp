@@ -112,7 +112,7 @@ TEST_P(AccelTest, OctreeImageMatchesBruteForce) {
     s.width = 64;
     s.height = 40;
     s.spp = 2;
-    s.max_depth = depth;
+    s.bounce_limit = depth;
     s.accel = Accel::Brute;
     RenderResult brute = render(test::shared_context(), scene, s);
     s.accel = Accel::Octree;

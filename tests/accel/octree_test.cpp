@@ -4,6 +4,7 @@
 // order XOR the ray's sign mask is front-to-back); the build is deterministic;
 // the stats add up; bad parameters are errors that name the flag.
 #include "accel/octree.h"
+#include "render/gpu_scene.h"
 
 #include <gtest/gtest.h>
 
@@ -19,6 +20,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/errors.h"
+#include "test_util.h"
 
 namespace octrace {
 namespace {
@@ -43,23 +45,8 @@ struct Hit {
   bool operator==(const Hit&) const = default;
 };
 
-// Ray/sphere in double, in the form that keeps precision for small spheres far
-// from the origin (Haines et al., "Precision Improvements for Ray/Sphere
-// Intersection", Ray Tracing Gems ch. 7). The nearest t > 0, or kInf.
 double hit_sphere(const Sphere& s, const Ray& ray) {
-  const glm::dvec3 f = ray.origin - glm::dvec3(s.center);
-  const double b = glm::dot(f, ray.dir);
-  const glm::dvec3 l = f - b * ray.dir;
-  const double r = s.radius;
-  const double disc = r * r - glm::dot(l, l);
-  if (disc < 0.0) return kInf;
-  const double c = glm::dot(f, f) - r * r;
-  const double q = -b - std::copysign(std::sqrt(disc), b);
-  const double t0 = std::min(c / q, q);
-  const double t1 = std::max(c / q, q);
-  if (t0 > 0.0) return t0;
-  if (t1 > 0.0) return t1;
-  return kInf;
+  return test::ray_sphere(ray.origin, ray.dir, glm::dvec3(s.center), s.radius);
 }
 
 void test_sphere(const std::vector<Sphere>& spheres, uint32_t i, const Ray& ray, Hit& best) {
@@ -235,7 +222,7 @@ bool inside(const GpuOctreeNode& inner, const GpuOctreeNode& outer) {
 // Returns the depth of the deepest node.
 uint32_t expect_valid_structure(const Octree& tree, const std::vector<Sphere>& spheres, const OctreeParams& params) {
   EXPECT_FALSE(tree.nodes.empty());
-  EXPECT_LE(tree.big_count, kMaxBigSpheres);
+  EXPECT_LE(tree.big_count, kMaxBigPrimitives);
   EXPECT_LE(tree.big_count, tree.refs.size());
   EXPECT_TRUE(std::is_sorted(tree.refs.begin(), tree.refs.begin() + tree.big_count));
   std::vector<bool> big(spheres.size()), referenced(spheres.size());
@@ -314,17 +301,17 @@ void expect_consistent_stats(const Octree& tree, const std::vector<Sphere>& sphe
                                      [](const GpuOctreeNode& n) { return !(n.count_or_mask & OCTREE_INTERNAL); }));
   EXPECT_EQ(st.max_depth_reached, deepest);
   EXPECT_EQ(st.refs, tree.refs.size());
-  EXPECT_EQ(st.big_spheres, tree.big_count);
+  EXPECT_EQ(st.big_primitives, tree.big_count);
   EXPECT_EQ(st.bytes, 32 * tree.nodes.size() + 4 * tree.refs.size());
   const double n = static_cast<double>(spheres.size());
-  EXPECT_DOUBLE_EQ(st.refs_per_sphere, spheres.empty() ? 0.0 : static_cast<double>(st.refs) / n);
-  EXPECT_DOUBLE_EQ(st.bytes_per_sphere, spheres.empty() ? 0.0 : static_cast<double>(st.bytes) / n);
+  EXPECT_DOUBLE_EQ(st.refs_per_primitive, spheres.empty() ? 0.0 : static_cast<double>(st.refs) / n);
+  EXPECT_DOUBLE_EQ(st.bytes_per_primitive, spheres.empty() ? 0.0 : static_cast<double>(st.bytes) / n);
   EXPECT_GE(st.build_ms, 0.0);
 }
 
 // Every guarantee at once, for one scene and one set of parameters.
 void expect_correct_octree(const std::vector<Sphere>& spheres, const OctreeParams& params, size_t rays = 2000) {
-  const Octree tree = build_octree(spheres, params);
+  const Octree tree = build_octree(sphere_boxes(spheres), params);
   const uint32_t deepest = expect_valid_structure(tree, spheres, params);
   expect_consistent_stats(tree, spheres, deepest);
   expect_spheres_findable(tree, spheres);
@@ -362,14 +349,14 @@ INSTANTIATE_TEST_SUITE_P(Scenes, OctreeRtiow,
 TEST(Octree, RtiowGroundIsTheOnlyBigSphere) {
   for (const uint64_t n : {0, 488, 8000}) {
     const auto spheres = rtiow(n, 0.1f);
-    const Octree tree = build_octree(spheres, {});
+    const Octree tree = build_octree(sphere_boxes(spheres), {});
     ASSERT_EQ(tree.big_count, 1u) << n << " spheres";
     EXPECT_EQ(spheres[tree.refs[0]].radius, 1000.0f);
   }
 }
 
 TEST(Octree, EmptySceneIsAnEmptyRootLeaf) {
-  const Octree tree = build_octree({}, {});
+  const Octree tree = build_octree(std::span<const Aabb>{}, {});
   ASSERT_EQ(tree.nodes.size(), 1u);
   EXPECT_EQ(tree.nodes[0].count_or_mask, 0u);
   EXPECT_TRUE(tree.refs.empty());
@@ -379,7 +366,7 @@ TEST(Octree, EmptySceneIsAnEmptyRootLeaf) {
 
 TEST(Octree, OneSphere) {
   const std::vector<Sphere> spheres = {{{1, 2, 3}, 0.5f, 0}};
-  const Octree tree = build_octree(spheres, {});
+  const Octree tree = build_octree(sphere_boxes(spheres), {});
   EXPECT_EQ(tree.big_count, 1u);
   expect_correct_octree(spheres, {});
 }
@@ -388,8 +375,8 @@ TEST(Octree, BigSpheresStopAtSixteen) {
   // Concentric spheres, each twice the radius of the next: all big by the rule.
   std::vector<Sphere> spheres;
   for (int i = 0; i < 20; ++i) spheres.push_back({{0, 0, 0}, std::ldexp(1.0f, 10 - i), 0});
-  const Octree tree = build_octree(spheres, {});
-  EXPECT_EQ(tree.big_count, kMaxBigSpheres);
+  const Octree tree = build_octree(sphere_boxes(spheres), {});
+  EXPECT_EQ(tree.big_count, kMaxBigPrimitives);
   expect_correct_octree(spheres, {});
 }
 
@@ -397,7 +384,7 @@ TEST(Octree, FieldOfEqualSpheresHasNoBigSphere) {
   std::vector<Sphere> spheres;
   for (int x = 0; x < 10; ++x)
     for (int z = 0; z < 10; ++z) spheres.push_back({{x, 0.5f, z}, 0.4f, 0});
-  EXPECT_EQ(build_octree(spheres, {}).big_count, 0u);
+  EXPECT_EQ(build_octree(sphere_boxes(spheres), {}).big_count, 0u);
 }
 
 TEST(Octree, CoincidentSpheres) {
@@ -448,7 +435,7 @@ TEST(Octree, ReferencesStayWithinEightPerSphere) {
   std::vector<Sphere> line(10000);
   for (Sphere& s : line) s = {{1e5f + u(rng), u(rng), 0.0f}, 1e-7f, 0};
   for (const OctreeParams params : {OctreeParams{}, OctreeParams{1, 20}}) {
-    const Octree tree = build_octree(line, params);
+    const Octree tree = build_octree(sphere_boxes(line), params);
     EXPECT_LE(tree.refs.size(), 8 * line.size());
     expect_correct_octree(line, params, 500);
   }
@@ -457,9 +444,9 @@ TEST(Octree, ReferencesStayWithinEightPerSphere) {
 TEST(Octree, SameInputSameOutput) {
   // Large enough to be built by several threads.
   const auto spheres = rtiow(300000, 0.02f);
-  const Octree a = build_octree(spheres, {});
+  const Octree a = build_octree(sphere_boxes(spheres), {});
   for (int i = 0; i < 3; ++i) {
-    const Octree b = build_octree(spheres, {});
+    const Octree b = build_octree(sphere_boxes(spheres), {});
     ASSERT_EQ(a.nodes.size(), b.nodes.size());
     EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(GpuOctreeNode)), 0);
     EXPECT_EQ(a.refs, b.refs);
@@ -473,24 +460,25 @@ TEST(Octree, SameInputSameOutput) {
 
 TEST(Octree, AtMost64BytesPerSphere) {
   for (const RtiowCase c : {RtiowCase{488, 0.2f}, RtiowCase{8000, 0.1f}, RtiowCase{1000000, 0.01f}}) {
-    const Octree tree = build_octree(rtiow(c.spheres, c.radius), {});
-    EXPECT_LE(tree.stats.bytes_per_sphere, 64.0) << c.spheres << " spheres of radius " << c.radius;
+    const Octree tree = build_octree(sphere_boxes(rtiow(c.spheres, c.radius)), {});
+    EXPECT_LE(tree.stats.bytes_per_primitive, 64.0) << c.spheres << " spheres of radius " << c.radius;
   }
 }
 
-TEST(Octree, BadParametersNameTheFlag) {
+// The library names its own settings; the CLI maps them to flags (cli_test).
+TEST(Octree, BadParametersNameTheSetting) {
   const auto spheres = rtiow(10, 0.2f);
   const auto message = [&](OctreeParams params) -> std::string {
     try {
-      build_octree(spheres, params);
-    } catch (const InputError& e) {
-      return e.what();
+      build_octree(sphere_boxes(spheres), params);
+    } catch (const SettingError& e) {
+      return e.setting + " | " + e.what();
     }
     return "no error";
   };
-  EXPECT_EQ(message({0, 16}), "--octree-leaf: must be >= 1, got 0");
-  EXPECT_EQ(message({8, 0}), "--octree-depth: must be in 1..20, got 0");
-  EXPECT_EQ(message({8, 21}), "--octree-depth: must be in 1..20, got 21");
+  EXPECT_EQ(message({0, 16}), "octree.leaf_size | octree.leaf_size: must be >= 1, got 0");
+  EXPECT_EQ(message({8, 0}), "octree.max_depth | octree.max_depth: must be in 1..20, got 0");
+  EXPECT_EQ(message({8, 21}), "octree.max_depth | octree.max_depth: must be in 1..20, got 21");
   EXPECT_EQ(message({1, 20}), "no error");
 }
 

@@ -32,6 +32,8 @@
 #include <glm/gtc/packing.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "render/camera.h"
+#include "render/gpu_scene.h"
 #include "test_util.h"
 
 namespace octrace {
@@ -124,7 +126,7 @@ RenderSettings settings(int width, int height, uint32_t spp, uint32_t depth = 50
   s.width = width;
   s.height = height;
   s.spp = spp;
-  s.max_depth = depth;
+  s.bounce_limit = depth;
   s.sample_seed = seed;
   return s;
 }
@@ -156,34 +158,6 @@ double image_mean(const Image& img) {
   double sum = 0;
   for (float v : img.rgb) sum += v;
   return sum / double(img.rgb.size());
-}
-
-// The host's camera (path_tracer.cpp set_camera, RTIOW v4) in double: the ray
-// of image point (x, y) in pixel units, for a pinhole.
-struct PinholeCamera {
-  glm::dvec3 origin, pixel00, du, dv;
-  PinholeCamera(const Camera& c, int width, int height) {
-    glm::dvec3 from(c.lookfrom), at(c.lookat), vup(c.vup);
-    double h = std::tan(glm::radians(double(c.vfov)) / 2.0);
-    double vh = 2.0 * h * c.focus_dist, vw = vh * double(width) / double(height);
-    glm::dvec3 w = glm::normalize(from - at), u = glm::normalize(glm::cross(vup, w)), v = glm::cross(w, u);
-    origin = from;
-    pixel00 = from - double(c.focus_dist) * w - vw * u / 2.0 + vh * v / 2.0;
-    du = vw * u / double(width);
-    dv = -vh * v / double(height);
-  }
-  glm::dvec3 dir(double x, double y) const { return glm::normalize(pixel00 + x * du + y * dv - origin); }
-};
-
-// Distance along a unit-direction ray to a sphere (double), or -1.
-double ray_sphere(glm::dvec3 o, glm::dvec3 d, glm::dvec3 c, double r) {
-  glm::dvec3 f = o - c;
-  double b = -glm::dot(f, d);
-  glm::dvec3 l = f + b * d;
-  double disc = r * r - glm::dot(l, l);
-  if (disc < 0) return -1;
-  double t = b - std::sqrt(disc);
-  return t > 0 ? t : -1;
 }
 
 // Image-to-image agreement of two renders of the same scene with the same
@@ -293,7 +267,7 @@ void fuzzy_metal(CaseRun& run) {
   Scene s = furnace({metal(1.0f, 0.5f)}, {{{0, 0, 0}, 1.5f, 0}});
   const int w = 48, h = 32;
   RenderResult r = run.render(s, settings(w, h, 64));
-  PinholeCamera cam(s.camera, w, h);
+  const CameraFrame cam = camera_frame(s.camera, w, h);
   const int sub = 64;
   double expected = 0, var = 0, measured = 0, worst_over = 0;
   for (int y = 0; y < h; ++y)
@@ -302,8 +276,8 @@ void fuzzy_metal(CaseRun& run) {
       for (int j = 0; j < sub; ++j)
         for (int i = 0; i < sub; ++i) {
           glm::dvec3 d = cam.dir(x + (i + 0.5) / sub, y + (j + 0.5) / sub);
-          double t = ray_sphere(cam.origin, d, glm::dvec3(0), 1.5);
-          double c = t > 0 ? -glm::dot(d, glm::normalize(cam.origin + t * d)) : 1.0;
+          double t = test::ray_sphere(cam.origin, d, glm::dvec3(0), 1.5);
+          double c = std::isfinite(t) ? -glm::dot(d, glm::normalize(cam.origin + t * d)) : 1.0;
           pixel += 1.0 - std::max(0.0, 0.5 - c);
         }
       expected += pixel / (sub * sub);
@@ -468,7 +442,7 @@ void camera_on_cell_face(CaseRun& run) {
   s.sky.type = SkyType::Gradient;
   RenderSettings rs = settings(48, 32, 4, 8);
   rs.octree.leaf_size = 1;
-  Octree tree = build_octree(s.spheres, rs.octree);
+  Octree tree = build_octree(sphere_boxes(s.spheres), rs.octree);
   // The smallest leaf whose low-x face has its centre outside every sphere.
   const gpu::GpuOctreeNode* best = nullptr;
   glm::vec3 face;
@@ -563,7 +537,7 @@ void zero_spheres(CaseRun& run) {
   s.camera.vfov = 90;
   const int w = 32, h = 24;
   RenderResult r = run.render(s, settings(w, h, 16));
-  PinholeCamera cam(s.camera, w, h);
+  const CameraFrame cam = camera_frame(s.camera, w, h);
   double expected = 0;
   const int sub = 16;
   for (int y = 0; y < h; ++y)
@@ -670,8 +644,8 @@ void long_accumulation(CaseRun& run) {
   const uint32_t passes = 1u << 17;
   RenderResult r = run.render(s, settings(w, h, passes));
   // The host's camera as the shader sees it (float).
-  PinholeCamera cam(s.camera, w, h);
-  glm::vec3 p00(cam.pixel00), du(cam.du), dv(cam.dv), org(cam.origin);
+  const CameraFrame cam = camera_frame(s.camera, w, h);
+  glm::vec3 p00(cam.pixel00), du(cam.pixel_du), dv(cam.pixel_dv), org(cam.origin);
   const bool half = run.precision_kind() != Precision::FP32;
   double worst = 0, naive_worst = 0;
   for (int y = 0; y < h; ++y)
@@ -711,14 +685,15 @@ void acne_analytic(CaseRun& run) {
   Scene s = furnace({lambertian(0.5f)}, {{{0, 0, 0}, 1.5f, 0}});
   const int w = 48, h = 32;
   RenderResult r = run.render(s, settings(w, h, 16));
-  PinholeCamera cam(s.camera, w, h);
+  const CameraFrame cam = camera_frame(s.camera, w, h);
   double worst = 0;
   int covered = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       bool inside = true;
       for (int c = 0; c < 4; ++c)
-        inside = inside && ray_sphere(cam.origin, cam.dir(x + (c & 1), y + (c >> 1)), glm::dvec3(0), 1.5) > 0;
+        inside = inside && std::isfinite(test::ray_sphere(cam.origin, cam.dir(x + (c & 1), y + (c >> 1)),
+                                                          glm::dvec3(0), 1.5));
       if (!inside) continue;
       ++covered;
       for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(r.mean.pixel(x, y)[c]) - 0.5));

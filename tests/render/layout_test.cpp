@@ -1,10 +1,12 @@
-// The C++ structs of shaders/shared.h agree with the GLSL compiler's std430
-// layout: a probe shader writes a distinct value into every field, and the
-// host reads each one back through the C++ struct.
+// The C++ structs of shaders/shared/shared.h agree with the GLSL compiler's
+// std430 layout: a probe shader writes a distinct value into every field of
+// every shared struct, and the host reads each one back through the C++ struct.
 #include <vector>
 
-#include "render/gpu_layout.h"
+#include <glm/gtc/packing.hpp>
+
 #include "layout_probe.h"
+#include "render/gpu_layout.h"
 #include "test_util.h"
 #include "vk/resources.h"
 
@@ -15,14 +17,22 @@ class LayoutTest : public test::VulkanTest {};
 
 TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   VulkanContext& ctx = test::shared_context();
-  Buffer frame_buf, sphere_buf, material_buf, stats_buf;
-  create_buffer(frame_buf, ctx, sizeof(gpu::FrameParams), false, "probe");
+  // The probe writes the half material too: it needs 16-bit storage, which
+  // every device the suite runs on (lavapipe, the H100) has.
+  ASSERT_TRUE(ctx.fp16_enabled) << ctx.info.name << " lacks 16-bit storage";
+  Buffer scene_buf, pass_buf, resolve_buf, sphere_buf, material_buf, half_buf, node_buf, stats_buf;
+  create_buffer(scene_buf, ctx, sizeof(gpu::SceneParams), false, "probe");
+  create_buffer(pass_buf, ctx, sizeof(gpu::PassParams), false, "probe");
+  create_buffer(resolve_buf, ctx, sizeof(gpu::ResolveParams), false, "probe");
   create_buffer(sphere_buf, ctx, 2 * sizeof(gpu::GpuSphere), false, "probe");
   create_buffer(material_buf, ctx, 2 * sizeof(gpu::GpuMaterial), false, "probe");
+  create_buffer(half_buf, ctx, 2 * sizeof(gpu::GpuMaterialHalf), false, "probe");
+  create_buffer(node_buf, ctx, 2 * sizeof(gpu::GpuOctreeNode), false, "probe");
   create_buffer(stats_buf, ctx, 2 * sizeof(gpu::RenderStats), false, "probe");
   ComputePipeline pipeline;
-  create_compute_pipeline(pipeline, ctx, layout_probe_spv, sizeof(layout_probe_spv), 4, 0);
-  bind_buffers(pipeline, {&frame_buf, &sphere_buf, &material_buf, &stats_buf});
+  create_compute_pipeline(pipeline, ctx, layout_probe_spv, sizeof(layout_probe_spv), 8, 0);
+  bind_buffers(pipeline, {{0, &scene_buf}, {1, &pass_buf}, {2, &resolve_buf}, {3, &sphere_buf},
+                          {4, &material_buf}, {5, &half_buf}, {6, &node_buf}, {7, &stats_buf}});
   submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout, 0, 1, &pipeline.set, 0, nullptr);
@@ -30,8 +40,19 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     compute_barrier(cmd);
   });
 
-  gpu::FrameParams f{};
-  download_buffer(ctx, frame_buf, &f, sizeof f);
+  gpu::SceneParams sc{};
+  download_buffer(ctx, scene_buf, &sc, sizeof sc);
+  EXPECT_EQ(sc.sky_a, glm::vec3(1, 2, 3));
+  EXPECT_EQ(sc.sky_type, 4u);
+  EXPECT_EQ(sc.sky_b, glm::vec3(5, 6, 7));
+  EXPECT_EQ(sc.sphere_count, 8u);
+  EXPECT_EQ(sc.big_count, 9u);
+  EXPECT_EQ(sc.pad0, 10u);
+  EXPECT_EQ(sc.pad1, 11u);
+  EXPECT_EQ(sc.pad2, 12u);
+
+  gpu::PassParams f{};
+  download_buffer(ctx, pass_buf, &f, sizeof f);
   EXPECT_EQ(f.cam_origin, glm::vec3(1, 2, 3));
   EXPECT_EQ(f.lens_radius, 4);
   EXPECT_EQ(f.lens_u, glm::vec3(5, 6, 7));
@@ -39,22 +60,34 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   EXPECT_EQ(f.lens_v, glm::vec3(9, 10, 11));
   EXPECT_EQ(f.height, 12u);
   EXPECT_EQ(f.pixel00, glm::vec3(13, 14, 15));
-  EXPECT_EQ(f.max_depth, 16u);
+  EXPECT_EQ(f.bounce_limit, 16u);
   EXPECT_EQ(f.pixel_du, glm::vec3(17, 18, 19));
   EXPECT_EQ(f.sample_seed, 20u);
   EXPECT_EQ(f.pixel_dv, glm::vec3(21, 22, 23));
-  EXPECT_EQ(f.sphere_count, 24u);
-  EXPECT_EQ(f.sky_a, glm::vec3(25, 26, 27));
-  EXPECT_EQ(f.sky_type, 28u);
-  EXPECT_EQ(f.sky_b, glm::vec3(29, 30, 31));
-  EXPECT_EQ(f.big_count, 32u);
+  EXPECT_EQ(f.sample_index, 24u);
+  EXPECT_EQ(f.rr_depth, 25u);
+  EXPECT_EQ(f.pad0, 26u);
+  EXPECT_EQ(f.pad1, 27u);
+  EXPECT_EQ(f.pad2, 28u);
+
+  gpu::ResolveParams r{};
+  download_buffer(ctx, resolve_buf, &r, sizeof r);
+  EXPECT_EQ(r.width, 1u);
+  EXPECT_EQ(r.height, 2u);
+  EXPECT_EQ(r.pad0, 3u);
+  EXPECT_EQ(r.pad1, 4u);
 
   gpu::GpuSphere spheres[2];
   gpu::GpuMaterial materials[2];
+  gpu::GpuMaterialHalf halves[2];
+  gpu::GpuOctreeNode nodes[2];
   gpu::RenderStats stats[2];
   download_buffer(ctx, sphere_buf, spheres, sizeof spheres);
   download_buffer(ctx, material_buf, materials, sizeof materials);
+  download_buffer(ctx, half_buf, halves, sizeof halves);
+  download_buffer(ctx, node_buf, nodes, sizeof nodes);
   download_buffer(ctx, stats_buf, stats, sizeof stats);
+  const auto half = [](uint16_t bits) { return glm::unpackHalf1x16(bits); };
   for (int i = 0; i < 2; ++i) {
     float o = 100.0f * float(i + 1);
     uint32_t u = uint32_t(o);
@@ -67,7 +100,17 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(materials[i].pad0, u + 11) << "material " << i;
     EXPECT_EQ(materials[i].pad1, u + 12) << "material " << i;
     EXPECT_EQ(stats[i].nonfinite_samples, u + 13) << "stats " << i;
+    EXPECT_EQ(stats[i].pad0, u + 14) << "stats " << i;
+    EXPECT_EQ(stats[i].pad1, u + 15) << "stats " << i;
     EXPECT_EQ(stats[i].pad2, u + 16) << "stats " << i;
+    for (int c = 0; c < 4; ++c) {
+      EXPECT_EQ(half(halves[i].color_type[c]), o + 17 + float(c)) << "half material " << i << " color_type " << c;
+      EXPECT_EQ(half(halves[i].params[c]), o + 21 + float(c)) << "half material " << i << " params " << c;
+    }
+    EXPECT_EQ(nodes[i].lo, glm::vec3(o + 25, o + 26, o + 27)) << "node " << i;
+    EXPECT_EQ(nodes[i].first, u + 28) << "node " << i;
+    EXPECT_EQ(nodes[i].hi, glm::vec3(o + 29, o + 30, o + 31)) << "node " << i;
+    EXPECT_EQ(nodes[i].count_or_mask, u + 32) << "node " << i;
   }
 }
 

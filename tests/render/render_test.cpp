@@ -14,7 +14,7 @@ RenderResult render_small(const Scene& scene, uint32_t spp, uint32_t depth = 50,
   s.width = 48;
   s.height = 32;
   s.spp = spp;
-  s.max_depth = depth;
+  s.bounce_limit = depth;
   s.sample_seed = sample_seed;
   return render(test::shared_context(), scene, s);
 }

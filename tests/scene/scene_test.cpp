@@ -193,12 +193,12 @@ TEST(Rtiow, MakesAMillionSpheres) {
 }
 
 TEST(Rtiow, RefusesBadParameters) {
-  EXPECT_EQ(input_error([] { rtiow(10, -1.0f); }), "--radius: must be a finite number > 0, got -1");
-  EXPECT_EQ(input_error([] { rtiow(10, 0.0f); }), "--radius: must be a finite number > 0, got 0");
-  EXPECT_EQ(input_error([] { rtiow(10, NAN); }), "--radius: must be a finite number > 0, got nan");
-  EXPECT_EQ(input_error([] { rtiow(10, INFINITY); }), "--radius: must be a finite number > 0, got inf");
+  EXPECT_EQ(input_error([] { rtiow(10, -1.0f); }), "rtiow.radius: must be a finite number > 0, got -1");
+  EXPECT_EQ(input_error([] { rtiow(10, 0.0f); }), "rtiow.radius: must be a finite number > 0, got 0");
+  EXPECT_EQ(input_error([] { rtiow(10, NAN); }), "rtiow.radius: must be a finite number > 0, got nan");
+  EXPECT_EQ(input_error([] { rtiow(10, INFINITY); }), "rtiow.radius: must be a finite number > 0, got inf");
   EXPECT_EQ(input_error([] { rtiow(100000001, 0.01f); }),
-            "--spheres: at most 100000000 small spheres, got 100000001");
+            "rtiow.spheres: at most 100000000 small spheres, got 100000001");
 }
 
 // ---------------------------------------------------------------------------

@@ -1,0 +1,14 @@
+// Wall-clock timing on the host (device time comes from vk/timer.h).
+#pragma once
+
+#include <chrono>
+
+namespace octrace {
+
+using Clock = std::chrono::steady_clock;
+
+inline double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+}  // namespace octrace

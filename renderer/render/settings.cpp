@@ -1,0 +1,46 @@
+#include "render/settings.h"
+
+#include "core/errors.h"
+#include "shared/shared.h"
+
+namespace octrace {
+
+const char* accel_name(Accel a) { return a == Accel::Octree ? "octree" : "brute"; }
+
+Accel parse_accel(const std::string& name) {
+  for (Accel a : {Accel::Octree, Accel::Brute})
+    if (name == accel_name(a)) return a;
+  throw SettingError("accel", ": expected octree or brute, got \"" + name + "\"");
+}
+
+const char* precision_name(Precision p) {
+  switch (p) {
+    case Precision::FP16: return "fp16";
+    case Precision::FP16All: return "fp16-all";
+    default: return "fp32";
+  }
+}
+
+Precision parse_precision(const std::string& name) {
+  for (Precision p : {Precision::FP32, Precision::FP16, Precision::FP16All})
+    if (name == precision_name(p)) return p;
+  throw SettingError("precision", ": expected fp32, fp16 or fp16-all, got \"" + name + "\"");
+}
+
+void validate_settings(const RenderSettings& s) {
+  const std::string size = " " + std::to_string(s.width) + "x" + std::to_string(s.height);
+  if (s.width < 1 || s.height < 1) throw SettingError("size", size + ": width and height must be >= 1");
+  // The dispatch grid is at most 65535 workgroups of 8 per dimension on every
+  // device we know; far above any sensible image.
+  const int max_side = 65535 * int(gpu::WORKGROUP_SIZE);
+  if (s.width > max_side || s.height > max_side)
+    throw SettingError("size", size + ": each side must be <= " + std::to_string(max_side));
+  if (s.spp < 1) throw SettingError("spp", ": must be >= 1");
+  if (uint64_t(s.first_sample) + s.spp > (uint64_t(1) << 32))
+    throw SettingError("first_sample", ": first sample + spp must be <= 2^32");
+  if (s.spp > (1u << 24))
+    throw SettingError("spp", ": must be <= 16777216 (sample counts are exact fp32 integers)");
+  if (s.bounce_limit < 1) throw SettingError("bounce_limit", ": must be >= 1");
+}
+
+}  // namespace octrace

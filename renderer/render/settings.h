@@ -1,0 +1,50 @@
+// What a render is asked to do besides the scene: the acceleration structure,
+// the precision variant, the effects, the image and the sampling. Plain
+// values; validate_settings checks them before anything is allocated.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "accel/octree.h"
+
+namespace octrace {
+
+enum class Accel { Brute, Octree };
+const char* accel_name(Accel a);
+// "octree" | "brute"; throws SettingError("accel").
+Accel parse_accel(const std::string& name);
+
+// Which quantities the shading code keeps in half (shaders/shading/precision.glsl).
+enum class Precision { FP32, FP16, FP16All };
+const char* precision_name(Precision p);
+// "fp32" | "fp16" | "fp16-all"; throws SettingError("precision").
+Precision parse_precision(const std::string& name);
+
+struct RenderSettings {
+  Accel accel = Accel::Octree;
+  Precision precision = Precision::FP32;
+  // false: the pipeline is specialised to the scene's features (`auto`);
+  // true: the general pipeline with every effect (`all`).
+  bool all_effects = false;
+  OctreeParams octree;
+  int width = 1200;
+  int height = 800;
+  uint32_t spp = 10;
+  // The first sample index of this render: runs with disjoint ranges of
+  // sample indices (on other devices or machines) merge into one render.
+  uint32_t first_sample = 0;
+  // Per pass (PassSettings), given here for a whole render:
+  uint32_t bounce_limit = 50;  // a path that reaches it contributes 0
+  uint32_t sample_seed = 1;
+  // Russian roulette from this bounce on (0: off): a path survives with
+  // probability p = min(max throughput, 0.95) and carries 1/p more, so the
+  // expectation is unchanged and the noise grows; paths end sooner.
+  uint32_t rr_depth = 0;
+};
+
+// Checks sizes and counts; throws SettingError naming the setting
+// ("size 0x10: width and height must be >= 1").
+void validate_settings(const RenderSettings& settings);
+
+}  // namespace octrace

@@ -1,0 +1,15 @@
+// A surface point: what the integrator knows of a hit, whatever primitive
+// kind it was. Each kind's geometry file turns its hits into one; the
+// shading code sees only this.
+#ifndef OCTRACE_SURFACE_GLSL
+#define OCTRACE_SURFACE_GLSL
+
+struct Surface {
+  vec3 p;          // the hit point
+  vec3 ng;         // geometric normal, unit, outward: decides sides and offsets
+  vec3 ns;         // shading normal, unit, outward (interpolated or mapped; = ng for spheres)
+  uint material;   // index into the material array
+  vec2 uv;         // texture coordinates (0 where a primitive has none)
+};
+
+#endif
