@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Every GPU figure in the README, in one command: device list, the bench of
-# octree against brute force, the precision bench, the million-sphere scene,
-# and the accuracy report. Run on the GPU machine (see ../shared/GPU.md):
+# The GPU figures of docs/performance.md and docs/precision.md in one command:
+# device list, the bench of octree against brute force, the precision bench,
+# the million-sphere scene, the effects bench and the accuracy report. Run on
+# the GPU machine with a build of octrace for it:
 #   tools/gpu_measure.sh OCTRACE_BINARY OUT_DIR
 set -euo pipefail
 bin=$1; out=$2

@@ -3,7 +3,7 @@
 
     rm -f /tmp/hardcases.tsv
     OCTRACE_HARDCASES_TABLE=/tmp/hardcases.tsv build/tests/hardcases_test
-    tools/hardcases_table.py /tmp/hardcases.tsv --update docs/hardcases.md
+    tools/hardcases_table.py /tmp/hardcases.tsv --update
 
 Input: one row per criterion and variant, tab-separated:
     case, quantity, bound, accel, precision, measured value, pass|FAIL
@@ -14,13 +14,17 @@ precision x accel with the measured value, and the verdict over all variants.
 Where a precision has its own bound, its cells show it after the value.
 Without --update the table goes to stdout; with it, the text between the
 markers <!-- hardcases-table:begin --> and <!-- hardcases-table:end --> in
-that file is replaced. Python standard library only.
+docs/hardcases.md (the one copy of the table; or the file named after
+--update) is replaced; each marker must occur exactly once there. Python
+standard library only.
 """
 import argparse
+import pathlib
 import sys
 
 BEGIN = "<!-- hardcases-table:begin -->"
 END = "<!-- hardcases-table:end -->"
+DEFAULT_DOC = pathlib.Path(__file__).resolve().parent.parent / "docs" / "hardcases.md"
 
 
 def read_rows(path):
@@ -76,7 +80,8 @@ def table(rows, variants):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("rows", help="file written by OCTRACE_HARDCASES_TABLE=FILE build/tests/hardcases_test")
-    parser.add_argument("--update", metavar="MARKDOWN", help="replace the table between the markers in this file")
+    parser.add_argument("--update", metavar="MARKDOWN", nargs="?", const=str(DEFAULT_DOC),
+                        help="replace the table between the markers in this file (default: docs/hardcases.md)")
     args = parser.parse_args()
     rows, variants = read_rows(args.rows)
     if not rows:
@@ -87,8 +92,8 @@ def main():
         return
     with open(args.update, encoding="utf-8") as f:
         doc = f.read()
-    if BEGIN not in doc or END not in doc:
-        sys.exit(f"{args.update}: markers {BEGIN} and {END} not found")
+    if doc.count(BEGIN) != 1 or doc.count(END) != 1 or doc.index(BEGIN) > doc.index(END):
+        sys.exit(f"{args.update}: expected {BEGIN} and then {END}, once each")
     before, rest = doc.split(BEGIN, 1)
     _, after = rest.split(END, 1)
     with open(args.update, "w", encoding="utf-8") as f:

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Times `octrace render` the way the README reports it: one warm-up run, then
+"""Times `octrace render` the way docs/performance.md reports it: one warm-up run, then
 N runs; prints the median, min and max of the device render time (timestamp
 queries, from --json) and of the whole process's wall time, and with the
 octree its build time and statistics.
