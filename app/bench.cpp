@@ -6,7 +6,7 @@
 #include <map>
 #include <optional>
 
-#include "io/atomic_file.h"
+#include "io/file.h"
 #include "vk/context.h"
 
 namespace octrace {

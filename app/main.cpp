@@ -19,7 +19,7 @@
 
 #include "bench.h"
 #include "io/image.h"
-#include "io/atomic_file.h"
+#include "io/file.h"
 #include "core/clock.h"
 #include "render/path_tracer.h"
 #include "render/render_state.h"

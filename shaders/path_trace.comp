@@ -39,7 +39,7 @@ layout(constant_id = SPEC_DEFOCUS) const bool HAS_DEFOCUS = true;
 layout(constant_id = SPEC_SKY) const uint SKY = SKY_RUNTIME;
 layout(constant_id = SPEC_ANY_LIGHT) const bool ANY_LIGHT = true;
 
-#include "sampling/rng.glsl"
+#include "shared/rng.h"
 #include "sampling/warp.glsl"
 #include "geometry/camera.glsl"
 #include "accel/closest_hit.glsl"

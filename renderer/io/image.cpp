@@ -20,7 +20,7 @@
 #include <iterator>
 #include <limits>
 
-#include "io/atomic_file.h"
+#include "io/file.h"
 #include "core/errors.h"
 
 namespace octrace {
@@ -139,14 +139,6 @@ Bytes encode_exr(const Image& image, const std::string& path) {
 
 // --- Decoding from bytes. Every length is checked against the file size, so
 // a truncated or corrupt file gives an error, not a crash.
-
-Bytes read_file(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path + ": cannot open file");
-  Bytes bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  if (file.bad()) throw InputError(path + ": cannot read file");
-  return bytes;
-}
 
 Image decode_png(const std::string& path, const Bytes& bytes) {
   // 16-bit decoding reads 8- and 16-bit PNGs alike without losing precision
@@ -350,7 +342,8 @@ void write_image(const Image& image, const std::string& path) {
 
 Image read_image(const std::string& path) {
   ImageFormat format = image_format(path);
-  Bytes bytes = read_file(path);
+  const std::string text = read_file(path);
+  const Bytes bytes(text.begin(), text.end());
   return format == ImageFormat::png   ? decode_png(path, bytes)
          : format == ImageFormat::pfm ? decode_pfm(path, bytes)
                                       : decode_exr(path, bytes);

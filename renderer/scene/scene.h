@@ -10,7 +10,7 @@
 
 namespace octrace {
 
-// Values match the MAT_* constants in shaders/shared.h.
+// Values match the MAT_* constants in shaders/shared/shared.h (static_assert in render/gpu_layout.h).
 enum class MaterialType : uint32_t { Lambertian = 0, Metal = 1, Dielectric = 2, Emissive = 3 };
 
 struct Material {
@@ -42,7 +42,7 @@ struct Camera {
   bool operator==(const Camera&) const = default;
 };
 
-// Values match the SKY_* constants in shaders/shared.h.
+// Values match the SKY_* constants in shaders/shared/shared.h (static_assert in render/gpu_layout.h).
 enum class SkyType : uint32_t { Gradient = 0, Uniform = 1, None = 2 };
 
 struct Sky {

@@ -37,7 +37,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/atomic_file.h"
+#include "io/file.h"
 #include "core/errors.h"
 #include "scene/scene.h"
 
@@ -424,27 +424,7 @@ Scene parse_scene_json(const std::string& text, const std::string& source) {
   return scene;
 }
 
-Scene load_scene_json(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw InputError(path + ": cannot open file: " + std::strerror(errno));
-  std::string text;
-  struct stat st {};
-  if (::fstat(fd, &st) == 0 && st.st_size > 0) text.reserve(static_cast<size_t>(st.st_size));
-  char buf[1 << 16];
-  for (;;) {
-    const ssize_t n = ::read(fd, buf, sizeof buf);
-    if (n == 0) break;
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) {
-      const int err = errno;
-      ::close(fd);
-      throw InputError(path + ": cannot read file: " + std::strerror(err));
-    }
-    text.append(buf, static_cast<size_t>(n));
-  }
-  ::close(fd);
-  return parse_scene_json(text, path);
-}
+Scene load_scene_json(const std::string& path) { return parse_scene_json(read_file(path), path); }
 
 std::string scene_to_json(const Scene& scene) {
   // What is written must load again; non-finite numbers cannot even be written.

@@ -5,7 +5,7 @@
 #define OCTRACE_WARP_GLSL
 
 #include "geometry/ray.glsl"
-#include "sampling/rng.glsl"
+#include "shared/rng.h"
 
 // A direction uniform on the unit sphere (z uniform in [-1,1], phi uniform):
 // the distribution the book's rejection-sampled random_unit_vector has, from

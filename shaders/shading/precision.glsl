@@ -12,7 +12,7 @@
 // (the ground's r^2 = 1e6 exceeds half's largest value, 65504: the study's
 // fp16 ground vanished as inf - inf = NaN), sphere storage, octree bounds,
 // the ray direction used for intersection (re-normalised in fp32) and the
-// accumulation buffers. README "Precision" has the table and the measurements.
+// accumulation buffers. docs/precision.md has the table and the measurements.
 #ifndef OCTRACE_PRECISION_GLSL
 #define OCTRACE_PRECISION_GLSL
 

@@ -34,6 +34,7 @@
 
 #include "render/camera.h"
 #include "render/gpu_scene.h"
+#include "shared/rng.h"
 #include "test_util.h"
 
 namespace octrace {
@@ -48,7 +49,7 @@ struct AccelVariant {
 };
 const AccelVariant ACCELS[] = {{"octree", Accel::Octree}, {"brute", Accel::Brute}};
 
-// The shader precisions (renderer/path_tracer.h): one line each.
+// The shader precisions (renderer/render/settings.h): one line each.
 struct PrecisionVariant {
   const char* name;
   Precision precision;
@@ -615,23 +616,6 @@ void huge_aperture(CaseRun& run) {
 // plain sum, the fp32 running sum of the same samples misses it by more.
 // Kahan's error bound does not grow with the count, so 2^17 passes (4 s on
 // lavapipe) stand for the 1e6 of the issue; the control's drift grows with it.
-uint32_t pcg_next(uint32_t& state) {
-  state = state * 747796405u + 2891336453u;
-  uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-  word = (word >> 22u) ^ word;
-  return word >> 8u;
-}
-
-uint32_t camera_rng(uint32_t seed, uint32_t pixel, uint32_t sample) {
-  uint32_t v[4] = {pixel, sample, 0xffffffffu, seed};
-  for (uint32_t& x : v) x = x * 1664525u + 1013904223u;
-  auto mix = [&] { v[0] += v[1] * v[3]; v[1] += v[2] * v[0]; v[2] += v[0] * v[1]; v[3] += v[1] * v[2]; };
-  mix();
-  for (uint32_t& x : v) x ^= x >> 16u;
-  mix();
-  return v[0] ^ v[2];
-}
-
 void long_accumulation(CaseRun& run) {
   Scene s = furnace({}, {});
   s.sky.type = SkyType::Gradient;
@@ -654,9 +638,9 @@ void long_accumulation(CaseRun& run) {
       glm::dvec3 sum(0.0);
       glm::vec3 naive(0.0f);
       for (uint32_t k = 0; k < passes; ++k) {
-        uint32_t state = camera_rng(1, index, k);
-        float jx = float(pcg_next(state)) * (1.0f / 16777216.0f);
-        float jy = float(pcg_next(state)) * (1.0f / 16777216.0f);
+        gpu::Rng rng = gpu::rng_init(1, index, k, gpu::CAMERA_BOUNCE);
+        float jx = gpu::rng_next(rng);
+        float jy = gpu::rng_next(rng);
         glm::vec3 target = p00 + (float(x) + jx) * du + (float(y) + jy) * dv;
         glm::vec3 d = glm::normalize(target - org);
         float t = 0.5f * (d.y + 1.0f);

@@ -1,5 +1,6 @@
-// Writing a file so that a failed or interrupted run never leaves a truncated
-// one: every file octrace writes (images, scenes, CSVs) goes through here.
+// Files: every file octrace reads (scenes, images) and writes (images,
+// scenes, CSVs) goes through here. Writing is atomic, so that a failed or
+// interrupted run never leaves a truncated file.
 #pragma once
 
 #include <cstddef>
@@ -14,6 +15,10 @@ namespace octrace {
 // "PATH: WHAT: reason" is thrown (WHAT e.g. "cannot write image").
 void write_file_atomically(const std::string& path, const void* data, size_t size,
                            const std::string& what = "cannot write");
+
+// The whole file. Throws InputError "PATH: cannot open file: reason" (or
+// "cannot read file").
+std::string read_file(const std::string& path);
 
 // Checks, before any long work, that `path`'s folder exists and can be written
 // to. Throws InputError "PATH: folder does not exist" / "... is not writable".
