@@ -269,7 +269,11 @@ void Viewer::camera_moved() {
 void Viewer::frame() {
   uint32_t passes = 0;
   if (spp_ < target_spp()) {
-    passes = pass_ms_ > 0 ? uint32_t(std::clamp(kPassBudgetMs / pass_ms_, 1.0, double(kMaxPassesPerFrame))) : 1;
+    // The first frame after a restart shows one pass at once (a camera move
+    // is seen after one pass, not after a frame's budget of them).
+    passes = pass_ms_ > 0 && spp_ > 0
+                 ? uint32_t(std::clamp(kPassBudgetMs / pass_ms_, 1.0, double(kMaxPassesPerFrame)))
+                 : 1;
     passes = std::min(passes, target_spp() - spp_);
   }
   const FrameStatus status = submit_frame(preview_, *tracer_, pass(), spp_, passes);
