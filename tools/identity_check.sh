@@ -8,7 +8,8 @@
 # Scenes: the default rtiow scene, the golden tests' rtiow (60 spheres, r =
 # 0.25, seed 7) and their four single-material scenes (tools/identity/*.json),
 # each in fp32, fp16 and fp16-all, with the octree and brute force, on the CPU
-# device. Prints one line per render and exits 1 if any image differs.
+# device (DEVICE=gpu for another). Prints one line per render and exits 1 if
+# any image differs.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 old=$1 new=$2 work=${3:-$(mktemp -d)}
@@ -28,9 +29,9 @@ for entry in "${scenes[@]}"; do
     for accel in octree brute; do
       out="$name-$precision-$accel.pfm"
       # shellcheck disable=SC2086
-      "$old" render --device cpu --quiet $flags --precision $precision --accel $accel --out "$work/old/$out"
+      "$old" render --device "${DEVICE:-cpu}" --quiet $flags --precision $precision --accel $accel --out "$work/old/$out"
       # shellcheck disable=SC2086
-      "$new" render --device cpu --quiet $flags --precision $precision --accel $accel --out "$work/new/$out"
+      "$new" render --device "${DEVICE:-cpu}" --quiet $flags --precision $precision --accel $accel --out "$work/new/$out"
       total=$((total + 1))
       if cmp -s "$work/old/$out" "$work/new/$out"; then
         echo "identical  $out"
