@@ -2,6 +2,9 @@
 #include <cmath>
 #include <cstring>
 
+#include <tuple>
+
+#include "render/camera.h"
 #include "test_util.h"
 
 namespace octrace {
@@ -48,6 +51,89 @@ TEST_F(RenderTest, SampleSeedChangesTheNoise) {
   RenderResult a = render_small(scene, 2, 50, 1);
   RenderResult b = render_small(scene, 2, 50, 2);
   EXPECT_NE(std::memcmp(a.mean.rgb.data(), b.mean.rgb.data(), a.mean.rgb.size() * sizeof(float)), 0);
+}
+
+bool same_bits(const Image& a, const Image& b) {
+  return a.width == b.width && a.height == b.height &&
+         std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)) == 0;
+}
+
+// The seam of the preview window: a tracer made once renders another camera,
+// bounce limit and seed per pass, and gives exactly the image of a tracer
+// made for them from the start. A move rebuilds nothing.
+TEST_F(RenderTest, CameraBounceLimitAndSeedArePerPass) {
+  VulkanContext& ctx = test::shared_context();
+  Scene scene = make_rtiow_scene({40, 0.2f, 3});
+  RenderSettings s;
+  s.width = 48;
+  s.height = 32;
+  PathTracer tracer(ctx, scene, s);
+  tracer.run_passes(pass_settings(scene, s), 0, 2);  // the accumulation of the first view ...
+
+  Scene moved = scene;
+  orbit(moved.camera, 0.3f, 0.1f);
+  zoom(moved.camera, 2.0f);
+  RenderSettings other = s;
+  other.bounce_limit = 7;
+  other.sample_seed = 5;
+  other.spp = 3;
+  tracer.reset();  // ... is cleared, as a camera move in the window does
+  tracer.run_passes(pass_settings(moved, other), 0, 3);
+  const RenderResult per_pass = tracer.read_result();
+  const RenderResult fresh = render(ctx, moved, other);
+  EXPECT_TRUE(same_bits(per_pass.mean, fresh.mean));
+  EXPECT_EQ(per_pass.min_samples, 3u);
+  // The move did change the image (the test would see a camera that stayed).
+  const RenderResult unmoved = render(ctx, scene, other);
+  EXPECT_FALSE(same_bits(per_pass.mean, unmoved.mean));
+}
+
+// A tracer resized and switched to another accel (the octree built on the
+// way), precision and effects renders what a tracer made with those settings
+// renders.
+TEST_F(RenderTest, ResizeAndReconfigureMatchAFreshTracer) {
+  VulkanContext& ctx = test::shared_context();
+  Scene scene = make_rtiow_scene({40, 0.2f, 3});
+  RenderSettings s;
+  s.width = 32;
+  s.height = 24;
+  s.spp = 2;
+  s.accel = Accel::Brute;  // the octree is built when asked for
+  PathTracer tracer(ctx, scene, s);
+  tracer.run_passes(pass_settings(scene, s), 0, 2);
+  for (const auto& [accel, precision, all] :
+       {std::tuple{Accel::Brute, Precision::FP16, true}, std::tuple{Accel::Octree, Precision::FP16All, false},
+        std::tuple{Accel::Octree, Precision::FP32, true}}) {
+    RenderSettings want = s;
+    want.width = 40;
+    want.height = 20;
+    want.accel = accel;
+    want.precision = precision;
+    want.all_effects = all;
+    VK_CHECK(vkDeviceWaitIdle(ctx.device));
+    tracer.resize(want.width, want.height);
+    tracer.reconfigure(scene, accel, precision, all);
+    tracer.run_passes(pass_settings(scene, want), 0, want.spp);
+    EXPECT_TRUE(same_bits(tracer.read_result().mean, render(ctx, scene, want).mean))
+        << accel_name(accel) << " " << precision_name(precision) << (all ? " all" : " auto");
+  }
+}
+
+// What the device or scene cannot do is refused, and the tracer keeps what it had.
+TEST_F(RenderTest, ReconfigureRefusedKeepsTheTracer) {
+  VulkanContext& ctx = test::shared_context();
+  Scene scene = test::furnace_scene();
+  scene.materials = {test::emitter(glm::vec3(1e5f))};  // beyond half's range
+  scene.spheres = {{{0, 0, 0}, 1.0f, 0}};
+  RenderSettings s;
+  s.width = 16;
+  s.height = 16;
+  s.spp = 1;
+  PathTracer tracer(ctx, scene, s);
+  EXPECT_THROW(tracer.reconfigure(scene, Accel::Octree, Precision::FP16, false), SettingError);
+  EXPECT_EQ(tracer.settings().precision, Precision::FP32);
+  tracer.run_passes(pass_settings(scene, s), 0, 1);
+  EXPECT_TRUE(same_bits(tracer.read_result().mean, render(ctx, scene, s).mean));
 }
 
 // Every pixel gets exactly spp samples and none is NaN/Inf on the default scene.
