@@ -246,7 +246,6 @@ void Viewer::recreate_swapchain(int width, int height) {
 // with what it had.
 void Viewer::apply_configuration() {
   reconfigure_ = false;
-  VK_CHECK(vkDeviceWaitIdle(ctx_.device));
   try {
     tracer_->reconfigure(scene_, settings_.accel, settings_.precision, settings_.all_effects);
   } catch (const InputError& e) {

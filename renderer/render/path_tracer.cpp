@@ -146,6 +146,7 @@ void PathTracer::reset() {
 
 void PathTracer::resize(int width, int height) {
   State& s = *state_;
+  VK_CHECK(vkDeviceWaitIdle(s.ctx.device));  // the accumulation and its bindings are replaced
   RenderSettings next = s.settings;
   next.width = width;
   next.height = height;
@@ -164,6 +165,7 @@ void PathTracer::resize(int width, int height) {
 
 void PathTracer::reconfigure(const Scene& scene, Accel accel, Precision precision, bool all_effects) {
   State& s = *state_;
+  VK_CHECK(vkDeviceWaitIdle(s.ctx.device));  // the pipeline is replaced
   const RenderSettings previous = s.settings;
   try {
     check_precision(scene, precision);

@@ -70,13 +70,13 @@ class PathTracer {
   // Clears the accumulation buffers and the statistics.
   void reset();
   // A new, cleared accumulation state of another size; the scene and the
-  // pipeline stay. The device must be idle.
+  // pipeline stay. Waits for the device to be idle first.
   void resize(int width, int height);
   // Another acceleration structure, precision or effects over the same scene
   // on the device (`scene` is the one the tracer was made with: an octree
-  // not built yet is built from it); the accumulation is cleared. The device
-  // must be idle. Throws InputError for what the scene or device cannot do,
-  // and then keeps the configuration it had.
+  // not built yet is built from it); the accumulation is cleared. Waits for
+  // the device to be idle first. Throws InputError for what the scene or
+  // device cannot do, and then keeps the configuration it had.
   void reconfigure(const Scene& scene, Accel accel, Precision precision, bool all_effects);
   // Adds passes [first_sample, first_sample + count) in one submission and
   // waits; returns their device time in milliseconds.

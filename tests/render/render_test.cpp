@@ -110,7 +110,6 @@ TEST_F(RenderTest, ResizeAndReconfigureMatchAFreshTracer) {
     want.accel = accel;
     want.precision = precision;
     want.all_effects = all;
-    VK_CHECK(vkDeviceWaitIdle(ctx.device));
     tracer.resize(want.width, want.height);
     tracer.reconfigure(scene, accel, precision, all);
     tracer.run_passes(pass_settings(scene, want), 0, want.spp);
