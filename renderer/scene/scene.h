@@ -3,9 +3,12 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace octrace {
@@ -54,11 +57,48 @@ struct Sky {
   bool operator==(const Sky&) const = default;
 };
 
+// A triangle mesh in its own (object) space, stored once however many times
+// it is placed. Triangle k is indices[3k..3k+2]; counter-clockwise seen from
+// the front (glTF's convention), which decides the geometric normal.
+struct Mesh {
+  std::string name;                 // names it in messages and summaries
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;   // per vertex (smooth shading), or empty (flat)
+  std::vector<glm::vec2> uvs;       // UV set 0 per vertex, or empty
+  std::vector<uint32_t> indices;    // three per triangle
+  std::vector<uint32_t> materials;  // per triangle: index into Scene::materials
+
+  size_t triangle_count() const { return indices.size() / 3; }
+  bool operator==(const Mesh&) const = default;
+};
+
+// One placement of a mesh in the scene.
+struct Instance {
+  uint32_t mesh = 0;                  // index into Scene::meshes
+  glm::mat4 transform{1.0f};          // object -> world (column-major, as glTF)
+
+  bool operator==(const Instance&) const = default;
+};
+
+// A mesh file a JSON scene refers to ("meshes": [{"file", "material",
+// "transform"}]), kept so that --dump-scene writes the reference back rather
+// than the triangles. Its meshes, instances and materials are in the Scene.
+struct MeshRef {
+  std::string file;                  // as written in the scene file (relative to it)
+  std::optional<uint32_t> material;  // overrides the file's own materials
+  glm::mat4 transform{1.0f};
+
+  bool operator==(const MeshRef&) const = default;
+};
+
 struct Scene {
   Camera camera;
   Sky sky;
   std::vector<Material> materials;
   std::vector<Sphere> spheres;
+  std::vector<Mesh> meshes;
+  std::vector<Instance> instances;
+  std::vector<MeshRef> mesh_refs;  // JSON scenes only
 
   // Field by field with float ==, so -0 equals 0; tests that need bit-exactness compare bits.
   bool operator==(const Scene&) const = default;
