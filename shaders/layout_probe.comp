@@ -17,6 +17,8 @@ layout(std430, binding = 4) buffer B4 { GpuMaterial materials[2]; };
 layout(std430, binding = 5) buffer B5 { GpuMaterialHalf materials_half[2]; };
 layout(std430, binding = 6) buffer B6 { GpuOctreeNode nodes[2]; };
 layout(std430, binding = 7) buffer B7 { RenderStats stats[2]; };
+layout(std430, binding = 8) buffer B8 { GpuTriangle triangles[2]; };
+layout(std430, binding = 9) buffer B9 { GpuTriangleNormals triangle_normals[2]; };
 
 void main() {
   scene.sky_a = vec3(1, 2, 3);
@@ -24,9 +26,9 @@ void main() {
   scene.sky_b = vec3(5, 6, 7);
   scene.sphere_count = 8;
   scene.big_count = 9;
-  scene.pad0 = 10;
-  scene.pad1 = 11;
-  scene.pad2 = 12;
+  scene.triangle_count = 10;
+  scene.pad0 = 11;
+  scene.pad1 = 12;
 
   pass.cam_origin = vec3(1, 2, 3);
   pass.lens_radius = 4;
@@ -71,5 +73,17 @@ void main() {
     nodes[i].first = u + 28;
     nodes[i].hi = vec3(o + 29, o + 30, o + 31);
     nodes[i].count_or_mask = u + 32;
+    triangles[i].v0 = vec3(o + 33, o + 34, o + 35);
+    triangles[i].material = u + 36;
+    triangles[i].v1 = vec3(o + 37, o + 38, o + 39);
+    triangles[i].pad0 = u + 40;
+    triangles[i].v2 = vec3(o + 41, o + 42, o + 43);
+    triangles[i].pad1 = u + 44;
+    triangle_normals[i].n0 = vec3(o + 45, o + 46, o + 47);
+    triangle_normals[i].pad0 = u + 48;
+    triangle_normals[i].n1 = vec3(o + 49, o + 50, o + 51);
+    triangle_normals[i].pad1 = u + 52;
+    triangle_normals[i].n2 = vec3(o + 53, o + 54, o + 55);
+    triangle_normals[i].pad2 = u + 56;
   }
 }

@@ -22,6 +22,8 @@ layout(std430, binding = BINDING_ACCUM_SQ) buffer AccumSqBuf { vec4 accum_sq[]; 
 layout(std430, binding = BINDING_STATS) buffer StatsBuf { RenderStats stats; };
 layout(std430, binding = BINDING_OCTREE_NODES) readonly buffer NodeBuf { GpuOctreeNode octree_nodes[]; };
 layout(std430, binding = BINDING_OCTREE_REFS) readonly buffer RefBuf { uint octree_refs[]; };
+layout(std430, binding = BINDING_TRIANGLES) readonly buffer TriangleBuf { GpuTriangle triangles[]; };
+layout(std430, binding = BINDING_TRIANGLE_NORMALS) readonly buffer TriangleNormalBuf { GpuTriangleNormals triangle_normals[]; };
 
 layout(push_constant) uniform Push { PassParams pass; };
 
@@ -38,6 +40,9 @@ layout(constant_id = SPEC_EMISSIVE) const bool HAS_EMISSIVE = true;
 layout(constant_id = SPEC_DEFOCUS) const bool HAS_DEFOCUS = true;
 layout(constant_id = SPEC_SKY) const uint SKY = SKY_RUNTIME;
 layout(constant_id = SPEC_ANY_LIGHT) const bool ANY_LIGHT = true;
+layout(constant_id = SPEC_SPHERES) const bool HAS_SPHERES = true;
+layout(constant_id = SPEC_TRIANGLES) const bool HAS_TRIANGLES = true;
+layout(constant_id = SPEC_VERTEX_NORMALS) const bool HAS_VERTEX_NORMALS = true;
 
 #include "shared/rng.h"
 #include "sampling/warp.glsl"
@@ -62,7 +67,12 @@ vec3 trace_path(Ray ray, uint pixel_index) {
     // Sides are decided by the geometric normal; scattering uses the shading
     // normal turned to the side the ray came from.
     bool front_face = dot(ray.dir, surf.ng) < 0.0;
+    vec3 g = front_face ? surf.ng : -surf.ng;
     vec3 n = front_face ? surf.ns : -surf.ns;
+    // An interpolated shading normal can face away from the ray near a
+    // silhouette; reflecting about it would send the path below the surface
+    // (a mirror would lose it): use the geometric normal there.
+    if (HAS_VERTEX_NORMALS && dot(ray.dir, n) >= 0.0) n = g;
 
     if (HAS_EMISSIVE && m.type == MAT_EMISSIVE) {
       radiance += throughput * m.color;
@@ -115,11 +125,13 @@ vec3 trace_path(Ray ray, uint pixel_index) {
       if (rng_next(rr) >= p) break;
       throughput /= real(p);
     }
-    // A reflection leaves on n's side, a refraction on the other. A direction
-    // rounded onto the wrong side (worked out in half, a rounding error of
-    // ~1e-3 does it at grazing angles) would enter an opaque surface and leak
-    // light from inside it: mirror it back across the tangent plane.
-    if ((dot(dir, n) < 0.0) != refracted) dir = reflect(dir, n);
+    // A reflection leaves on the ray's side of the geometric surface, a
+    // refraction on the other. A direction on the wrong side (worked out in
+    // half, a rounding error of ~1e-3 does it at grazing angles; or scattered
+    // about a shading normal that leans away from the geometric one) would
+    // enter an opaque surface and leak light from inside it: mirror it back
+    // across the geometric tangent plane.
+    if ((dot(dir, g) < 0.0) != refracted) dir = reflect(dir, g);
     // The new ray leaves into the side its direction points to.
     bool inward = dot(dir, surf.ng) < 0.0;
     ray = Ray(offset_ray_origin(surf.p, inward ? -surf.ng : surf.ng, hit.t), dir);

@@ -9,6 +9,9 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
+#include <utility>
+#include <vector>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -99,6 +102,66 @@ inline Material emitter(glm::vec3 radiance) {
   m.type = MaterialType::Emissive;
   m.radiance = radiance;
   return m;
+}
+
+// Meshes built in tests (object space, counter-clockwise = front).
+
+// A closed icosphere of radius 1 about the origin: the icosahedron (its
+// vertices (0, ±1, ±φ) and their cyclic permutations, symmetric under every
+// sign flip of an axis) with each face cut `subdivisions` times into four,
+// new vertices pushed onto the sphere. Outward winding; `smooth` adds vertex
+// normals (the unit positions).
+inline Mesh icosphere(int subdivisions, uint32_t material, bool smooth = false) {
+  const float phi = (1.0f + std::sqrt(5.0f)) / 2.0f;
+  Mesh m;
+  m.name = "icosphere";
+  for (glm::vec3 v : {glm::vec3(-1, phi, 0), glm::vec3(1, phi, 0), glm::vec3(-1, -phi, 0), glm::vec3(1, -phi, 0),
+                      glm::vec3(0, -1, phi), glm::vec3(0, 1, phi), glm::vec3(0, -1, -phi), glm::vec3(0, 1, -phi),
+                      glm::vec3(phi, 0, -1), glm::vec3(phi, 0, 1), glm::vec3(-phi, 0, -1), glm::vec3(-phi, 0, 1)})
+    m.positions.push_back(glm::normalize(v));
+  m.indices = {0, 11, 5, 0, 5, 1,  0, 1, 7,   0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4,  11, 10, 2, 10, 7, 6, 7, 1, 8,
+               3, 9, 4, 3, 4, 2,  3, 2, 6,   3, 6, 8,  3, 8, 9,   4, 9, 5, 2, 4, 11, 6, 2, 10,  8, 6, 7, 9, 8, 1};
+  for (int level = 0; level < subdivisions; ++level) {
+    std::vector<uint32_t> next;
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
+    const auto midpoint = [&](uint32_t a, uint32_t b) {
+      const auto key = std::minmax(a, b);
+      auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      m.positions.push_back(glm::normalize(m.positions[a] + m.positions[b]));
+      return mid[key] = uint32_t(m.positions.size() - 1);
+    };
+    for (size_t k = 0; k < m.indices.size(); k += 3) {
+      const uint32_t a = m.indices[k], b = m.indices[k + 1], c = m.indices[k + 2];
+      const uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+      next.insert(next.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
+    }
+    m.indices = std::move(next);
+  }
+  if (smooth) m.normals = m.positions;
+  m.materials.assign(m.triangle_count(), material);
+  return m;
+}
+
+// A flat n x n grid of unit quads on z = 0 from (0,0) to (n,n), facing +z;
+// each quad is two triangles split along its (x,y)-(x+1,y+1) diagonal.
+inline Mesh grid(int n, uint32_t material) {
+  Mesh m;
+  m.name = "grid";
+  for (int y = 0; y <= n; ++y)
+    for (int x = 0; x <= n; ++x) m.positions.push_back({float(x), float(y), 0.0f});
+  const auto at = [&](int x, int y) { return uint32_t(y * (n + 1) + x); };
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x)
+      m.indices.insert(m.indices.end(), {at(x, y), at(x + 1, y), at(x + 1, y + 1), at(x, y), at(x + 1, y + 1), at(x, y + 1)});
+  m.materials.assign(m.triangle_count(), material);
+  return m;
+}
+
+// Adds `mesh` to the scene, placed once with `transform`.
+inline void place(Scene& s, Mesh mesh, const glm::mat4& transform = glm::mat4(1.0f)) {
+  s.meshes.push_back(std::move(mesh));
+  s.instances.push_back({uint32_t(s.meshes.size() - 1), transform});
 }
 
 // A scene of `spheres` under a uniform sky, camera looking at the origin.

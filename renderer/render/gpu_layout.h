@@ -14,6 +14,18 @@ namespace octrace::gpu {
 static_assert(sizeof(GpuSphere) == 16);
 static_assert(offsetof(GpuSphere, radius) == 12);
 
+static_assert(sizeof(GpuTriangle) == 48);
+static_assert(offsetof(GpuTriangle, material) == 12);
+static_assert(offsetof(GpuTriangle, v1) == 16);
+static_assert(offsetof(GpuTriangle, pad0) == 28);
+static_assert(offsetof(GpuTriangle, v2) == 32);
+static_assert(offsetof(GpuTriangle, pad1) == 44);
+
+static_assert(sizeof(GpuTriangleNormals) == 48);
+static_assert(offsetof(GpuTriangleNormals, n1) == 16);
+static_assert(offsetof(GpuTriangleNormals, n2) == 32);
+static_assert(offsetof(GpuTriangleNormals, pad2) == 44);
+
 static_assert(sizeof(GpuMaterial) == 32);
 static_assert(offsetof(GpuMaterial, type) == 12);
 static_assert(offsetof(GpuMaterial, fuzz) == 16);
@@ -39,9 +51,9 @@ static_assert(offsetof(SceneParams, sky_type) == 12);
 static_assert(offsetof(SceneParams, sky_b) == 16);
 static_assert(offsetof(SceneParams, sphere_count) == 28);
 static_assert(offsetof(SceneParams, big_count) == 32);
-static_assert(offsetof(SceneParams, pad0) == 36);
-static_assert(offsetof(SceneParams, pad1) == 40);
-static_assert(offsetof(SceneParams, pad2) == 44);
+static_assert(offsetof(SceneParams, triangle_count) == 36);
+static_assert(offsetof(SceneParams, pad0) == 40);
+static_assert(offsetof(SceneParams, pad1) == 44);
 
 static_assert(sizeof(PassParams) == 112);
 static_assert(offsetof(PassParams, lens_radius) == 12);

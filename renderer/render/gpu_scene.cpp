@@ -4,6 +4,8 @@
 #include <string>
 
 #include <glm/gtc/packing.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 
 #include "core/clock.h"
 #include "core/errors.h"
@@ -57,7 +59,79 @@ std::vector<Aabb> sphere_boxes(const std::vector<Sphere>& spheres) {
   return boxes;
 }
 
-std::vector<Aabb> primitive_boxes(const Scene& scene) { return sphere_boxes(scene.spheres); }
+namespace {
+
+// Calls f(instance, mesh, object->world in double, flip) for every instance.
+template <typename F>
+void for_each_instance(const Scene& scene, F&& f) {
+  for (const Instance& inst : scene.instances) {
+    const glm::dmat4 m(inst.transform);
+    const bool flip = glm::determinant(glm::dmat3(m)) < 0.0;
+    f(scene.meshes[inst.mesh], m, flip);
+  }
+}
+
+glm::vec3 to_world(const glm::dmat4& m, glm::vec3 p) { return glm::vec3(m * glm::dvec4(glm::dvec3(p), 1.0)); }
+
+}  // namespace
+
+uint64_t instanced_triangle_count(const Scene& scene) {
+  uint64_t n = 0;
+  for (const Instance& inst : scene.instances) n += scene.meshes[inst.mesh].triangle_count();
+  return n;
+}
+
+std::vector<gpu::GpuTriangle> world_triangles(const Scene& scene) {
+  std::vector<gpu::GpuTriangle> out;
+  out.reserve(instanced_triangle_count(scene));
+  for_each_instance(scene, [&](const Mesh& mesh, const glm::dmat4& m, bool flip) {
+    for (size_t k = 0; k < mesh.triangle_count(); ++k) {
+      const uint32_t* idx = &mesh.indices[3 * k];
+      gpu::GpuTriangle t{};
+      t.v0 = to_world(m, mesh.positions[idx[0]]);
+      t.v1 = to_world(m, mesh.positions[idx[flip ? 2 : 1]]);
+      t.v2 = to_world(m, mesh.positions[idx[flip ? 1 : 2]]);
+      t.material = mesh.materials[k];
+      out.push_back(t);
+    }
+  });
+  return out;
+}
+
+std::vector<gpu::GpuTriangleNormals> world_triangle_normals(const Scene& scene) {
+  std::vector<gpu::GpuTriangleNormals> out;
+  out.reserve(instanced_triangle_count(scene));
+  for_each_instance(scene, [&](const Mesh& mesh, const glm::dmat4& m, bool flip) {
+    const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(m)));
+    const auto world_normal = [&](glm::vec3 n) { return glm::vec3(glm::normalize(normal_matrix * glm::dvec3(n))); };
+    for (size_t k = 0; k < mesh.triangle_count(); ++k) {
+      const uint32_t* idx = &mesh.indices[3 * k];
+      glm::vec3 n[3];
+      if (mesh.normals.empty()) {
+        // Flat: the geometric normal of the world triangle, whatever the winding.
+        const glm::dvec3 a = m * glm::dvec4(glm::dvec3(mesh.positions[idx[0]]), 1.0);
+        const glm::dvec3 b = m * glm::dvec4(glm::dvec3(mesh.positions[idx[flip ? 2 : 1]]), 1.0);
+        const glm::dvec3 c = m * glm::dvec4(glm::dvec3(mesh.positions[idx[flip ? 1 : 2]]), 1.0);
+        const glm::dvec3 g = glm::cross(b - a, c - a);
+        const double len = glm::length(g);
+        n[0] = n[1] = n[2] = len > 0.0 ? glm::vec3(g / len) : glm::vec3(0.0f, 0.0f, 1.0f);
+      } else {
+        n[0] = world_normal(mesh.normals[idx[0]]);
+        n[1] = world_normal(mesh.normals[idx[flip ? 2 : 1]]);
+        n[2] = world_normal(mesh.normals[idx[flip ? 1 : 2]]);
+      }
+      out.push_back({n[0], 0, n[1], 0, n[2], 0});
+    }
+  });
+  return out;
+}
+
+std::vector<Aabb> primitive_boxes(const Scene& scene) {
+  std::vector<Aabb> boxes = sphere_boxes(scene.spheres);
+  for (const gpu::GpuTriangle& t : world_triangles(scene))
+    boxes.push_back({glm::min(t.v0, glm::min(t.v1, t.v2)), glm::max(t.v0, glm::max(t.v1, t.v2))});
+  return boxes;
+}
 
 void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel, const OctreeParams& params) {
   const uint64_t sphere_bytes = scene.spheres.size() * sizeof(gpu::GpuSphere);
@@ -91,7 +165,21 @@ void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Acc
   p.sky_b = sky.up;
   p.sphere_count = uint32_t(scene.spheres.size());
 
+  const std::vector<gpu::GpuTriangle> triangles = world_triangles(scene);
+  const uint64_t triangle_bytes = triangles.size() * sizeof(gpu::GpuTriangle);
+  check_fits(ctx, triangle_bytes, std::to_string(triangles.size()) + " triangles");
+  std::vector<gpu::GpuTriangleNormals> normals;
+  bool any_normals = false;
+  for (const Mesh& mesh : scene.meshes) any_normals |= !mesh.normals.empty();
+  if (any_normals) normals = world_triangle_normals(scene);
+  p.triangle_count = uint32_t(triangles.size());
+
   create_buffer(g.params, ctx, sizeof p, false, "scene parameters");
+  create_buffer(g.triangles, ctx, triangle_bytes, false, "triangle buffer");
+  create_buffer(g.triangle_normals, ctx, normals.size() * sizeof(gpu::GpuTriangleNormals), false,
+                "triangle normal buffer");
+  upload_buffer(ctx, g.triangles, triangles.data(), triangle_bytes);
+  upload_buffer(ctx, g.triangle_normals, normals.data(), normals.size() * sizeof(gpu::GpuTriangleNormals));
   create_buffer(g.spheres, ctx, sphere_bytes, false, "sphere buffer");
   create_buffer(g.sphere_materials, ctx, sphere_materials.size() * 4, false, "sphere material buffer");
   create_buffer(g.materials, ctx, materials.size() * sizeof(gpu::GpuMaterial), false, "material buffer");

@@ -9,6 +9,7 @@
 #include "accel/octree.h"
 #include "render/settings.h"
 #include "scene/scene.h"
+#include "shared/shared.h"
 #include "vk/resources.h"
 
 namespace octrace {
@@ -17,6 +18,8 @@ struct GpuScene {
   gpu::SceneParams values{};  // what `params` holds
   Buffer params;            // SceneParams
   Buffer spheres;           // GpuSphere per sphere
+  Buffer triangles;         // GpuTriangle per instanced triangle, world space
+  Buffer triangle_normals;  // GpuTriangleNormals per triangle (placeholder without vertex normals)
   Buffer sphere_materials;  // material index per sphere
   Buffer materials;         // GpuMaterial per material (fp32)
   Buffer materials_half;    // GpuMaterialHalf per material (the fp16 variants)
@@ -27,7 +30,16 @@ struct GpuScene {
   double upload_ms = 0;       // packing, buffer creation and copies (wall)
 };
 
-// The primitives' boxes, in primitive-id order: what the octree is built over.
+// Every instance's triangles in world space, in instance order then mesh
+// order: the triangle primitives. An instance whose transform has a negative
+// determinant (a mirror) gets its winding flipped, so that counter-clockwise
+// stays the front; normals go through the inverse transpose.
+std::vector<gpu::GpuTriangle> world_triangles(const Scene& scene);
+std::vector<gpu::GpuTriangleNormals> world_triangle_normals(const Scene& scene);
+uint64_t instanced_triangle_count(const Scene& scene);
+
+// The primitives' boxes, in primitive-id order (spheres, then triangles):
+// what the octree is built over.
 std::vector<Aabb> primitive_boxes(const Scene& scene);
 std::vector<Aabb> sphere_boxes(const std::vector<Sphere>& spheres);
 

@@ -97,10 +97,15 @@ void PathTracer::State::create_pipeline() {
                            {gpu::SPEC_EMISSIVE, f.emissive},
                            {gpu::SPEC_DEFOCUS, f.defocus},
                            {gpu::SPEC_SKY, sky},
-                           {gpu::SPEC_ANY_LIGHT, f.any_light}});
+                           {gpu::SPEC_ANY_LIGHT, f.any_light},
+                           {gpu::SPEC_SPHERES, f.spheres},
+                           {gpu::SPEC_TRIANGLES, f.triangles},
+                           {gpu::SPEC_VERTEX_NORMALS, f.vertex_normals}});
   const GpuScene& g = s.scene;
   bind_buffers(p, {{gpu::BINDING_SCENE, &g.params},
                    {gpu::BINDING_SPHERES, &g.spheres},
+                   {gpu::BINDING_TRIANGLES, &g.triangles},
+                   {gpu::BINDING_TRIANGLE_NORMALS, &g.triangle_normals},
                    {gpu::BINDING_SPHERE_MATERIALS, &g.sphere_materials},
                    {gpu::BINDING_MATERIALS, half ? &g.materials_half : &g.materials},
                    {gpu::BINDING_OCTREE_NODES, &g.nodes},

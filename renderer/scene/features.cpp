@@ -13,6 +13,17 @@ SceneFeatures scene_features(const Scene& scene) {
   std::vector<bool> used(scene.materials.size(), false);
   for (const Sphere& s : scene.spheres)
     if (s.material < used.size()) used[s.material] = true;
+  std::vector<bool> placed(scene.meshes.size(), false);
+  for (const Instance& inst : scene.instances)
+    if (inst.mesh < placed.size()) placed[inst.mesh] = true;
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const Mesh& mesh = scene.meshes[m];
+    if (!placed[m] || mesh.triangle_count() == 0) continue;
+    f.triangles = true;
+    f.vertex_normals |= !mesh.normals.empty();
+    for (uint32_t material : mesh.materials)
+      if (material < used.size()) used[material] = true;
+  }
   for (size_t i = 0; i < scene.materials.size(); ++i) {
     if (!used[i]) continue;
     const Material& m = scene.materials[i];
@@ -34,7 +45,8 @@ SceneFeatures scene_features(const Scene& scene) {
     case SkyType::Gradient: f.sky_black = is_black(scene.sky.down) && is_black(scene.sky.up); break;
   }
   f.any_light = f.emissive || !f.sky_black;
-  f.empty = scene.spheres.empty();
+  f.spheres = !scene.spheres.empty();
+  f.empty = !f.spheres && !f.triangles;
   return f;
 }
 
@@ -45,6 +57,7 @@ SceneFeatures all_features(const Scene& scene) {
   f.sky_black = false;
   f.any_light = true;
   f.empty = false;
+  f.spheres = f.triangles = f.vertex_normals = true;
   return f;
 }
 
@@ -56,6 +69,8 @@ std::vector<std::string> feature_names(const SceneFeatures& f) {
   if (f.dielectric) names.push_back("dielectric");
   if (f.emissive) names.push_back("emissive");
   if (f.defocus) names.push_back("defocus");
+  if (f.triangles) names.push_back("triangles");
+  if (f.vertex_normals) names.push_back("vertex_normals");
   names.push_back(f.sky == SkyType::Gradient ? "sky_gradient" : f.sky == SkyType::Uniform ? "sky_uniform" : "sky_none");
   if (f.sky_black) names.push_back("sky_black");
   if (!f.any_light) names.push_back("no_light");

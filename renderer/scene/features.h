@@ -12,24 +12,28 @@
 namespace octrace {
 
 struct SceneFeatures {
-  bool lambertian = false;   // some sphere is lambertian
-  bool metal = false;        // some sphere is metal ...
+  bool lambertian = false;   // some primitive is lambertian
+  bool metal = false;        // some primitive is metal ...
   bool fuzzy_metal = false;  // ... with fuzz > 0
-  bool dielectric = false;   // some sphere is glass
-  bool emissive = false;     // some sphere emits
+  bool dielectric = false;   // some primitive is glass
+  bool emissive = false;     // some primitive emits
   bool defocus = false;      // camera aperture > 0
   SkyType sky = SkyType::Gradient;
   bool sky_black = false;    // the sky adds nothing (type none, or a black colour)
   // Some path can carry light to the camera: an emitter, or a sky that is
   // not black. Without it every pixel is 0 and no pass needs to run.
   bool any_light = true;
-  bool empty = false;        // no spheres
+  bool empty = false;        // no primitives
+  bool spheres = true;       // some sphere
+  bool triangles = false;    // some instanced mesh triangle
+  bool vertex_normals = false;  // some instanced mesh has vertex normals (smooth shading)
 
   bool operator==(const SceneFeatures&) const = default;
 };
 
-// Only the materials that spheres use count (an unused glass material in the
-// list does not make the scene need glass code).
+// Only the materials that primitives use count (an unused glass material in
+// the list does not make the scene need glass code); only meshes that some
+// instance places count.
 SceneFeatures scene_features(const Scene& scene);
 
 // Every effect on: the general pipeline (`--effects all`).

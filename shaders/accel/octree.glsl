@@ -1,5 +1,5 @@
 // Octree traversal (renderer/accel/octree.h has the node encoding). The
-// includer defines test_primitive(ray, ref, origin_prim, into_origin, hit)
+// includer defines test_primitive(ray, shear, ref, origin_prim, into_origin, hit)
 // (accel/closest_hit.glsl) and declares `octree_nodes`.
 #ifndef OCTRACE_OCTREE_GLSL
 #define OCTRACE_OCTREE_GLSL
@@ -38,7 +38,7 @@ bool hit_box(vec3 lo, vec3 hi, vec3 origin, vec3 inv_dir, float t_max, out float
 // entries behind: 7 * 20 + 1 entries for the deepest octree (depth 20).
 const uint STACK_SIZE = 141u;
 
-void traverse_octree(Ray ray, uint from_prim, bool into_from, inout Hit hit) {
+void traverse_octree(Ray ray, RayShear sh, uint from_prim, bool into_from, inout Hit hit) {
   vec3 inv_dir = safe_inverse(ray.dir);
   uint sign_mask = (floatBitsToUint(ray.dir.x) >> 31) | ((floatBitsToUint(ray.dir.y) >> 31) << 1) |
                    ((floatBitsToUint(ray.dir.z) >> 31) << 2);
@@ -61,7 +61,7 @@ void traverse_octree(Ray ray, uint from_prim, bool into_from, inout Hit hit) {
     GpuOctreeNode node = octree_nodes[stack_node[sp]];
     if (node.count_or_mask < OCTREE_INTERNAL) {
       for (uint k = node.first; k < node.first + node.count_or_mask; ++k)
-        test_primitive(ray, octree_refs[k], from_prim, into_from, hit);
+        test_primitive(ray, sh, octree_refs[k], from_prim, into_from, hit);
       continue;
     }
     uint mask = node.count_or_mask & 0xffu;

@@ -39,7 +39,10 @@ OCT_CONST(uint, SKY_NONE, 2u);
 OCT_CONST(uint, WORKGROUP_SIZE, 8u);  // 8x8 invocations per workgroup
 
 // Kinds of primitive a hit can name (Hit.kind in shaders/accel/closest_hit.glsl).
+// Primitive ids are global: spheres [0, sphere_count), then triangles
+// [sphere_count, sphere_count + triangle_count); the kind follows from the id.
 OCT_CONST(uint, PRIM_SPHERE, 0u);
+OCT_CONST(uint, PRIM_TRIANGLE, 1u);
 
 // Descriptor bindings of the path-tracing pipeline (set 0). The host binds by
 // these names (render/path_tracer.cpp), the shader declares by them.
@@ -53,7 +56,9 @@ OCT_CONST(uint, BINDING_ACCUM_SQ, 6u);
 OCT_CONST(uint, BINDING_STATS, 7u);
 OCT_CONST(uint, BINDING_OCTREE_NODES, 8u);
 OCT_CONST(uint, BINDING_OCTREE_REFS, 9u);
-OCT_CONST(uint, BINDING_COUNT, 10u);
+OCT_CONST(uint, BINDING_TRIANGLES, 10u);
+OCT_CONST(uint, BINDING_TRIANGLE_NORMALS, 11u);
+OCT_CONST(uint, BINDING_COUNT, 12u);
 
 // Descriptor bindings of the resolve pipeline (resolve.comp).
 OCT_CONST(uint, RESOLVE_BINDING_ACCUM_SUM, 0u);
@@ -74,6 +79,9 @@ OCT_CONST(uint, SPEC_EMISSIVE, 5u);
 OCT_CONST(uint, SPEC_DEFOCUS, 6u);
 OCT_CONST(uint, SPEC_SKY, 7u);
 OCT_CONST(uint, SPEC_ANY_LIGHT, 8u);
+OCT_CONST(uint, SPEC_SPHERES, 9u);
+OCT_CONST(uint, SPEC_TRIANGLES, 10u);
+OCT_CONST(uint, SPEC_VERTEX_NORMALS, 11u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 3u);
 
@@ -86,6 +94,32 @@ OCT_CONST(uint, ACCEL_OCTREE, 1u);
 struct GpuSphere {
   vec3 center;
   float radius;
+};
+
+// 48 bytes. One triangle in world space (an instance's mesh transformed and,
+// for a transform with a negative determinant, its winding flipped so that
+// counter-clockwise is still the front). The vertices are stored rather than
+// an index into a vertex array: the intersection test reads one 48-byte
+// record, and a triangle's material sits in the same cache line.
+struct GpuTriangle {
+  vec3 v0;
+  uint material;  // index into the material array
+  vec3 v1;
+  uint pad0;
+  vec3 v2;
+  uint pad1;
+};
+
+// 48 bytes. Triangle i's vertex normals in world space (unit), for smooth
+// shading; uploaded only when some mesh has normals (a flat triangle's three
+// are its geometric normal).
+struct GpuTriangleNormals {
+  vec3 n0;
+  uint pad0;
+  vec3 n1;
+  uint pad1;
+  vec3 n2;
+  uint pad2;
 };
 
 // 32 bytes. `color` is the albedo (lambertian, metal) or the radiance (emissive).
@@ -124,7 +158,7 @@ struct GpuMaterialHalf {
 //     octant k present; octant k = (x >= mid) | (y >= mid) << 1 | (z >= mid) << 2);
 //     `first` = index of the first present child; present children are stored
 //     consecutively in octant order.
-//   Leaf: `count_or_mask` = number of sphere references (< OCTREE_INTERNAL),
+//   Leaf: `count_or_mask` = number of primitive references (< OCTREE_INTERNAL),
 //     `first` = index of the first reference in the refs array.
 struct GpuOctreeNode {
   vec3 lo;
@@ -150,9 +184,9 @@ struct SceneParams {
   vec3 sky_b;         // gradient: up
   uint sphere_count;
   uint big_count;     // octree: refs[0, big_count) are primitives tested before traversal
+  uint triangle_count;
   uint pad0;
   uint pad1;
-  uint pad2;
 };
 
 // 112 bytes, the push constants of one pass: everything that may change from

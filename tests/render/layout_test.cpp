@@ -20,7 +20,7 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   // The probe writes the half material too: it needs 16-bit storage, which
   // every device the suite runs on (lavapipe, the H100) has.
   ASSERT_TRUE(ctx.fp16_enabled) << ctx.info.name << " lacks 16-bit storage";
-  Buffer scene_buf, pass_buf, resolve_buf, sphere_buf, material_buf, half_buf, node_buf, stats_buf;
+  Buffer scene_buf, pass_buf, resolve_buf, sphere_buf, material_buf, half_buf, node_buf, stats_buf, tri_buf, normal_buf;
   create_buffer(scene_buf, ctx, sizeof(gpu::SceneParams), false, "probe");
   create_buffer(pass_buf, ctx, sizeof(gpu::PassParams), false, "probe");
   create_buffer(resolve_buf, ctx, sizeof(gpu::ResolveParams), false, "probe");
@@ -29,10 +29,13 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   create_buffer(half_buf, ctx, 2 * sizeof(gpu::GpuMaterialHalf), false, "probe");
   create_buffer(node_buf, ctx, 2 * sizeof(gpu::GpuOctreeNode), false, "probe");
   create_buffer(stats_buf, ctx, 2 * sizeof(gpu::RenderStats), false, "probe");
+  create_buffer(tri_buf, ctx, 2 * sizeof(gpu::GpuTriangle), false, "probe");
+  create_buffer(normal_buf, ctx, 2 * sizeof(gpu::GpuTriangleNormals), false, "probe");
   ComputePipeline pipeline;
-  create_compute_pipeline(pipeline, ctx, layout_probe_spv, sizeof(layout_probe_spv), 8, 0);
+  create_compute_pipeline(pipeline, ctx, layout_probe_spv, sizeof(layout_probe_spv), 10, 0);
   bind_buffers(pipeline, {{0, &scene_buf}, {1, &pass_buf}, {2, &resolve_buf}, {3, &sphere_buf},
-                          {4, &material_buf}, {5, &half_buf}, {6, &node_buf}, {7, &stats_buf}});
+                          {4, &material_buf}, {5, &half_buf}, {6, &node_buf}, {7, &stats_buf},
+                          {8, &tri_buf},   {9, &normal_buf}});
   submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout, 0, 1, &pipeline.set, 0, nullptr);
@@ -47,9 +50,9 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   EXPECT_EQ(sc.sky_b, glm::vec3(5, 6, 7));
   EXPECT_EQ(sc.sphere_count, 8u);
   EXPECT_EQ(sc.big_count, 9u);
-  EXPECT_EQ(sc.pad0, 10u);
-  EXPECT_EQ(sc.pad1, 11u);
-  EXPECT_EQ(sc.pad2, 12u);
+  EXPECT_EQ(sc.triangle_count, 10u);
+  EXPECT_EQ(sc.pad0, 11u);
+  EXPECT_EQ(sc.pad1, 12u);
 
   gpu::PassParams f{};
   download_buffer(ctx, pass_buf, &f, sizeof f);
@@ -82,6 +85,10 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   gpu::GpuMaterialHalf halves[2];
   gpu::GpuOctreeNode nodes[2];
   gpu::RenderStats stats[2];
+  gpu::GpuTriangle tris[2];
+  gpu::GpuTriangleNormals normals[2];
+  download_buffer(ctx, tri_buf, tris, sizeof tris);
+  download_buffer(ctx, normal_buf, normals, sizeof normals);
   download_buffer(ctx, sphere_buf, spheres, sizeof spheres);
   download_buffer(ctx, material_buf, materials, sizeof materials);
   download_buffer(ctx, half_buf, halves, sizeof halves);
@@ -111,6 +118,18 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(nodes[i].first, u + 28) << "node " << i;
     EXPECT_EQ(nodes[i].hi, glm::vec3(o + 29, o + 30, o + 31)) << "node " << i;
     EXPECT_EQ(nodes[i].count_or_mask, u + 32) << "node " << i;
+    EXPECT_EQ(tris[i].v0, glm::vec3(o + 33, o + 34, o + 35)) << "triangle " << i;
+    EXPECT_EQ(tris[i].material, u + 36) << "triangle " << i;
+    EXPECT_EQ(tris[i].v1, glm::vec3(o + 37, o + 38, o + 39)) << "triangle " << i;
+    EXPECT_EQ(tris[i].pad0, u + 40) << "triangle " << i;
+    EXPECT_EQ(tris[i].v2, glm::vec3(o + 41, o + 42, o + 43)) << "triangle " << i;
+    EXPECT_EQ(tris[i].pad1, u + 44) << "triangle " << i;
+    EXPECT_EQ(normals[i].n0, glm::vec3(o + 45, o + 46, o + 47)) << "normals " << i;
+    EXPECT_EQ(normals[i].pad0, u + 48) << "normals " << i;
+    EXPECT_EQ(normals[i].n1, glm::vec3(o + 49, o + 50, o + 51)) << "normals " << i;
+    EXPECT_EQ(normals[i].pad1, u + 52) << "normals " << i;
+    EXPECT_EQ(normals[i].n2, glm::vec3(o + 53, o + 54, o + 55)) << "normals " << i;
+    EXPECT_EQ(normals[i].pad2, u + 56) << "normals " << i;
   }
 }
 

@@ -1,0 +1,91 @@
+// Triangles: watertight ray/triangle intersection and the surface at a hit,
+// in fp32. The includer declares `triangles` and `triangle_normals` and the
+// specialization constant HAS_VERTEX_NORMALS.
+#ifndef OCTRACE_TRIANGLE_GLSL
+#define OCTRACE_TRIANGLE_GLSL
+
+#include "geometry/ray.glsl"
+#include "geometry/surface.glsl"
+
+// Per-ray constants of the watertight test (Woop, Benthin and Wald 2013,
+// "Watertight Ray/Triangle Intersection", JCGT 2(1)): the ray's dominant axis
+// kz becomes the z axis, kx and ky follow (swapped when dir[kz] < 0 to keep
+// the winding), and a shear maps the ray onto +z. Vertices are then tested in
+// 2D against the origin with edge functions that agree exactly between two
+// triangles sharing an edge, so no ray slips between them.
+struct RayShear {
+  ivec3 k;  // kx, ky, kz
+  vec3 s;   // Sx, Sy, Sz
+};
+
+RayShear ray_shear(vec3 dir) {
+  vec3 a = abs(dir);
+  int kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+  int kx = kz == 2 ? 0 : kz + 1;
+  int ky = kx == 2 ? 0 : kx + 1;
+  if (dir[kz] < 0.0) {
+    int t = kx;
+    kx = ky;
+    ky = t;
+  }
+  return RayShear(ivec3(kx, ky, kz), vec3(dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0 / dir[kz]));
+}
+
+// The edge functions U, V, W (unnormalised barycentrics of v0, v1, v2) and
+// the scaled distance T of the ray against triangle (v0, v1, v2); det = U+V+W.
+// Returns false when the ray misses the triangle's inside (an edge or vertex
+// counts as inside: a ray through a shared edge hits both triangles at the
+// same t, and the tie goes to the lower id) or the triangle has no area.
+bool triangle_edges(vec3 origin, RayShear sh, vec3 v0, vec3 v1, vec3 v2, out vec3 uvw, out float T, out float det) {
+  vec3 A = v0 - origin, B = v1 - origin, C = v2 - origin;
+  float Ax = A[sh.k.x] - sh.s.x * A[sh.k.z], Ay = A[sh.k.y] - sh.s.y * A[sh.k.z];
+  float Bx = B[sh.k.x] - sh.s.x * B[sh.k.z], By = B[sh.k.y] - sh.s.y * B[sh.k.z];
+  float Cx = C[sh.k.x] - sh.s.x * C[sh.k.z], Cy = C[sh.k.y] - sh.s.y * C[sh.k.z];
+  float U = Cx * By - Cy * Bx;
+  float V = Ax * Cy - Ay * Cx;
+  float W = Bx * Ay - By * Ax;
+  if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0)) return false;
+  det = U + V + W;
+  if (det == 0.0) return false;  // zero area (or seen exactly edge-on): never hit
+  T = U * (sh.s.z * A[sh.k.z]) + V * (sh.s.z * B[sh.k.z]) + W * (sh.s.z * C[sh.k.z]);
+  uvw = vec3(U, V, W);
+  return true;
+}
+
+// The nearest hit in (0, t_max), or INF. Both faces are hit (the material
+// decides what a back face does). A ray spawned on the triangle (`skip`)
+// cannot meet the plane it leaves again.
+float intersect_triangle(vec3 origin, RayShear sh, GpuTriangle tri, float t_max, bool skip) {
+  if (skip) return INF;
+  vec3 uvw;
+  float T, det;
+  if (!triangle_edges(origin, sh, tri.v0, tri.v1, tri.v2, uvw, T, det)) return INF;
+  // t = T / det in (0, t_max), compared without dividing where the sign of
+  // det flips the inequalities.
+  if (det > 0.0 ? (T <= 0.0 || T >= t_max * det) : (T >= 0.0 || T <= t_max * det)) return INF;
+  return T / det;
+}
+
+// The surface of triangle `i` at distance t. The geometric normal follows
+// the winding (counter-clockwise = front, outward for a closed mesh); with
+// vertex normals the shading normal interpolates them at the hit's
+// barycentrics (worked out again here, once per hit, rather than carried
+// through the traversal).
+Surface triangle_surface(Ray ray, float t, uint i) {
+  GpuTriangle tri = triangles[i];
+  vec3 p = ray.origin + t * ray.dir;
+  vec3 ng = safe_normalize(cross(tri.v1 - tri.v0, tri.v2 - tri.v0), -ray.dir);
+  vec3 ns = ng;
+  if (HAS_VERTEX_NORMALS) {
+    vec3 uvw;
+    float T, det;
+    if (triangle_edges(ray.origin, ray_shear(ray.dir), tri.v0, tri.v1, tri.v2, uvw, T, det)) {
+      GpuTriangleNormals n = triangle_normals[i];
+      vec3 b = uvw / det;
+      ns = safe_normalize(b.x * n.n0 + b.y * n.n1 + b.z * n.n2, ng);
+    }
+  }
+  return Surface(p, ng, ns, tri.material, vec2(0.0));
+}
+
+#endif
