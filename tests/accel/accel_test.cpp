@@ -20,6 +20,8 @@
 #include <cstring>
 #include <utility>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "test_util.h"
 
 namespace octrace {
@@ -77,7 +79,35 @@ Scene axis_aligned() {
   return s;
 }
 
+// Triangles beside spheres: icospheres (flat and smooth), a grid with its
+// shared edges on the octree's split planes, on the rtiow field.
+Scene meshes_and_spheres() {
+  Scene s = rtiow(200, 0.2f, 6);
+  s.materials.push_back({MaterialType::Metal, {0.9f, 0.8f, 0.7f}, 0.05f});
+  const uint32_t metal = uint32_t(s.materials.size() - 1);
+  test::place(s, test::icosphere(2, 1), glm::translate(glm::mat4(1.0f), glm::vec3(2, 1, 2)));
+  test::place(s, test::icosphere(3, metal, true), glm::translate(glm::mat4(1.0f), glm::vec3(-2, 0.8f, 2)));
+  test::place(s, test::grid(8, 0), glm::translate(glm::mat4(1.0f), glm::vec3(-4, 0, -3)) *
+                                       glm::rotate(glm::mat4(1.0f), 0.3f, glm::vec3(0, 1, 0)));
+  return s;
+}
+
+// Only triangles, the same mesh placed many times (a mirrored one too).
+Scene only_triangles() {
+  Scene s = test::furnace_scene();
+  s.sky.type = SkyType::Gradient;
+  s.materials = {{MaterialType::Lambertian, {0.7f, 0.3f, 0.3f}}, {MaterialType::Dielectric, glm::vec3(0.5f), 0, 1.5f}};
+  for (int i = -2; i <= 2; ++i)
+    for (int j = -2; j <= 2; ++j)
+      test::place(s, test::icosphere(1, uint32_t((i + j) & 1)),
+                  glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(float(i), float(j), 0.0f)),
+                             glm::vec3(i == 0 ? -0.45f : 0.45f, 0.45f, 0.45f)));
+  return s;
+}
+
 const AccelCase CASES[] = {
+    {"meshes_and_spheres", meshes_and_spheres},
+    {"only_triangles", only_triangles},
     {"rtiow_488_r02", [] { return rtiow(488, 0.2f, 1); }},
     {"rtiow_2000_r01", [] { return rtiow(2000, 0.1f, 2); }},
     {"rtiow_8000_r005", [] { return rtiow(8000, 0.05f, 3); }},

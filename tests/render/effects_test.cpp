@@ -5,6 +5,8 @@
 // compiled out would only have added exact zeros.
 #include <cstring>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "test_util.h"
 
 namespace octrace {
@@ -73,6 +75,23 @@ const EffectsCase CASES[] = {
        return s;
      },
      {"lambertian", "sky_gradient"}},
+    {"meshes_flat",
+     [] {
+       Scene s = family(lambertian({0.5f, 0.5f, 0.5f}));
+       s.materials.push_back(glass(1.5f));
+       test::place(s, test::icosphere(2, 1), glm::translate(glm::mat4(1.0f), glm::vec3(-1.0f, 0.6f, 0.8f)) *
+                                                 glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)));
+       return s;
+     },
+     {"lambertian", "dielectric", "triangles", "sky_gradient"}},
+    {"meshes_smooth_only",
+     [] {
+       Scene s = family(lambertian({0.5f, 0.5f, 0.5f}));
+       s.spheres.clear();
+       test::place(s, test::icosphere(2, 0, true), glm::translate(glm::mat4(1.0f), glm::vec3(0, 0.6f, 0)));
+       return s;
+     },
+     {"lambertian", "triangles", "vertex_normals", "sky_gradient"}},
 };
 
 class EffectsTest : public test::VulkanTest, public ::testing::WithParamInterface<EffectsCase> {};
