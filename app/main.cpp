@@ -228,6 +228,7 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
   const RenderTimings& t = result.timings;
   double paths = double(settings.width) * settings.height * settings.spp;
   double paths_per_s = t.render_device_ms > 0 ? paths / (t.render_device_ms / 1000.0) : 0.0;
+  double rays_per_s = t.render_device_ms > 0 ? double(result.rays) / (t.render_device_ms / 1000.0) : 0.0;
   if (as_json) {
     json j = {{"device", device_json(ctx.info)},
               {"scene", {{"source", scene_opts.describe()},
@@ -253,6 +254,8 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
                             {"readback", t.readback_ms},
                             {"write", write_ms}}},
               {"paths_per_second", paths_per_s},
+              {"rays", result.rays},
+              {"rays_per_second", rays_per_s},
               {"nonfinite_samples", result.nonfinite_samples},
               {"outputs", outputs}};
     if (settings.accel == Accel::Octree) {
@@ -278,7 +281,8 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
     std::printf("times     scene %.1f ms, %s build %.1f ms, upload %.1f ms, pipeline %.1f ms, render %.1f ms (device)\n",
                 scene_ms, accel_name(settings.accel), t.accel_build_ms, t.upload_ms, t.pipeline_ms,
                 t.render_device_ms);
-    std::printf("speed     %.3g paths/s\n", paths_per_s);
+    std::printf("speed     %.3g paths/s, %.3g rays/s (%.2f segments per path)\n", paths_per_s, rays_per_s,
+                paths > 0 ? double(result.rays) / paths : 0.0);
     if (result.nonfinite_samples)
       std::printf("warning   %llu NaN/Inf samples were rejected\n", (unsigned long long)result.nonfinite_samples);
     for (const auto& o : outputs) std::printf("wrote     %s\n", o.c_str());

@@ -51,13 +51,16 @@ layout(constant_id = SPEC_VERTEX_NORMALS) const bool HAS_VERTEX_NORMALS = true;
 #include "shading/materials.glsl"
 #include "shading/sky.glsl"
 
-vec3 trace_path(Ray ray, uint pixel_index) {
+// `segments`: how many rays the path traced (camera ray and bounces).
+vec3 trace_path(Ray ray, uint pixel_index, out uint segments) {
+  segments = 0u;
   real3 radiance = real3(0.0);
   real3 throughput = real3(1.0);
   uint from_prim = NO_PRIM;
   bool into_from = false;
   for (uint bounce = 0; bounce < pass.bounce_limit; ++bounce) {
     Hit hit;
+    ++segments;
     if (!closest_hit(ray, from_prim, into_from, hit)) {
       if (SKY != SKY_NONE) radiance += throughput * sky_radiance(ray.dir);
       break;
@@ -147,7 +150,8 @@ void main() {
   uint index = pixel.y * pass.width + pixel.x;
 
   // A scene with no emitter under a black sky is black: nothing to trace.
-  vec3 value = ANY_LIGHT ? trace_path(camera_ray(pixel, index), index) : vec3(0.0);
+  uint segments = 0u;
+  vec3 value = ANY_LIGHT ? trace_path(camera_ray(pixel, index), index, segments) : vec3(0.0);
 
   // A NaN or Inf sample is counted, never added: one would poison the pixel.
   if (any(isnan(value)) || any(isinf(value))) {
@@ -168,5 +172,9 @@ void main() {
   accum_sum[index] = vec4(t, n + 1.0);
   // Welford's update of the sum of squared deviations (M2): no cancellation of
   // two large sums, so a pixel with tiny variance keeps an accurate one.
-  accum_sq[index].rgb += (value - mean_old) * (value - mean_new);
+  vec4 sq = accum_sq[index];
+  sq.rgb += (value - mean_old) * (value - mean_new);
+  // .w counts the pixel's ray segments, as the bits of a uint (shared.h).
+  sq.w = uintBitsToFloat(floatBitsToUint(sq.w) + segments);
+  accum_sq[index] = sq;
 }

@@ -1,6 +1,7 @@
 #include "render/path_tracer.h"
 
 #include <algorithm>
+#include <bit>
 #include <vector>
 
 #include "core/clock.h"
@@ -249,6 +250,7 @@ RenderResult PathTracer::read_result() {
     double n = sum[i].w;
     r.min_samples = std::min(r.min_samples, uint32_t(n));
     r.count[i] = float(n);
+    r.rays += std::bit_cast<uint32_t>(sq[i].w);
     for (int c = 0; c < 3; ++c) {
       // The Kahan sum is sum - comp (comp holds what the float sum overshot).
       double total = double(sum[i][c]) - double(comp[i][c]);

@@ -46,6 +46,7 @@ struct RenderResult {
   std::vector<float> count;  // per pixel: samples added (NaN/Inf ones are not)
   uint32_t min_samples = 0;       // smallest per-pixel sample count
   uint64_t nonfinite_samples = 0; // NaN/Inf samples rejected (0 for a clean render)
+  uint64_t rays = 0;              // ray segments traced (camera rays and bounces)
   RenderTimings timings;
   OctreeStats octree;             // zeros for Accel::Brute
   SceneFeatures features;         // what the pipeline was specialised to

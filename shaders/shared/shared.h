@@ -139,7 +139,9 @@ struct GpuMaterial {
 //     samples added (exact as a float up to 2^24);
 //   accum_comp.rgb: the Kahan compensation terms;
 //   accum_sq.rgb: sum of squared deviations from the mean (Welford's M2), for
-//     the per-pixel variance the golden tests use.
+//     the per-pixel variance the golden tests use; accum_sq.w: the bits of a
+//     uint, the ray segments the pixel's paths traced (camera rays and
+//     bounces; NaN/Inf samples' not counted), for rays per second.
 
 // 16 bytes: the material as the fp16 variants read it (16-bit storage).
 // color_type: albedo or radiance, and the MAT_* type as a half (exact);

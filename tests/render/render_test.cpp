@@ -135,6 +135,20 @@ TEST_F(RenderTest, ReconfigureRefusedKeepsTheTracer) {
   EXPECT_TRUE(same_bits(tracer.read_result().mean, render(ctx, scene, s).mean));
 }
 
+// Rays per second counts every segment: a path that escapes at once is one
+// ray; one that cannot escape (the camera inside a closed white sphere) is
+// as many rays as the bounce limit.
+TEST_F(RenderTest, RaysCountEverySegment) {
+  const uint64_t paths = 48 * 32 * 3;
+  Scene empty = test::furnace_scene();
+  EXPECT_EQ(render_small(empty, 3).rays, paths);
+  Scene inside = test::furnace_scene();
+  inside.materials = {test::lambertian(1.0f)};
+  inside.spheres = {{{0, 0, 6}, 2.0f, 0}};  // around the camera
+  EXPECT_EQ(render_small(inside, 3, 5).rays, 5 * paths);
+  EXPECT_EQ(render_small(inside, 3, 1).rays, paths);
+}
+
 // Every pixel gets exactly spp samples and none is NaN/Inf on the default scene.
 TEST_F(RenderTest, RtiowSceneIsClean) {
   RenderResult r = render_small(make_rtiow_scene({}), 3);
