@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "io/file.h"
+#include "render/gpu_scene.h"
 #include "vk/context.h"
 
 namespace octrace {
@@ -154,6 +155,79 @@ int run_effects_bench(const VulkanContext& ctx, const BenchOptions& o, const Ren
   return 0;
 }
 
+// Given scenes (meshes, JSON scenes) per accel and precision: render time,
+// paths and rays per second, the octree's build time and size per primitive.
+int run_scene_bench(const VulkanContext& ctx, const BenchOptions& o, const RenderSettings& settings) {
+  struct SceneRow {
+    std::string name;
+    uint64_t spheres = 0, triangles = 0;
+    Accel accel;
+    Precision precision;
+    double median_ms = 0, min_ms = 0, max_ms = 0, build_ms = 0, bytes_per_primitive = 0;
+    double paths_per_s = 0, rays_per_s = 0;
+  };
+  std::vector<SceneRow> rows;
+  for (const auto& [name, scene] : o.scenes) {
+    for (Precision precision : o.precisions) {
+      for (Accel accel : o.accels) {
+        RenderSettings s = settings;
+        s.accel = accel;
+        s.precision = precision;
+        PathTracer tracer(ctx, scene, s);
+        std::vector<double> times;
+        for (uint32_t rep = 0; rep <= o.repeat; ++rep) {
+          tracer.reset();
+          double ms = tracer.run_passes(pass_settings(scene, s), 0, s.spp);
+          if (rep > 0) times.push_back(ms);  // repetition 0 is the warm-up
+        }
+        SceneRow row{name, scene.spheres.size(), instanced_triangle_count(scene), accel, precision};
+        row.median_ms = median(times);
+        row.min_ms = *std::min_element(times.begin(), times.end());
+        row.max_ms = *std::max_element(times.begin(), times.end());
+        row.build_ms = tracer.setup_timings().accel_build_ms;
+        row.bytes_per_primitive = tracer.octree_stats().bytes_per_primitive;
+        // The last run's rays: the accumulation holds exactly its passes.
+        const RenderResult last = tracer.read_result();
+        const double paths = double(s.width) * s.height * s.spp;
+        row.paths_per_s = paths / (times.back() / 1000.0);
+        row.rays_per_s = double(last.rays) / (times.back() / 1000.0);
+        if (!o.quiet)
+          std::fprintf(stderr, "  %-24s %-6s %-8s %.2f ms, %.3g rays/s\n", name.c_str(), accel_name(accel),
+                       precision_name(precision), row.median_ms, row.rays_per_s);
+        rows.push_back(row);
+      }
+    }
+  }
+  std::printf("Device: %s (%s, %s). Image %dx%d, %u spp, depth %u; render = device time of the passes "
+              "(timestamp queries), median of %u runs after a warm-up; paths/s and rays/s (every segment: "
+              "camera rays and bounces) of the last run.\n\n",
+              ctx.info.name.c_str(), ctx.info.type.c_str(), ctx.info.driver.c_str(), settings.width,
+              settings.height, settings.spp, settings.bounce_limit, o.repeat);
+  std::printf("| scene | spheres | triangles | accel | precision | render ms (median) | min | max | paths/s | rays/s | "
+              "octree build ms | octree bytes/primitive |\n");
+  std::printf("|---|---:|---:|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const SceneRow& r : rows)
+    std::printf("| %s | %llu | %llu | %s | %s | %.2f | %.2f | %.2f | %.3g | %.3g | %s | %s |\n", r.name.c_str(),
+                (unsigned long long)r.spheres, (unsigned long long)r.triangles, accel_name(r.accel),
+                precision_name(r.precision), r.median_ms, r.min_ms, r.max_ms, r.paths_per_s, r.rays_per_s,
+                r.accel == Accel::Octree ? fmt("%.1f", r.build_ms).c_str() : "",
+                r.accel == Accel::Octree ? fmt("%.1f", r.bytes_per_primitive).c_str() : "");
+  if (!o.csv.empty()) {
+    std::ostringstream f;
+    f << "device,software,width,height,spp,depth,repeat,scene,spheres,triangles,accel,precision,median_ms,min_ms,"
+         "max_ms,paths_per_s,rays_per_s,build_ms,bytes_per_primitive\n";
+    for (const SceneRow& r : rows)
+      f << '"' << ctx.info.name << "\"," << (ctx.info.software ? 1 : 0) << ',' << settings.width << ','
+        << settings.height << ',' << settings.spp << ',' << settings.bounce_limit << ',' << o.repeat << ",\""
+        << r.name << "\"," << r.spheres << ',' << r.triangles << ',' << accel_name(r.accel) << ','
+        << precision_name(r.precision) << ',' << r.median_ms << ',' << r.min_ms << ',' << r.max_ms << ','
+        << r.paths_per_s << ',' << r.rays_per_s << ',' << r.build_ms << ',' << r.bytes_per_primitive << '\n';
+    const std::string text = f.str();
+    write_file_atomically(o.csv, text.data(), text.size());
+  }
+  return 0;
+}
+
 int run_bench(const BenchOptions& o) {
   VulkanContext ctx;
   bool need_fp16 = false;
@@ -167,6 +241,7 @@ int run_bench(const BenchOptions& o) {
   validate_settings(settings);
 
   if (!o.families.empty()) return run_effects_bench(ctx, o, settings);
+  if (!o.scenes.empty()) return run_scene_bench(ctx, o, settings);
   if (!o.quiet)
     std::fprintf(stderr, "bench on %s (%s): %dx%d, %u spp, depth %u, %u repeats after a warm-up\n",
                  ctx.info.name.c_str(), ctx.info.type.c_str(), settings.width, settings.height, settings.spp,

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "render/path_tracer.h"
@@ -26,6 +27,9 @@ struct BenchOptions {
   // Non-empty: instead of the sphere-count sweep, time --effects auto against
   // all for each scene family (rtiow with its materials replaced, see bench.cpp).
   std::vector<std::string> families;
+  // Non-empty: instead of the sphere sweep, time these scenes (a name and the
+  // scene, loaded by the caller from --scene files) per accel and precision.
+  std::vector<std::pair<std::string, Scene>> scenes;
 };
 
 int run_bench(const BenchOptions& options);

@@ -444,6 +444,11 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--seed", bench.seed, "Scene generator seed")->capture_default_str();
   bench_cmd->add_option("--device", bench.device, "auto | cpu | gpu | INDEX")->capture_default_str();
   bench_cmd->add_option("--csv", bench.csv, "Also write the results as CSV");
+  std::vector<std::string> bench_scenes;
+  bench_cmd->add_option("--scene", bench_scenes,
+                        "Instead of the sphere sweep: time these scene files (.json, .gltf, .glb; comma-separated) "
+                        "per accel and precision, with rays/s")
+      ->delimiter(',');
   bench_cmd->add_option("--family", bench.families,
                         "Instead of the sphere sweep: time --effects auto against all for these scene families "
                         "(rtiow, lambertian, metal, glass, emissive, pinhole; comma-separated)")
@@ -491,6 +496,11 @@ int main(int argc, char** argv) {
       for (float r : bench.radii)
         if (!(r > 0) || !std::isfinite(r)) throw InputError("--radius: must be finite numbers > 0");
       if (!bench.csv.empty()) check_output_folder(bench.csv);
+      for (const auto& file : bench_scenes) {
+        SceneOptions one;
+        one.scene_file = file;
+        bench.scenes.emplace_back(file.substr(file.find_last_of('/') + 1), one.load());
+      }
       code = run_bench(bench);
     }
   } catch (const SettingError& e) {
