@@ -42,6 +42,12 @@ namespace {
 
 using Json = nlohmann::json;
 
+// "1 mesh", "3 meshes", "1 bufferView": a count of the items of a glTF array.
+std::string count_of(size_t n, std::string_view array) {
+  if (n != 1) return std::to_string(n) + " " + std::string(array);
+  return "1 " + std::string(array == "meshes" ? "mesh" : array.substr(0, array.size() - 1));
+}
+
 std::string item(std::string_view array, size_t i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
 
 // "1 vertex", "24 vertices".
@@ -346,8 +352,7 @@ struct File {
   template <typename T>
   const T& get(const std::vector<T>& array, int index, const char* array_name, const std::string& at) const {
     if (index < 0 || size_t(index) >= array.size())
-      fail(at, "index " + std::to_string(index) + " out of range (" + std::to_string(array.size()) + " " + array_name +
-                   ")");
+      fail(at, "index " + std::to_string(index) + " out of range (" + count_of(array.size(), array_name) + ")");
     return array[size_t(index)];
   }
 };
