@@ -4,6 +4,7 @@
 // or .glb. Shared by the scene, glTF and command-line tests.
 #pragma once
 
+#include <cctype>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -126,9 +127,11 @@ struct GltfBuilder {
     return out;
   }
 
-  // Writes the file, as .glb or .gltf by `path`'s extension; returns `path`.
+  // Writes the file, as .glb (in any case) or .gltf by `path`'s extension; returns `path`.
   std::string write(const std::string& path) const {
-    write_bytes(path, std::filesystem::path(path).extension() == ".glb" ? glb() : gltf());
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    write_bytes(path, ext == ".glb" ? glb() : gltf());
     return path;
   }
 };

@@ -25,7 +25,11 @@ namespace {
 using nlohmann::json;
 using test::GltfBuilder;
 
-std::string tmp(const std::string& name) { return std::string(OCTRACE_TEST_TMP) + "/gltf/" + name; }
+// A folder per test: ctest runs the tests as parallel processes.
+std::string tmp(const std::string& name) {
+  const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  return std::string(OCTRACE_TEST_TMP) + "/gltf/" + test->test_suite_name() + "." + test->name() + "/" + name;
+}
 
 // Loads `b` written as `name` (.gltf or .glb); warnings are collected in `warnings`.
 Scene load(const GltfBuilder& b, const std::string& name, GltfOptions opts = {},

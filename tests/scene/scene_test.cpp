@@ -456,10 +456,10 @@ TEST(JsonErrors, LoadNamesTheFile) {
 // meshes: references to glTF files
 // ---------------------------------------------------------------------------
 
-// A folder with quad.glb (a unit square, 2 triangles, no materials) and the
-// scene file's path in it.
+// A folder of the test's own (ctest runs the tests as parallel processes)
+// with quad.glb in it: a unit square, 2 triangles, no materials.
 std::string mesh_folder() {
-  const std::string dir = test_path("meshes");
+  const std::string dir = test_path(std::string("meshes_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
   test::quad_gltf().write(dir + "/quad.glb");
   return dir;
 }
