@@ -320,17 +320,15 @@ void check_external_files(const Json& doc, const std::string& file, const std::s
 
 // tinygltf's image callback: checks that stb can read the image's header
 // (format and size). The pixels are not decoded: nothing draws them yet.
-struct ImageChecks {
-  std::string error;
-};
-
+// `user` is a std::string that receives the error, so that it comes out as
+// written here rather than after tinygltf's own lines.
 bool check_image(tinygltf::Image* image, int index, std::string* err, std::string*, int, int,
                  const unsigned char* bytes, int size, void* user) {
-  auto& checks = *static_cast<ImageChecks*>(user);
   int width = 0, height = 0, channels = 0;
   if (!stbi_info_from_memory(bytes, size, &width, &height, &channels)) {
-    checks.error = item("images", size_t(index)) + ": cannot be decoded (" + stbi_failure_reason() + ")";
-    if (err) *err += checks.error + "\n";
+    std::string& error = *static_cast<std::string*>(user);
+    error = item("images", size_t(index)) + ": cannot be decoded (" + stbi_failure_reason() + ")";
+    if (err) *err += error + "\n";
     return false;
   }
   image->width = width;
@@ -369,13 +367,15 @@ void check_buffer_views(const File& f) {
   }
 }
 
-File read_file_checked(const std::string& path) {
+// The file read by tinygltf after the checks tinygltf does not make.
+File open_gltf(const std::string& path) {
   File f{path, {}, {}};
   const std::string bytes = read_file(path);
   if (bytes.size() > UINT_MAX) throw InputError(path + ": larger than 4 GiB, which tinygltf cannot read");
   std::string lower = std::filesystem::path(path).extension().string();
   std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
-  // A .glb by its magic rather than its name, as tinygltf and other readers do.
+  // Binary by its magic, or by its name: a damaged .glb then says what is
+  // wrong with its header rather than that it is not JSON.
   const bool binary = bytes.rfind("glTF", 0) == 0 || lower == ".glb";
   const std::string_view text = binary ? glb_json(bytes, path) : std::string_view(bytes);
 
@@ -391,13 +391,13 @@ File read_file_checked(const std::string& path) {
   doc = Json();  // tinygltf parses its own copy
 
   tinygltf::TinyGLTF loader;
-  ImageChecks images;
-  loader.SetImageLoader(&check_image, &images);
+  std::string image_error;
+  loader.SetImageLoader(&check_image, &image_error);
   std::string err, warn;
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
   const bool ok = binary ? loader.LoadBinaryFromMemory(&f.model, &err, &warn, data, unsigned(bytes.size()), dir)
                          : loader.LoadASCIIFromString(&f.model, &err, &warn, bytes.data(), unsigned(bytes.size()), dir);
-  if (!images.error.empty()) throw InputError(path + ": " + images.error);
+  if (!image_error.empty()) throw InputError(path + ": " + image_error);
   if (!ok || !err.empty()) {
     // tinygltf lists every problem, one per line; the first is the one to fix first.
     std::string first = err.substr(0, err.find('\n'));
@@ -825,7 +825,7 @@ struct Loaded {
 };
 
 Loaded read_gltf(const std::string& path, std::optional<uint32_t> scene_index) {
-  File f = read_file_checked(path);
+  File f = open_gltf(path);
   const tinygltf::Model& model = f.model;
   Loaded out;
   out.file_cameras = model.cameras.size();
