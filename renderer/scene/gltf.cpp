@@ -910,10 +910,8 @@ Loaded read_gltf(const std::string& path, std::optional<uint32_t> scene_index) {
 }
 
 void emit_warnings(const GltfOptions& opts, const std::vector<std::string>& warnings) {
-  for (const std::string& w : warnings) {
-    if (opts.warn) opts.warn(w);
-    else std::fprintf(stderr, "octrace: warning: %s\n", w.c_str());
-  }
+  if (!opts.warn) return;
+  for (const std::string& w : warnings) opts.warn(w);
 }
 
 void append(Scene& scene, const Loaded& file, std::optional<uint32_t> material_override, const glm::mat4& transform) {
@@ -989,6 +987,8 @@ Camera framing_camera(const Scene& scene) {
 }
 
 }  // namespace
+
+void print_warning(const std::string& message) { std::fprintf(stderr, "octrace: warning: %s\n", message.c_str()); }
 
 void append_gltf(Scene& scene, const std::string& path, std::optional<uint32_t> material_override,
                  const glm::mat4& transform, const GltfOptions& opts) {

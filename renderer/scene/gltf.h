@@ -37,6 +37,9 @@
 
 namespace octrace {
 
+// Prints "octrace: warning: MESSAGE" on stderr.
+void print_warning(const std::string& message);
+
 struct GltfOptions {
   // Which of the file's scenes to place (default: the file's default scene,
   // else its first). Out of range: SettingError "gltf.scene".
@@ -46,10 +49,9 @@ struct GltfOptions {
   // camera that frames the scene). Not perspective, not placed by a node of the
   // scene, or out of range: SettingError "gltf.camera".
   std::optional<uint32_t> camera;
-  // Receives each warning (one line, starting with the file name), after the
-  // file has loaded without error. Unset: printed on stderr as
-  // "octrace: warning: ...".
-  std::function<void(const std::string&)> warn;
+  // Receives each warning (one line, starting with the file name), once the
+  // file has loaded without error; empty: none is reported.
+  std::function<void(const std::string&)> warn = print_warning;
 };
 
 // A scene of the file alone: its meshes, instances and materials, its camera

@@ -297,10 +297,11 @@ MeshRef read_mesh_ref(const Node& n, size_t scene_materials) {
 
 // Loads the file a reference names, relative to the scene file's folder; its
 // errors are prefixed with where the scene file names it.
-void append_mesh_ref(Scene& scene, const MeshRef& ref, const Node& n) {
+void append_mesh_ref(Scene& scene, const MeshRef& ref, const Node& n, std::vector<std::string>& warnings) {
   const std::string path = (std::filesystem::path(*n.source).parent_path() / ref.file).string();
   GltfOptions opts;
   opts.scene = ref.scene;
+  opts.warn = [&](const std::string& w) { warnings.push_back(w); };
   try {
     append_gltf(scene, path, ref.material, ref.transform, opts);
   } catch (const SettingError& e) {
@@ -509,6 +510,7 @@ Scene parse_scene_json(const std::string& text, const std::string& source) {
   const Node root{&doc, &source};
   if (!doc.is_object()) root.fail("expected a JSON object at the top level, got " + describe_json(doc));
   check_keys(root, {"camera", "sky", "materials", "spheres", "meshes"});
+  std::vector<std::string> warnings;
   if (const std::optional<Node> camera = root.find("camera")) scene.camera = read_camera(*camera);
   if (const std::optional<Node> sky = root.find("sky")) scene.sky = read_sky(*sky);
   // If they are arrays, the parser has already moved their elements into `scene`.
@@ -520,9 +522,11 @@ Scene parse_scene_json(const std::string& text, const std::string& source) {
     std::vector<MeshRef> refs;
     for (size_t i = 0; i < meshes->value->size(); ++i)
       refs.push_back(read_mesh_ref(meshes->element(i), scene.materials.size()));
-    for (size_t i = 0; i < refs.size(); ++i) append_mesh_ref(scene, refs[i], meshes->element(i));
+    for (size_t i = 0; i < refs.size(); ++i) append_mesh_ref(scene, refs[i], meshes->element(i), warnings);
   }
   validate_scene(scene, source);
+  // Only once the whole scene has loaded, so that an error stays the one line printed.
+  for (const std::string& w : warnings) print_warning(w);
   return scene;
 }
 

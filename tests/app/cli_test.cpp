@@ -157,6 +157,14 @@ TEST(Cli, GltfBadInput) {
   expect_bad_input("gltf_flag_rtiow", "--gltf-scene 0", "--gltf-scene requires --scene");
   expect_bad_input("scene_extension", "--scene " + tmp("model.obj"),
                    tmp("model.obj") + ": unknown scene format (expected .json, .gltf or .glb)");
+  // A file that loads with a warning, then one that does not load: still the one line.
+  octrace::test::GltfBuilder textured = octrace::test::quad_gltf();
+  textured.add("textures", nlohmann::json::object());
+  textured.write(tmp("gltf/textured.glb"));
+  const std::string two = write_file("gltf/two.json", replaced(VALID_SCENE, "\"spheres\"",
+                                                               "\"meshes\": [{\"file\": \"textured.glb\"}, "
+                                                               "{\"file\": \"corrupt.glb\"}],\n  \"spheres\""));
+  expect_bad_input("gltf_second_file", "--scene " + two, two + ": meshes[1].file: " + tmp("gltf/corrupt.glb"));
 }
 
 // `render --scene model.glb` loads the file and reports what it holds (the

@@ -557,7 +557,7 @@ TEST(GltfErrors, DamagedFilesNeverCrash) {
       test::write_bytes(path, damaged);
       try {
         GltfOptions quiet;
-        quiet.warn = [](const std::string&) {};
+        quiet.warn = nullptr;
         load_gltf_scene(path, quiet);
       } catch (const InputError&) {
       }
