@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cctype>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -23,6 +25,7 @@
 #include "core/clock.h"
 #include "render/path_tracer.h"
 #include "render/render_state.h"
+#include "scene/gltf.h"
 #include "scene/scene.h"
 #include "view.h"
 #include "vk/context.h"
@@ -39,13 +42,21 @@ struct SceneOptions {
   uint64_t spheres = RtiowParams{}.spheres;
   float radius = RtiowParams{}.radius;
   uint64_t seed = RtiowParams{}.seed;
+  GltfOptions gltf;
   std::string dump_scene;
 
   void add_to(CLI::App& cmd) {
-    auto* file = cmd.add_option("--scene", scene_file, "Scene JSON file (default: the built-in rtiow scene)");
+    auto* file = cmd.add_option("--scene", scene_file,
+                                "Scene file: JSON (.json) or glTF (.gltf, .glb) (default: the built-in rtiow scene)");
     cmd.add_option("--spheres", spheres, "rtiow: number of small spheres")->capture_default_str()->excludes(file);
     cmd.add_option("--radius", radius, "rtiow: radius of the small spheres")->capture_default_str()->excludes(file);
     cmd.add_option("--seed", seed, "rtiow: scene generator seed")->capture_default_str()->excludes(file);
+    cmd.add_option("--gltf-scene", gltf.scene, "glTF: which of the file's scenes (default: its default scene)")
+        ->needs(file);
+    cmd.add_option("--camera", gltf.camera,
+                   "glTF: which of the file's cameras (default: its first perspective camera, else one that frames "
+                   "the scene)")
+        ->needs(file);
     cmd.add_option("--dump-scene", dump_scene, "Write the scene as JSON to this file");
   }
 
@@ -58,11 +69,38 @@ struct SceneOptions {
   }
 
   Scene load() const {
-    Scene scene = scene_file.empty() ? make_rtiow_scene({spheres, radius, seed}) : load_scene_json(scene_file);
+    Scene scene;
+    if (scene_file.empty()) {
+      scene = make_rtiow_scene({spheres, radius, seed});
+    } else {
+      // By extension, in any case: a .GLB from Windows tools is a .glb.
+      std::string ext = std::filesystem::path(scene_file).extension().string();
+      std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+      if (ext == ".json") {
+        const char* flag = gltf.scene ? "--gltf-scene" : gltf.camera ? "--camera" : nullptr;
+        if (flag) throw InputError(std::string(flag) + ": only for glTF scenes (.gltf, .glb), not " + scene_file);
+        scene = load_scene_json(scene_file);
+      } else if (ext == ".gltf" || ext == ".glb") {
+        scene = load_gltf_scene(scene_file, gltf);
+      } else {
+        throw InputError(scene_file + ": unknown scene format (expected .json, .gltf or .glb)");
+      }
+    }
     if (!dump_scene.empty()) save_scene_json(scene, dump_scene);
     return scene;
   }
 };
+
+// "488 spheres, 3 meshes, 5 instances, 1200 triangles (800 unique), 4 materials";
+// the mesh part only when there are meshes.
+std::string scene_summary(const Scene& scene) {
+  std::string out = std::to_string(scene.spheres.size()) + " spheres, ";
+  if (!scene.meshes.empty())
+    out += std::to_string(scene.meshes.size()) + " meshes, " + std::to_string(scene.instances.size()) +
+           " instances, " + std::to_string(instanced_triangle_count(scene)) + " triangles (" +
+           std::to_string(unique_triangle_count(scene)) + " unique), ";
+  return out + std::to_string(scene.materials.size()) + " materials";
+}
 
 // Parses "WxH": two decimal integers; values beyond int range are reported
 // as too large rather than wrapped.
@@ -143,6 +181,8 @@ std::string message_for_cli(const SettingError& e) {
       {"device", "--device"},
       {"rtiow.radius", "--radius"},
       {"rtiow.spheres", "--spheres"},
+      {"gltf.scene", "--gltf-scene"},
+      {"gltf.camera", "--camera"},
   };
   std::string message = e.what();
   if (auto it = flags.find(e.setting); it != flags.end()) message.replace(0, e.setting.size(), it->second);
@@ -233,6 +273,10 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
     json j = {{"device", device_json(ctx.info)},
               {"scene", {{"source", scene_opts.describe()},
                          {"spheres", scene.spheres.size()},
+                         {"meshes", scene.meshes.size()},
+                         {"instances", scene.instances.size()},
+                         {"triangles_unique", unique_triangle_count(scene)},
+                         {"triangles_instanced", instanced_triangle_count(scene)},
                          {"materials", scene.materials.size()}}},
               {"width", settings.width},
               {"height", settings.height},
@@ -270,8 +314,7 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
     std::cout << j.dump(2) << "\n";
   } else if (!quiet) {
     std::printf("device    %s (%s)\n", ctx.info.name.c_str(), ctx.info.type.c_str());
-    std::printf("scene     %s: %zu spheres, %zu materials\n", scene_opts.describe().c_str(), scene.spheres.size(),
-                scene.materials.size());
+    std::printf("scene     %s: %s\n", scene_opts.describe().c_str(), scene_summary(scene).c_str());
     std::printf("image     %dx%d, %u spp, depth %u, sample seed %u, %s\n", settings.width, settings.height,
                 settings.spp, settings.bounce_limit, settings.sample_seed, precision_name(settings.precision));
     if (settings.accel == Accel::Octree)

@@ -10,6 +10,7 @@ packages=(
   glslang-tools spirv-tools
   libglm-dev libglfw3-dev libstb-dev nlohmann-json3-dev libcli11-dev
   libtinyexr-dev libtinygltf-dev libgtest-dev
+  assimp-testmodels
   xvfb xauth python3 python3-matplotlib python3-numpy
 )
 

@@ -7,8 +7,11 @@
 #include <random>
 
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 
 #include "core/errors.h"
+#include "core/text.h"
 
 namespace octrace {
 namespace {
@@ -121,14 +124,8 @@ void add_small_material(Scene& scene, std::mt19937_64& rng, uint32_t shared_glas
 // validation
 // ---------------------------------------------------------------------------
 
-std::string format(float v) {
-  char buf[32];
-  return {buf, std::to_chars(buf, buf + sizeof buf, v).ptr};
-}
-
-std::string format(glm::vec3 v) {
-  return "[" + format(v.x) + ", " + format(v.y) + ", " + format(v.z) + "]";
-}
+std::string format(float v) { return float_string(v); }
+std::string format(glm::vec3 v) { return vec3_string(v); }
 
 [[noreturn]] void invalid(const std::string& source, const std::string& path, const std::string& what) {
   throw InputError(source + ": " + path + ": " + what);
@@ -205,7 +202,70 @@ void validate_material(const Material& m, const std::string& source, size_t inde
   invalid(source, path + ".type", "unknown material type " + std::to_string(static_cast<uint32_t>(m.type)));
 }
 
+// "index 9 out of range (3 materials)".
+std::string out_of_range(size_t index, size_t size, const char* one, const char* many) {
+  return "index " + std::to_string(index) + " out of range (" + std::to_string(size) + " " + (size == 1 ? one : many) +
+         ")";
+}
+
+void validate_mesh(const Mesh& m, const Scene& scene, const std::string& source, size_t index) {
+  const std::string path = "meshes[" + std::to_string(index) + "]";
+  const auto element = [&](const char* field, size_t i) { return path + "." + field + "[" + std::to_string(i) + "]"; };
+  const size_t vertices = m.positions.size();
+  for (size_t i = 0; i < vertices; ++i)
+    if (!finite(m.positions[i])) check_finite(m.positions[i], source, element("positions", i));
+  if (!m.normals.empty() && m.normals.size() != vertices)
+    invalid(source, path + ".normals", std::to_string(m.normals.size()) + " normals for " + std::to_string(vertices) +
+                                          " positions (must be as many, or none)");
+  for (size_t i = 0; i < m.normals.size(); ++i)
+    if (!finite(m.normals[i])) check_finite(m.normals[i], source, element("normals", i));
+  if (!m.uvs.empty() && m.uvs.size() != vertices)
+    invalid(source, path + ".uvs", std::to_string(m.uvs.size()) + " uvs for " + std::to_string(vertices) +
+                                       " positions (must be as many, or none)");
+  for (size_t i = 0; i < m.uvs.size(); ++i)
+    if (!std::isfinite(m.uvs[i].x) || !std::isfinite(m.uvs[i].y))
+      invalid(source, element("uvs", i),
+              "must be 2 finite numbers, got [" + format(m.uvs[i].x) + ", " + format(m.uvs[i].y) + "]");
+  if (m.indices.size() % 3)
+    invalid(source, path + ".indices", std::to_string(m.indices.size()) + " indices do not make whole triangles");
+  for (size_t i = 0; i < m.indices.size(); ++i)
+    if (m.indices[i] >= vertices)
+      invalid(source, element("indices", i), out_of_range(m.indices[i], vertices, "vertex", "vertices"));
+  if (m.materials.size() != m.triangle_count())
+    invalid(source, path + ".materials", std::to_string(m.materials.size()) + " materials for " +
+                                             std::to_string(m.triangle_count()) + " triangles (must be one each)");
+  for (size_t i = 0; i < m.materials.size(); ++i)
+    if (m.materials[i] >= scene.materials.size())
+      invalid(source, element("materials", i), out_of_range(m.materials[i], scene.materials.size(), "material", "materials"));
+}
+
+void validate_instance(const Instance& in, const Scene& scene, const std::string& source, size_t index) {
+  const std::string path = "instances[" + std::to_string(index) + "]";
+  if (in.mesh >= scene.meshes.size())
+    invalid(source, path + ".mesh", out_of_range(in.mesh, scene.meshes.size(), "mesh", "meshes"));
+  const glm::mat4& t = in.transform;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(t[c][r])) invalid(source, path + ".transform", "must be 16 finite numbers");
+  // The renderer takes rays into the instance through the inverse.
+  if (t[0][3] != 0.0f || t[1][3] != 0.0f || t[2][3] != 0.0f || t[3][3] != 1.0f)
+    invalid(source, path + ".transform", "must be an affine transform (last row 0, 0, 0, 1)");
+  if (glm::determinant(glm::dmat3(glm::mat3(t))) == 0.0) invalid(source, path + ".transform", "must be invertible");
+}
+
 }  // namespace
+
+uint64_t unique_triangle_count(const Scene& scene) {
+  uint64_t n = 0;
+  for (const Mesh& m : scene.meshes) n += m.triangle_count();
+  return n;
+}
+
+uint64_t instanced_triangle_count(const Scene& scene) {
+  uint64_t n = 0;
+  for (const Instance& i : scene.instances) n += i.mesh < scene.meshes.size() ? scene.meshes[i.mesh].triangle_count() : 0;
+  return n;
+}
 
 Scene make_rtiow_scene(const RtiowParams& params) {
   if (!(std::isfinite(params.radius) && params.radius > 0.0f))
@@ -264,9 +324,18 @@ void validate_scene(const Scene& scene, const std::string& source) {
     if (!finite(s.center)) check_finite(s.center, source, path("center"));
     if (!(std::isfinite(s.radius) && s.radius > 0.0f)) check_positive(s.radius, source, path("radius"));
     if (s.material >= scene.materials.size())
-      invalid(source, path("material"), "index " + std::to_string(s.material) + " out of range (" +
-                                            std::to_string(scene.materials.size()) +
-                                            (scene.materials.size() == 1 ? " material)" : " materials)"));
+      invalid(source, path("material"), out_of_range(s.material, scene.materials.size(), "material", "materials"));
+  }
+  for (size_t i = 0; i < scene.meshes.size(); ++i) validate_mesh(scene.meshes[i], scene, source, i);
+  for (size_t i = 0; i < scene.instances.size(); ++i) validate_instance(scene.instances[i], scene, source, i);
+  if (scene.mesh_file_materials > scene.materials.size())
+    invalid(source, "materials", std::to_string(scene.mesh_file_materials) + " from mesh files, but only " +
+                                     std::to_string(scene.materials.size()) + " in all");
+  for (size_t i = 0; i < scene.mesh_refs.size(); ++i) {
+    const std::optional<uint32_t>& m = scene.mesh_refs[i].material;
+    if (m && *m >= scene.materials.size())
+      invalid(source, "mesh_refs[" + std::to_string(i) + "].material",
+              out_of_range(*m, scene.materials.size(), "material", "materials"));
   }
 }
 

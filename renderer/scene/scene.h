@@ -1,5 +1,6 @@
 // The scene as plain CPU structs: what the renderer draws, independent of Vulkan.
-// Sources: the built-in `rtiow` generator and the JSON format (README "Scene format").
+// Sources: the built-in `rtiow` generator, the JSON format (README "Scene
+// format") and glTF files (scene/gltf.h).
 #pragma once
 
 #include <cstdint>
@@ -87,6 +88,7 @@ struct MeshRef {
   std::string file;                  // as written in the scene file (relative to it)
   std::optional<uint32_t> material;  // overrides the file's own materials
   glm::mat4 transform{1.0f};
+  std::optional<uint32_t> scene;     // which of the file's scenes (default: its default scene)
 
   bool operator==(const MeshRef&) const = default;
 };
@@ -98,11 +100,19 @@ struct Scene {
   std::vector<Sphere> spheres;
   std::vector<Mesh> meshes;
   std::vector<Instance> instances;
-  std::vector<MeshRef> mesh_refs;  // JSON scenes only
+  std::vector<MeshRef> mesh_refs;  // JSON scenes, and a glTF scene's reference to its file
+  // The last `mesh_file_materials` of `materials` came from the mesh files
+  // (appended as each reference was loaded), not from the scene file: JSON
+  // writes only the others, and loading the references adds these again.
+  size_t mesh_file_materials = 0;
 
   // Field by field with float ==, so -0 equals 0; tests that need bit-exactness compare bits.
   bool operator==(const Scene&) const = default;
 };
+
+// Triangles stored (each mesh once) and placed (each mesh once per instance).
+uint64_t unique_triangle_count(const Scene& scene);
+uint64_t instanced_triangle_count(const Scene& scene);
 
 struct RtiowParams {
   uint64_t spheres = 488;  // small spheres, besides the ground and the three big ones
@@ -118,9 +128,13 @@ struct RtiowParams {
 Scene make_rtiow_scene(const RtiowParams& params);
 
 // JSON (README "Scene format"). `source` names the input in error
-// messages ("scene.json: spheres[12].radius: must be a finite number > 0, got -1").
+// messages ("scene.json: spheres[12].radius: must be a finite number > 0, got -1")
+// and is where the file lies: mesh files are found relative to its folder.
 Scene parse_scene_json(const std::string& text, const std::string& source);
 Scene load_scene_json(const std::string& path);
+// Meshes are written as the references they were loaded from (mesh_refs, with
+// the transform as a matrix), never as triangles: a scene with meshes but no
+// references cannot be written (InputError).
 std::string scene_to_json(const Scene& scene);
 // Written atomically (temporary file, then rename).
 void save_scene_json(const Scene& scene, const std::string& path);

@@ -1,8 +1,8 @@
 // Scene <-> JSON, the format of README "Scene format".
 //
 // Required and optional fields:
-//   top level     "materials" and "spheres" are required (either may be empty);
-//                 "camera" and "sky" are optional.
+//   top level     "materials" is required (it may be empty); "spheres",
+//                 "meshes", "camera" and "sky" are optional.
 //   camera        every field is optional; the defaults are Camera's in scene.h
 //                 (the rtiow camera).
 //   sky           optional as a whole (default: the book's gradient); if given,
@@ -12,6 +12,12 @@
 //                 "radiance" are required; metal "fuzz" is optional (0: a mirror),
 //                 dielectric "ior" is optional (1.5: glass).
 //   spheres[i]    "center", "radius" and "material" are all required.
+//   meshes[i]     a glTF file: "file" (relative to the scene file) is required;
+//                 "material" (overrides the file's materials), "scene" (which
+//                 of the file's scenes) and "transform" ({"scale", "rotate",
+//                 "translate"} or {"matrix"}) are optional. Written back as
+//                 references, the transform as a matrix; the files' own
+//                 materials are not written.
 // Any other key is an error, a field of another material or sky type included,
 // so that a typo never silently turns into a default. Fields a type does not use
 // are neither written nor read; they load as scene.h's defaults.
@@ -26,6 +32,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <initializer_list>
 #include <limits>
 #include <optional>
@@ -35,10 +42,14 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
 #include <nlohmann/json.hpp>
 
 #include "io/file.h"
 #include "core/errors.h"
+#include "scene/gltf.h"
+#include "scene/json_text.h"
 #include "scene/scene.h"
 
 namespace octrace {
@@ -94,15 +105,6 @@ struct Node {
   }
 };
 
-// The value as the user wrote it, shortened, for "got ..." in messages.
-std::string describe(const Json& v) {
-  const std::string text = v.dump();
-  if (text.size() <= 40) return text;
-  if (v.is_array()) return "an array of " + std::to_string(v.size()) + " elements";
-  if (v.is_object()) return "an object";
-  return text.substr(0, 37) + "...";
-}
-
 template <typename Names>
 std::string join(const Names& names) {
   std::string out;
@@ -111,11 +113,11 @@ std::string join(const Names& names) {
 }
 
 void require_object(const Node& n) {
-  if (!n.value->is_object()) n.fail("expected an object, got " + describe(*n.value));
+  if (!n.value->is_object()) n.fail("expected an object, got " + describe_json(*n.value));
 }
 
 void require_array(const Node& n) {
-  if (!n.value->is_array()) n.fail("expected an array, got " + describe(*n.value));
+  if (!n.value->is_array()) n.fail("expected an array, got " + describe_json(*n.value));
 }
 
 void check_keys(const Node& n, std::initializer_list<std::string_view> allowed) {
@@ -126,22 +128,22 @@ void check_keys(const Node& n, std::initializer_list<std::string_view> allowed) 
 }
 
 float read_float(const Node& n) {
-  if (!n.value->is_number()) n.fail("expected a number, got " + describe(*n.value));
+  if (!n.value->is_number()) n.fail("expected a number, got " + describe_json(*n.value));
   return n.value->get<float>();  // finite: the parser refuses numbers beyond float's range
 }
 
 glm::vec3 read_vec3(const Node& n) {
   const Json& v = *n.value;
   if (!v.is_array() || v.size() != 3 || !std::all_of(v.begin(), v.end(), [](const Json& e) { return e.is_number(); }))
-    n.fail("expected an array of 3 numbers, got " + describe(v));
+    n.fail("expected an array of 3 numbers, got " + describe_json(v));
   return {read_float(n.element(0)), read_float(n.element(1)), read_float(n.element(2))};
 }
 
-uint32_t read_index(const Node& n) {
+uint32_t read_index(const Node& n, const char* what = "material") {
   const Json& v = *n.value;
   // nlohmann stores every integer literal >= 0 as unsigned; 1.5, 2.0 and -1 are not.
   if (!v.is_number_unsigned() || v.get<uint64_t>() > std::numeric_limits<uint32_t>::max())
-    n.fail("expected a material index (an integer >= 0), got " + describe(v));
+    n.fail("expected a " + std::string(what) + " index (an integer >= 0), got " + describe_json(v));
   return static_cast<uint32_t>(v.get<uint64_t>());
 }
 
@@ -153,7 +155,7 @@ uint32_t read_type(const Node& n, const std::string_view (&names)[N], const char
     const auto it = std::find(std::begin(names), std::end(names), type.value->get_ref<const std::string&>());
     if (it != std::end(names)) return static_cast<uint32_t>(it - std::begin(names));
   }
-  type.fail("unknown " + std::string(kind) + " type " + describe(*type.value) + " (expected " + join(names) + ")");
+  type.fail("unknown " + std::string(kind) + " type " + describe_json(*type.value) + " (expected " + join(names) + ")");
 }
 
 template <typename T>
@@ -229,6 +231,86 @@ Sphere read_sphere(const Node& n) {
   check_keys(n, {"center", "radius", "material"});
   // Braced initialisation evaluates left to right, so the first bad field is reported.
   return {read_vec3(n.require("center")), read_float(n.require("radius")), read_index(n.require("material"))};
+}
+
+// Column-major, as glTF and glm store matrices.
+glm::mat4 read_matrix(const Node& n) {
+  const Json& v = *n.value;
+  if (!v.is_array() || v.size() != 16 || !std::all_of(v.begin(), v.end(), [](const Json& e) { return e.is_number(); }))
+    n.fail("expected an array of 16 numbers (column-major), got " + describe_json(v));
+  glm::mat4 m;
+  for (int i = 0; i < 16; ++i) m[i / 4][i % 4] = read_float(n.element(size_t(i)));
+  // The renderer takes rays into the mesh through the inverse.
+  if (m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f)
+    n.fail("must be an affine transform (last row, elements 3, 7, 11 and 15: 0, 0, 0, 1)");
+  if (glm::determinant(glm::dmat3(glm::mat3(m))) == 0.0) n.fail("must be invertible");
+  return m;
+}
+
+// {"scale", "rotate", "translate"} applied in that order, or {"matrix"};
+// composed in double and rounded once.
+glm::mat4 read_transform(const Node& n) {
+  require_object(n);
+  check_keys(n, {"scale", "rotate", "translate", "matrix"});
+  if (const std::optional<Node> matrix = n.find("matrix")) {
+    if (n.value->size() > 1) matrix->fail("excludes scale, rotate and translate (give one form or the other)");
+    return read_matrix(*matrix);
+  }
+  glm::dmat4 t(1.0);
+  if (const std::optional<Node> translate = n.find("translate")) t = glm::translate(t, glm::dvec3(read_vec3(*translate)));
+  if (const std::optional<Node> rotate = n.find("rotate")) {
+    const Json& v = *rotate->value;
+    if (!v.is_array() || v.size() != 4 || !std::all_of(v.begin(), v.end(), [](const Json& e) { return e.is_number(); }))
+      rotate->fail("expected [axis x, y, z, angle in degrees], got " + describe_json(v));
+    const glm::dvec3 axis(read_float(rotate->element(0)), read_float(rotate->element(1)), read_float(rotate->element(2)));
+    if (axis == glm::dvec3(0.0)) rotate->fail("the axis must not be the zero vector");
+    // Right-handed: counter-clockwise seen from the tip of the axis.
+    t = glm::rotate(t, glm::radians(double(read_float(rotate->element(3)))), glm::normalize(axis));
+  }
+  if (const std::optional<Node> scale = n.find("scale")) {
+    const glm::vec3 s = scale->value->is_number() ? glm::vec3(read_float(*scale)) : read_vec3(*scale);
+    if (s.x == 0.0f || s.y == 0.0f || s.z == 0.0f)
+      scale->fail("must not be 0 (it would flatten the mesh), got " + describe_json(*scale->value));
+    t = glm::scale(t, glm::dvec3(s));
+  }
+  return glm::mat4(t);
+}
+
+MeshRef read_mesh_ref(const Node& n, size_t scene_materials) {
+  require_object(n);
+  check_keys(n, {"file", "material", "transform", "scene"});
+  MeshRef ref;
+  const Node file = n.require("file");
+  if (!file.value->is_string() || file.value->get_ref<const std::string&>().empty())
+    file.fail("expected a file name (a non-empty string), got " + describe_json(*file.value));
+  ref.file = file.value->get<std::string>();
+  if (const std::optional<Node> material = n.find("material")) {
+    ref.material = read_index(*material);
+    if (*ref.material >= scene_materials)
+      material->fail("index " + std::to_string(*ref.material) + " out of range (" + std::to_string(scene_materials) +
+                     (scene_materials == 1 ? " material)" : " materials)"));
+  }
+  if (const std::optional<Node> transform = n.find("transform")) ref.transform = read_transform(*transform);
+  if (const std::optional<Node> scene = n.find("scene")) ref.scene = read_index(*scene, "scene");
+  return ref;
+}
+
+// Loads the file a reference names, relative to the scene file's folder; its
+// errors are prefixed with where the scene file names it.
+void append_mesh_ref(Scene& scene, const MeshRef& ref, const Node& n, std::vector<std::string>& warnings) {
+  const std::string path = (std::filesystem::path(*n.source).parent_path() / ref.file).string();
+  GltfOptions opts;
+  opts.scene = ref.scene;
+  opts.warn = [&](const std::string& w) { warnings.push_back(w); };
+  try {
+    append_gltf(scene, path, ref.material, ref.transform, opts);
+  } catch (const SettingError& e) {
+    // The scene index: "gltf.scene: index 3 out of range (bunny.glb has 1 scene)".
+    n.member("scene", nullptr).fail(std::string(e.what()).substr(e.setting.size() + 2));
+  } catch (const InputError& e) {
+    n.member("file", nullptr).fail(e.what());
+  }
+  scene.mesh_refs.push_back(ref);
 }
 
 // ---------------------------------------------------------------------------
@@ -314,6 +396,22 @@ void append(std::string& out, const Sphere& s) {
   out += '}';
 }
 
+void append(std::string& out, const MeshRef& ref) {
+  out += "{\"file\": ";
+  out += Json(ref.file).dump();
+  if (ref.material) append_field(out, "material", *ref.material);
+  if (ref.scene) append_field(out, "scene", *ref.scene);
+  if (ref.transform != glm::mat4(1.0f)) {
+    out += ", \"transform\": {\"matrix\": [";
+    for (int i = 0; i < 16; ++i) {
+      if (i) out += ", ";
+      append(out, ref.transform[i / 4][i % 4]);
+    }
+    out += "]}";
+  }
+  out += '}';
+}
+
 // One element per line, so that a file of a million spheres stays readable and diffable.
 template <typename T>
 void append(std::string& out, const std::vector<T>& items) {
@@ -396,10 +494,7 @@ Scene parse_scene_json(const std::string& text, const std::string& source) {
   try {
     doc = Json::parse(text, on_event);
   } catch (const Json::parse_error& e) {
-    // e.what(): "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
-    const std::string what = e.what();
-    const size_t at = what.find(" at line ");
-    throw InputError(source + ": invalid JSON" + (at == std::string::npos ? ": " + what : what.substr(at)));
+    throw InputError(source + ": " + invalid_json_message(e.what()));
   } catch (const Json::out_of_range& e) {
     // A number beyond float's range (1e999, or just 1e39): nlohmann refuses it
     // without a position, but `open` knows where the parser stood.
@@ -413,14 +508,25 @@ Scene parse_scene_json(const std::string& text, const std::string& source) {
   }
 
   const Node root{&doc, &source};
-  if (!doc.is_object()) root.fail("expected a JSON object at the top level, got " + describe(doc));
-  check_keys(root, {"camera", "sky", "materials", "spheres"});
+  if (!doc.is_object()) root.fail("expected a JSON object at the top level, got " + describe_json(doc));
+  check_keys(root, {"camera", "sky", "materials", "spheres", "meshes"});
+  std::vector<std::string> warnings;
   if (const std::optional<Node> camera = root.find("camera")) scene.camera = read_camera(*camera);
   if (const std::optional<Node> sky = root.find("sky")) scene.sky = read_sky(*sky);
   // If they are arrays, the parser has already moved their elements into `scene`.
   require_array(root.require("materials"));
-  require_array(root.require("spheres"));
+  if (const std::optional<Node> spheres = root.find("spheres")) require_array(*spheres);
+  if (const std::optional<Node> meshes = root.find("meshes")) {
+    require_array(*meshes);
+    // Validated before any file is read, so that the scene file's own errors come first.
+    std::vector<MeshRef> refs;
+    for (size_t i = 0; i < meshes->value->size(); ++i)
+      refs.push_back(read_mesh_ref(meshes->element(i), scene.materials.size()));
+    for (size_t i = 0; i < refs.size(); ++i) append_mesh_ref(scene, refs[i], meshes->element(i), warnings);
+  }
   validate_scene(scene, source);
+  // Only once the whole scene has loaded, so that an error stays the one line printed.
+  for (const std::string& w : warnings) print_warning(w);
   return scene;
 }
 
@@ -429,6 +535,8 @@ Scene load_scene_json(const std::string& path) { return parse_scene_json(read_fi
 std::string scene_to_json(const Scene& scene) {
   // What is written must load again; non-finite numbers cannot even be written.
   validate_scene(scene, "scene");
+  if (!scene.meshes.empty() && scene.mesh_refs.empty())
+    throw InputError("scene: meshes: only meshes loaded from files can be written (as references to the files)");
   std::string out;
   out.reserve(512 + 64 * scene.materials.size() + 72 * scene.spheres.size());
   const Camera& c = scene.camera;
@@ -442,9 +550,14 @@ std::string scene_to_json(const Scene& scene) {
   out += "},\n  \"sky\": ";
   append(out, scene.sky);
   out += ",\n  \"materials\": ";
-  append(out, scene.materials);
+  // The mesh files' materials come back when the references load.
+  append(out, std::vector<Material>(scene.materials.begin(), scene.materials.end() - ptrdiff_t(scene.mesh_file_materials)));
   out += ",\n  \"spheres\": ";
   append(out, scene.spheres);
+  if (!scene.mesh_refs.empty()) {
+    out += ",\n  \"meshes\": ";
+    append(out, scene.mesh_refs);
+  }
   out += "\n}\n";
   return out;
 }

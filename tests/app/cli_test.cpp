@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "io/image.h"
+#include "scene/gltf_builder.h"
 #include "test_util.h"
 
 namespace {
@@ -51,18 +52,23 @@ void PrintTo(const BadInput& c, std::ostream* os) { *os << c.label; }
 
 class BadInputTest : public ::testing::TestWithParam<BadInput> {};
 
-TEST_P(BadInputTest, ClearMessageNonZeroExitNoOutput) {
-  const BadInput& c = GetParam();
-  std::string out = tmp(std::string(c.label) + ".png");
+// Renders with `args`: exit `code`, one line containing `message`, no image.
+void expect_bad_input(const std::string& label, const std::string& args, const std::string& message, int code = 2) {
+  std::string out = tmp(label + ".png");
   fs::remove(out);
-  std::string args = c.args;
-  if (!c.scene.empty()) args += " --scene " + write_file(std::string(c.label) + ".json", c.scene);
   RunResult r = run_octrace("render --size 8x8 --spp 1 --quiet " + args + " --out " + out);
-  EXPECT_EQ(r.code, c.code) << r.output;
-  EXPECT_NE(r.output.find(c.message), std::string::npos) << "expected \"" << c.message << "\" in: " << r.output;
+  EXPECT_EQ(r.code, code) << r.output;
+  EXPECT_NE(r.output.find(message), std::string::npos) << "expected \"" << message << "\" in: " << r.output;
   // One line: the message, nothing else (no stack trace, no usage dump).
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   EXPECT_FALSE(fs::exists(out)) << "an output file was created";
+}
+
+TEST_P(BadInputTest, ClearMessageNonZeroExitNoOutput) {
+  const BadInput& c = GetParam();
+  std::string args = c.args;
+  if (!c.scene.empty()) args += " --scene " + write_file(std::string(c.label) + ".json", c.scene);
+  expect_bad_input(c.label, args, c.message, c.code);
 }
 
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
@@ -130,6 +136,76 @@ TEST(Cli, JsonSummaryHasTimingsAndDevice) {
   for (const char* key : {"\"device\"", "\"render\"", "\"pipeline\"", "\"upload\"", "\"scene\"",
                           "\"paths_per_second\"", "\"nonfinite_samples\": 0", "\"spp\": 2", "\"depth\": 50"})
     EXPECT_NE(r.output.find(key), std::string::npos) << key << " missing in " << r.output;
+}
+
+// glTF scenes: bad files, and the flags that only glTF scenes take.
+TEST(Cli, GltfBadInput) {
+  const std::string quad = octrace::test::quad_gltf().write(tmp("gltf/quad.glb"));
+  std::string corrupt = octrace::test::quad_gltf().glb();
+  corrupt.resize(corrupt.size() / 2);
+  octrace::test::write_bytes(tmp("gltf/corrupt.glb"), corrupt);
+  const std::string json = write_file("gltf_flags.json", VALID_SCENE);
+  expect_bad_input("gltf_missing", "--scene /nonexistent/m.glb", "/nonexistent/m.glb: cannot open file");
+  expect_bad_input("gltf_corrupt", "--scene " + tmp("gltf/corrupt.glb"),
+                   tmp("gltf/corrupt.glb") + ": the GLB header gives a length of");
+  expect_bad_input("gltf_camera", "--scene " + quad + " --camera 2",
+                   "--camera: index 2 out of range (" + quad + " has 0 cameras)");
+  expect_bad_input("gltf_scene", "--scene " + quad + " --gltf-scene 1",
+                   "--gltf-scene: index 1 out of range (" + quad + " has 1 scene)");
+  expect_bad_input("gltf_flag_json", "--scene " + json + " --camera 0",
+                   "--camera: only for glTF scenes (.gltf, .glb), not " + json);
+  expect_bad_input("gltf_flag_rtiow", "--gltf-scene 0", "--gltf-scene requires --scene");
+  expect_bad_input("scene_extension", "--scene " + tmp("model.obj"),
+                   tmp("model.obj") + ": unknown scene format (expected .json, .gltf or .glb)");
+  // A file that loads with a warning, then one that does not load: still the one line.
+  octrace::test::GltfBuilder textured = octrace::test::quad_gltf();
+  textured.add("textures", nlohmann::json::object());
+  textured.write(tmp("gltf/textured.glb"));
+  const std::string two = write_file("gltf/two.json", replaced(VALID_SCENE, "\"spheres\"",
+                                                               "\"meshes\": [{\"file\": \"textured.glb\"}, "
+                                                               "{\"file\": \"corrupt.glb\"}],\n  \"spheres\""));
+  expect_bad_input("gltf_second_file", "--scene " + two, two + ": meshes[1].file: " + tmp("gltf/corrupt.glb"));
+}
+
+// `render --scene model.glb` loads the file and reports what it holds (the
+// triangles are not drawn yet).
+TEST(Cli, GltfSceneSummary) {
+  octrace::test::GltfBuilder b = octrace::test::quad_gltf();
+  b.add("nodes", {{"mesh", 0}, {"translation", {2, 0, 0}}});
+  b.set_scene({0, 1});
+  const std::string path = b.write(tmp("gltf/Two Quads.GLB"));
+  RunResult r = run_octrace("render --size 8x8 --spp 1 --scene '" + path + "' --out " + tmp("gltf_summary.png"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("scene     " + path + ": 0 spheres, 1 meshes, 2 instances, 4 triangles (2 unique), 1 materials\n"),
+            std::string::npos) << r.output;
+  r = run_octrace("render --size 8x8 --spp 1 --json --scene '" + path + "' --out " + tmp("gltf_summary.png"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* key : {"\"meshes\": 1", "\"instances\": 2", "\"triangles_unique\": 2", "\"triangles_instanced\": 4",
+                          "\"spheres\": 0"})
+    EXPECT_NE(r.output.find(key), std::string::npos) << key << " missing in " << r.output;
+}
+
+// A JSON scene with meshes, dumped and loaded again, is the same scene: the
+// dump refers to the same files and leaves their materials to them.
+TEST(Cli, JsonMeshesRoundTripThroughDumpScene) {
+  octrace::test::quad_gltf().write(tmp("gltf_dump/quad.glb"));
+  const std::string scene = tmp("gltf_dump/scene.json"), dumped = tmp("gltf_dump/dumped.json"),
+                    again = tmp("gltf_dump/again.json");
+  octrace::test::write_bytes(scene, replaced(VALID_SCENE, "\"spheres\"",
+                                             "\"meshes\": [{\"file\": \"quad.glb\", \"transform\": {\"scale\": 2, "
+                                             "\"rotate\": [1, 1, 0, 30], \"translate\": [0, 1, 0]}}, "
+                                             "{\"file\": \"quad.glb\", \"material\": 0}],\n  \"spheres\""));
+  RunResult r = run_octrace("render --scene " + scene + " --dump-scene " + dumped);
+  ASSERT_EQ(r.code, 0) << r.output;
+  r = run_octrace("render --scene " + dumped + " --dump-scene " + again);
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream a(dumped), b(again);
+  const std::string first((std::istreambuf_iterator<char>(a)), {}), second((std::istreambuf_iterator<char>(b)), {});
+  EXPECT_EQ(first, second);
+  EXPECT_NE(first.find("\"materials\": [\n    {\"type\": \"lambertian\", \"albedo\": [0.5, 0.5, 0.5]}\n  ],"),
+            std::string::npos) << first;
+  EXPECT_NE(first.find("{\"file\": \"quad.glb\", \"transform\": {\"matrix\": ["), std::string::npos) << first;
+  EXPECT_NE(first.find("{\"file\": \"quad.glb\", \"material\": 0}"), std::string::npos) << first;
 }
 
 TEST(Cli, CompareRejectsSizeMismatchAndMissingFiles) {

@@ -1,5 +1,6 @@
 // The rtiow generator, scene validation and the JSON format: what a user sees
-// (sphere counts, placement, determinism, lossless files, error messages).
+// (sphere counts, placement, determinism, lossless files, error messages),
+// mesh references included (the glTF files themselves: gltf_test.cpp).
 #include "scene/scene.h"
 
 #include <cmath>
@@ -11,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "core/errors.h"
+#include "scene/gltf_builder.h"
 
 namespace octrace {
 namespace {
@@ -424,7 +426,7 @@ TEST(JsonErrors, UnknownKeys) {
   EXPECT_EQ(parse_error(one_sphere(R"({"center": [0, 0, 0], "radius": 1, "material": 0, "colour": 1})")),
             "scene.json: spheres[0].colour: unknown key (expected center, radius, material)");
   EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "lights": []})"),
-            "scene.json: lights: unknown key (expected camera, sky, materials, spheres)");
+            "scene.json: lights: unknown key (expected camera, sky, materials, spheres, meshes)");
   EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "spheres": []})"), "scene.json: spheres: appears twice");
   EXPECT_EQ(parse_error(R"({"materials": [], "materials": [], "spheres": []})"), "scene.json: materials: appears twice");
 }
@@ -448,6 +450,171 @@ TEST(JsonErrors, LoadNamesTheFile) {
   std::ofstream(path) << one_sphere(R"({"center": [0, 0, 0], "radius": 0, "material": 0})");
   EXPECT_EQ(input_error([&] { load_scene_json(path); }),
             path + ": spheres[0].radius: must be a finite number > 0, got 0");
+}
+
+// ---------------------------------------------------------------------------
+// meshes: references to glTF files
+// ---------------------------------------------------------------------------
+
+// A folder of the test's own (ctest runs the tests as parallel processes)
+// with quad.glb in it: a unit square, 2 triangles, no materials.
+std::string mesh_folder() {
+  const std::string dir = test_path(std::string("meshes_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  test::quad_gltf().write(dir + "/quad.glb");
+  return dir;
+}
+
+Scene parse_with_meshes(const std::string& json) { return parse_scene_json(json, mesh_folder() + "/scene.json"); }
+
+std::string mesh_error(const std::string& meshes) {
+  const std::string dir = mesh_folder();
+  std::string message = input_error([&] {
+    parse_scene_json(R"({"materials": [{"type": "lambertian", "albedo": [0.5, 0.5, 0.5]}], "meshes": )" + meshes + "}",
+                     dir + "/scene.json");
+  });
+  for (size_t at; (at = message.find(dir)) != std::string::npos;) message.replace(at, dir.size(), "DIR");
+  return message;
+}
+
+glm::vec3 apply(const glm::mat4& m, glm::vec3 p) { return glm::vec3(m * glm::vec4(p, 1.0f)); }
+
+TEST(JsonMeshes, FilesAreFoundBesideTheSceneFile) {
+  const Scene s = parse_with_meshes(R"({"materials": [{"type": "metal", "albedo": [1, 1, 1]}],
+      "meshes": [{"file": "quad.glb"}, {"file": "quad.glb", "material": 0, "transform": {"translate": [0, 0, 5]}}]})");
+  // Each reference adds its file's meshes; the first its materials too (glTF's
+  // default one here), the second is coloured by the scene's material 0.
+  ASSERT_EQ(s.meshes.size(), 2u);
+  ASSERT_EQ(s.instances.size(), 2u);
+  ASSERT_EQ(s.materials.size(), 2u);
+  EXPECT_EQ(s.materials[1], (Material{MaterialType::Lambertian, glm::vec3(1.0f)}));
+  EXPECT_EQ(s.mesh_file_materials, 1u);
+  EXPECT_EQ(s.meshes[0].materials, (std::vector<uint32_t>{1, 1}));
+  EXPECT_EQ(s.meshes[1].materials, (std::vector<uint32_t>{0, 0}));
+  EXPECT_EQ(s.instances[1].mesh, 1u);
+  EXPECT_EQ(apply(s.instances[1].transform, {1, 1, 0}), glm::vec3(1, 1, 5));
+  ASSERT_EQ(s.mesh_refs.size(), 2u);
+  EXPECT_EQ(s.mesh_refs[1].file, "quad.glb");
+  EXPECT_EQ(s.mesh_refs[1].material, 0u);
+  EXPECT_TRUE(s.spheres.empty());
+}
+
+TEST(JsonMeshes, AScenePlacesSpheresAndMeshesOrNeither) {
+  EXPECT_EQ(parse_scene_json(R"({"materials": []})", "scene.json"), Scene{});
+  const Scene s = parse_with_meshes(R"({"materials": [], "meshes": [{"file": "quad.glb"}]})");
+  EXPECT_EQ(s.meshes.size(), 1u);
+  EXPECT_EQ(s.materials.size(), 1u);
+}
+
+// scale, then rotate (right-handed, degrees), then translate.
+TEST(JsonMeshes, TransformsApplyScaleThenRotateThenTranslate) {
+  const auto transform = [](const std::string& t) {
+    return parse_with_meshes(R"({"materials": [], "meshes": [{"file": "quad.glb", "transform": )" + t + "}]}")
+        .instances.at(0)
+        .transform;
+  };
+  const glm::mat4 t = transform(R"({"translate": [0, 0, 5], "rotate": [0, 0, 2, 90], "scale": 2})");
+  const glm::vec3 p = apply(t, {1, 0, 0});  // (2, 0, 0), then (0, 2, 0), then (0, 2, 5)
+  EXPECT_NEAR(p.x, 0.0f, 1e-6f);
+  EXPECT_NEAR(p.y, 2.0f, 1e-6f);
+  EXPECT_NEAR(p.z, 5.0f, 1e-6f);
+  EXPECT_EQ(apply(transform(R"({"scale": [1, 2, -3]})"), {1, 1, 1}), glm::vec3(1, 2, -3));
+  EXPECT_EQ(transform(R"({"matrix": [2, 0, 0, 0, 0, 3, 0, 0, 0, 0, 4, 0, 5, 6, 7, 1]})"),
+            glm::mat4(2, 0, 0, 0, 0, 3, 0, 0, 0, 0, 4, 0, 5, 6, 7, 1));
+}
+
+// Written back as references (the transform as a matrix), without the files'
+// own materials; loading that gives the same scene, and writing it the same text.
+TEST(JsonMeshes, RoundTripAsReferences) {
+  const Scene s = parse_with_meshes(R"({"materials": [{"type": "lambertian", "albedo": [0.1, 0.2, 0.3]}],
+      "spheres": [{"center": [0, 0, 0], "radius": 1, "material": 0}],
+      "meshes": [{"file": "quad.glb", "transform": {"scale": 1.5, "rotate": [0, 1, 0, 35], "translate": [0.3, 0, -0.2]}},
+                 {"file": "quad.glb", "material": 0, "scene": 0}]})");
+  const std::string text = scene_to_json(s);
+  EXPECT_NE(text.find(R"(  "materials": [
+    {"type": "lambertian", "albedo": [0.1, 0.2, 0.3]}
+  ],)"), std::string::npos) << text;
+  EXPECT_NE(text.find(R"(    {"file": "quad.glb", "transform": {"matrix": [)"), std::string::npos) << text;
+  EXPECT_NE(text.find(R"(    {"file": "quad.glb", "material": 0, "scene": 0}
+  ])"), std::string::npos) << text;
+  const Scene again = parse_with_meshes(text);
+  EXPECT_EQ(again, s);
+  EXPECT_EQ(scene_to_json(again), text);
+}
+
+TEST(JsonMeshes, MeshesWithoutReferencesCannotBeWritten) {
+  Scene s;
+  s.materials.push_back({});
+  s.meshes.push_back({"tri", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {}, {}, {0, 1, 2}, {0}});
+  EXPECT_EQ(input_error([&] { scene_to_json(s); }),
+            "scene: meshes: only meshes loaded from files can be written (as references to the files)");
+}
+
+TEST(JsonMeshes, Errors) {
+  EXPECT_EQ(mesh_error(R"([{"file": "quad.glb", "transform": {"rotate": [0, 0, 0, 30]}}])"),
+            "DIR/scene.json: meshes[0].transform.rotate: the axis must not be the zero vector");
+  EXPECT_EQ(mesh_error(R"([{"file": "quad.glb", "transform": {"rotate": [0, 1, 0]}}])"),
+            "DIR/scene.json: meshes[0].transform.rotate: expected [axis x, y, z, angle in degrees], got [0,1,0]");
+  EXPECT_EQ(mesh_error(R"([{"file": "quad.glb", "transform": {"scale": 2, "matrix": []}}])"),
+            "DIR/scene.json: meshes[0].transform.matrix: excludes scale, rotate and translate (give one form or the other)");
+  EXPECT_EQ(mesh_error(R"([{"file": "quad.glb", "transform": {"matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0]}}])"),
+            "DIR/scene.json: meshes[0].transform.matrix: expected an array of 16 numbers (column-major), got "
+            "[1,0,0,0,0,1,0,0,0,0,1,0,0,0,0]");
+  EXPECT_EQ(mesh_error(R"([{"file": "quad.glb", "transform": {"matrix": [1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}}])"),
+            "DIR/scene.json: meshes[0].transform.matrix: must be an affine transform (last row, elements 3, 7, 11 and 15: "
+            "0, 0, 0, 1)");
+  EXPECT_EQ(mesh_error(R"([{"file": "quad.glb", "transform": {"scale": [1, 0, 1]}}])"),
+            "DIR/scene.json: meshes[0].transform.scale: must not be 0 (it would flatten the mesh), got [1,0,1]");
+  EXPECT_EQ(mesh_error(R"([{"file": "quad.glb", "transform": {"shear": 1}}])"),
+            "DIR/scene.json: meshes[0].transform.shear: unknown key (expected scale, rotate, translate, matrix)");
+  EXPECT_EQ(mesh_error(R"([{"file": "quad.glb"}, {"file": "quad.glb", "material": 1}])"),
+            "DIR/scene.json: meshes[1].material: index 1 out of range (1 material)");
+  EXPECT_EQ(mesh_error(R"([{"file": "quad.glb", "colour": 1}])"),
+            "DIR/scene.json: meshes[0].colour: unknown key (expected file, material, transform, scene)");
+  EXPECT_EQ(mesh_error(R"([{"material": 0}])"), "DIR/scene.json: meshes[0].file: missing required field");
+  EXPECT_EQ(mesh_error(R"([{"file": ""}])"),
+            "DIR/scene.json: meshes[0].file: expected a file name (a non-empty string), got \"\"");
+  EXPECT_EQ(mesh_error(R"([{"file": "none.glb"}])"),
+            "DIR/scene.json: meshes[0].file: DIR/none.glb: cannot open file: No such file or directory");
+  EXPECT_EQ(mesh_error(R"([{"file": "quad.glb", "scene": 1}])"),
+            "DIR/scene.json: meshes[0].scene: index 1 out of range (DIR/quad.glb has 1 scene)");
+  EXPECT_EQ(mesh_error(R"({"file": "quad.glb"})"), "DIR/scene.json: meshes: expected an array, got {\"file\":\"quad.glb\"}");
+  // An error inside the file names the scene file, the reference and the glTF path.
+  test::GltfBuilder broken = test::quad_gltf();
+  broken.doc["accessors"][0]["count"] = 900;
+  broken.write(mesh_folder() + "/broken.glb");
+  EXPECT_EQ(mesh_error(R"([{"file": "broken.glb"}])"),
+            "DIR/scene.json: meshes[0].file: DIR/broken.glb: accessors[0]: count 900 exceeds bufferView 0 (4 elements)");
+}
+
+TEST(Validate, MeshesAndInstances) {
+  const auto error = [](auto change) {
+    Scene s;
+    s.materials.push_back({});
+    s.meshes.push_back({"tri", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {}, {}, {0, 1, 2}, {0}});
+    s.instances.push_back({0, glm::mat4(1.0f)});
+    change(s);
+    return input_error([&] { validate_scene(s, "mine"); });
+  };
+  EXPECT_EQ(error([](Scene& s) { s.meshes[0].indices[2] = 3; }), "mine: meshes[0].indices[2]: index 3 out of range (3 vertices)");
+  EXPECT_EQ(error([](Scene& s) { s.meshes[0].indices.push_back(0); }),
+            "mine: meshes[0].indices: 4 indices do not make whole triangles");
+  EXPECT_EQ(error([](Scene& s) { s.meshes[0].positions[1].y = NAN; }),
+            "mine: meshes[0].positions[1]: must be 3 finite numbers, got [1, nan, 0]");
+  EXPECT_EQ(error([](Scene& s) { s.meshes[0].normals = {{0, 0, 1}}; }),
+            "mine: meshes[0].normals: 1 normals for 3 positions (must be as many, or none)");
+  EXPECT_EQ(error([](Scene& s) { s.meshes[0].normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, INFINITY}}; }),
+            "mine: meshes[0].normals[2]: must be 3 finite numbers, got [0, 0, inf]");
+  EXPECT_EQ(error([](Scene& s) { s.meshes[0].uvs = {{0, 0}, {1, 0}, {0, NAN}}; }),
+            "mine: meshes[0].uvs[2]: must be 2 finite numbers, got [0, nan]");
+  EXPECT_EQ(error([](Scene& s) { s.meshes[0].materials = {0, 0}; }),
+            "mine: meshes[0].materials: 2 materials for 1 triangles (must be one each)");
+  EXPECT_EQ(error([](Scene& s) { s.meshes[0].materials = {4}; }), "mine: meshes[0].materials[0]: index 4 out of range (1 material)");
+  EXPECT_EQ(error([](Scene& s) { s.instances[0].mesh = 1; }), "mine: instances[0].mesh: index 1 out of range (1 mesh)");
+  EXPECT_EQ(error([](Scene& s) { s.instances[0].transform[3][0] = NAN; }),
+            "mine: instances[0].transform: must be 16 finite numbers");
+  EXPECT_EQ(error([](Scene& s) { s.instances[0].transform[1][1] = 0; }), "mine: instances[0].transform: must be invertible");
+  EXPECT_EQ(error([](Scene& s) { s.instances[0].transform[2][3] = 1; }),
+            "mine: instances[0].transform: must be an affine transform (last row 0, 0, 0, 1)");
 }
 
 }  // namespace

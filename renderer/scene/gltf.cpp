@@ -1,0 +1,1036 @@
+// glTF 2.0 through tinygltf; scene/gltf.h says what is read and how.
+//
+// tinygltf parses the JSON, resolves buffers and images and splits .glb files,
+// but checks little of what it reads: a property of the wrong type silently
+// keeps its default ("scene": "hello" reads as no scene), and nothing checks
+// accessors against their views, views against their buffers or indices
+// against the vertices. So the JSON is first checked against the part of the
+// glTF schema that octrace reads (check_schema), and every index and byte range
+// is checked where it is used, each error naming its glTF path.
+//
+// Section numbers refer to the glTF 2.0 specification (Khronos, 2021).
+#define TINYGLTF_IMPLEMENTATION
+#define TINYGLTF_NO_STB_IMAGE        // images go through check_image below
+#define TINYGLTF_NO_STB_IMAGE_WRITE  // octrace writes no glTF
+#include <tiny_gltf.h>
+
+#include "scene/gltf.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <string_view>
+
+#include <stb_image.h>
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
+
+#include "core/errors.h"
+#include "core/text.h"
+#include "io/file.h"
+#include "scene/json_text.h"
+
+namespace octrace {
+namespace {
+
+using Json = nlohmann::json;
+
+// "1 mesh", "3 meshes", "1 bufferView": a count of the items of a glTF array.
+std::string count_of(size_t n, std::string_view array) {
+  if (n != 1) return std::to_string(n) + " " + std::string(array);
+  return "1 " + std::string(array == "meshes" ? "mesh" : array.substr(0, array.size() - 1));
+}
+
+std::string item(std::string_view array, size_t i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
+
+// "1 vertex", "24 vertices".
+std::string plural(size_t n, const std::string& one, const std::string& many = "") {
+  return std::to_string(n) + " " + (n == 1 ? one : many.empty() ? one + "s" : many);
+}
+
+// ---------------------------------------------------------------------------
+// schema: the types of the properties octrace reads (glTF 2.0 spec, 5 and the
+// JSON schema). Unknown properties are allowed, as the spec asks of readers.
+// ---------------------------------------------------------------------------
+
+enum class Kind : uint8_t {
+  Index,     // an integer >= 0 (tinygltf stores indices as int)
+  Uint,      // an integer >= 0
+  Integer,
+  Number,
+  Bool,
+  String,
+  Object,    // checked against `fields`
+  Objects,   // an array of objects checked against `fields`
+  Numbers,   // an array of numbers, of `length` if not 0
+  Indices,   // an array of Index
+  Strings,
+  IndexMap,  // an object whose values are Index (primitive attributes)
+  IndexMaps, // an array of IndexMap (morph targets)
+};
+
+struct Field {
+  const char* name = nullptr;  // nullptr ends a list
+  Kind kind = Kind::Object;
+  const Field* fields = nullptr;
+  uint8_t length = 0;
+  bool required = false;
+};
+
+constexpr Field required(const char* name, Kind kind, const Field* fields = nullptr) {
+  return {name, kind, fields, 0, true};
+}
+
+constexpr Field kTextureInfo[] = {required("index", Kind::Index), {"texCoord", Kind::Uint}, {"scale", Kind::Number},
+                                  {"strength", Kind::Number}, {}};
+constexpr Field kPbr[] = {{"baseColorFactor", Kind::Numbers, nullptr, 4}, {"baseColorTexture", Kind::Object, kTextureInfo},
+                          {"metallicFactor", Kind::Number}, {"roughnessFactor", Kind::Number},
+                          {"metallicRoughnessTexture", Kind::Object, kTextureInfo}, {}};
+constexpr Field kMaterial[] = {{"pbrMetallicRoughness", Kind::Object, kPbr}, {"normalTexture", Kind::Object, kTextureInfo},
+                               {"occlusionTexture", Kind::Object, kTextureInfo},
+                               {"emissiveTexture", Kind::Object, kTextureInfo},
+                               {"emissiveFactor", Kind::Numbers, nullptr, 3}, {"alphaMode", Kind::String},
+                               {"alphaCutoff", Kind::Number}, {"doubleSided", Kind::Bool}, {}};
+constexpr Field kPrimitive[] = {required("attributes", Kind::IndexMap), {"indices", Kind::Index},
+                                {"material", Kind::Index}, {"mode", Kind::Integer}, {"targets", Kind::IndexMaps}, {}};
+constexpr Field kMesh[] = {required("primitives", Kind::Objects, kPrimitive), {"weights", Kind::Numbers}, {}};
+constexpr Field kNode[] = {{"camera", Kind::Index}, {"children", Kind::Indices}, {"skin", Kind::Index},
+                           {"matrix", Kind::Numbers, nullptr, 16}, {"mesh", Kind::Index},
+                           {"rotation", Kind::Numbers, nullptr, 4}, {"scale", Kind::Numbers, nullptr, 3},
+                           {"translation", Kind::Numbers, nullptr, 3}, {"weights", Kind::Numbers}, {}};
+constexpr Field kScene[] = {{"nodes", Kind::Indices}, {}};
+constexpr Field kSparseIndices[] = {required("bufferView", Kind::Index), {"byteOffset", Kind::Uint},
+                                    required("componentType", Kind::Integer), {}};
+constexpr Field kSparseValues[] = {required("bufferView", Kind::Index), {"byteOffset", Kind::Uint}, {}};
+constexpr Field kSparse[] = {required("count", Kind::Uint), required("indices", Kind::Object, kSparseIndices),
+                             required("values", Kind::Object, kSparseValues), {}};
+constexpr Field kAccessor[] = {{"bufferView", Kind::Index}, {"byteOffset", Kind::Uint},
+                               required("componentType", Kind::Integer), {"normalized", Kind::Bool},
+                               required("count", Kind::Uint), required("type", Kind::String),
+                               {"max", Kind::Numbers}, {"min", Kind::Numbers}, {"sparse", Kind::Object, kSparse}, {}};
+constexpr Field kBufferView[] = {required("buffer", Kind::Index), {"byteOffset", Kind::Uint},
+                                 required("byteLength", Kind::Uint), {"byteStride", Kind::Uint},
+                                 {"target", Kind::Integer}, {}};
+constexpr Field kBuffer[] = {{"uri", Kind::String}, required("byteLength", Kind::Uint), {}};
+constexpr Field kPerspective[] = {{"aspectRatio", Kind::Number}, required("yfov", Kind::Number), {"zfar", Kind::Number},
+                                  required("znear", Kind::Number), {}};
+constexpr Field kOrthographic[] = {required("xmag", Kind::Number), required("ymag", Kind::Number),
+                                   required("zfar", Kind::Number), required("znear", Kind::Number), {}};
+constexpr Field kCamera[] = {required("type", Kind::String), {"perspective", Kind::Object, kPerspective},
+                             {"orthographic", Kind::Object, kOrthographic}, {}};
+constexpr Field kImage[] = {{"uri", Kind::String}, {"mimeType", Kind::String}, {"bufferView", Kind::Index}, {}};
+constexpr Field kTexture[] = {{"sampler", Kind::Index}, {"source", Kind::Index}, {}};
+constexpr Field kSampler[] = {{"magFilter", Kind::Integer}, {"minFilter", Kind::Integer}, {"wrapS", Kind::Integer},
+                              {"wrapT", Kind::Integer}, {}};
+constexpr Field kAsset[] = {required("version", Kind::String), {"minVersion", Kind::String},
+                            {"generator", Kind::String}, {"copyright", Kind::String}, {}};
+constexpr Field kNothing[] = {{}};
+constexpr Field kRoot[] = {required("asset", Kind::Object, kAsset), {"scene", Kind::Index},
+                           {"scenes", Kind::Objects, kScene}, {"nodes", Kind::Objects, kNode},
+                           {"meshes", Kind::Objects, kMesh}, {"accessors", Kind::Objects, kAccessor},
+                           {"bufferViews", Kind::Objects, kBufferView}, {"buffers", Kind::Objects, kBuffer},
+                           {"materials", Kind::Objects, kMaterial}, {"textures", Kind::Objects, kTexture},
+                           {"images", Kind::Objects, kImage}, {"samplers", Kind::Objects, kSampler},
+                           {"cameras", Kind::Objects, kCamera}, {"skins", Kind::Objects, kNothing},
+                           {"animations", Kind::Objects, kNothing}, {"extensionsUsed", Kind::Strings},
+                           {"extensionsRequired", Kind::Strings}, {}};
+
+// Where a JSON value sits ("meshes[0].primitives[2].mode"), spelled out only
+// when an error needs it.
+struct Where {
+  const Where* parent = nullptr;
+  std::string_view key{};  // member name, unless is_element
+  bool is_element = false;
+  size_t index = 0;
+
+  std::string path() const {
+    if (!parent) return "";
+    const std::string p = parent->path();
+    if (is_element) return p + "[" + std::to_string(index) + "]";
+    return p.empty() ? std::string(key) : p + "." + std::string(key);
+  }
+};
+
+struct SchemaCheck {
+  const std::string& file;
+
+  [[noreturn]] void fail(const Where& at, const std::string& what) const {
+    throw InputError(file + ": " + at.path() + ": " + what);
+  }
+
+  bool is_index(const Json& v) const {
+    return v.is_number_unsigned() || (v.is_number_integer() && v.get<int64_t>() >= 0);
+  }
+
+  void index(const Json& v, const Where& at) const {
+    if (!is_index(v) || v.get<uint64_t>() > uint64_t(INT_MAX))
+      fail(at, "expected an index (an integer >= 0), got " + describe_json(v));
+  }
+
+  void object(const Json& v, const Field* fields, const Where& at) const {
+    if (!v.is_object()) fail(at, "expected an object, got " + describe_json(v));
+    for (const Field* f = fields; f->name; ++f) {
+      const auto it = v.find(f->name);
+      const Where field_at{&at, f->name};
+      if (it == v.end()) {
+        if (f->required) fail(field_at, "missing required property");
+        continue;
+      }
+      value(*it, *f, field_at);
+    }
+    if (const auto it = v.find("name"); it != v.end() && !it->is_string())
+      fail({&at, "name"}, "expected a string, got " + describe_json(*it));
+    if (const auto it = v.find("extensions"); it != v.end()) {
+      const Where ext_at{&at, "extensions"};
+      if (!it->is_object()) fail(ext_at, "expected an object, got " + describe_json(*it));
+      for (auto e = it->begin(); e != it->end(); ++e)
+        if (!e->is_object()) fail({&ext_at, e.key()}, "expected an object, got " + describe_json(*e));
+    }
+  }
+
+  void array(const Json& v, const Where& at) const {
+    if (!v.is_array()) fail(at, "expected an array, got " + describe_json(v));
+  }
+
+  void value(const Json& v, const Field& f, const Where& at) const {
+    switch (f.kind) {
+      case Kind::Index:
+        return index(v, at);
+      case Kind::Uint:
+        if (!is_index(v)) fail(at, "expected an integer >= 0, got " + describe_json(v));
+        return;
+      case Kind::Integer:
+        if (!v.is_number_integer()) fail(at, "expected an integer, got " + describe_json(v));
+        return;
+      case Kind::Number:
+        if (!v.is_number()) fail(at, "expected a number, got " + describe_json(v));
+        return;
+      case Kind::Bool:
+        if (!v.is_boolean()) fail(at, "expected true or false, got " + describe_json(v));
+        return;
+      case Kind::String:
+        if (!v.is_string()) fail(at, "expected a string, got " + describe_json(v));
+        return;
+      case Kind::Object:
+        return object(v, f.fields, at);
+      case Kind::Objects:
+        array(v, at);
+        for (size_t i = 0; i < v.size(); ++i) object(v[i], f.fields, {&at, {}, true, i});
+        return;
+      case Kind::Numbers:
+        if (!v.is_array() || !std::all_of(v.begin(), v.end(), [](const Json& e) { return e.is_number(); }) ||
+            (f.length && v.size() != f.length))
+          fail(at, "expected an array of " + (f.length ? std::to_string(f.length) + " " : std::string()) +
+                       "numbers, got " + describe_json(v));
+        return;
+      case Kind::Indices:
+        array(v, at);
+        for (size_t i = 0; i < v.size(); ++i) index(v[i], {&at, {}, true, i});
+        return;
+      case Kind::Strings:
+        array(v, at);
+        for (size_t i = 0; i < v.size(); ++i)
+          if (!v[i].is_string()) fail({&at, {}, true, i}, "expected a string, got " + describe_json(v[i]));
+        return;
+      case Kind::IndexMap:
+        if (!v.is_object()) fail(at, "expected an object, got " + describe_json(v));
+        for (auto e = v.begin(); e != v.end(); ++e) index(*e, {&at, e.key()});
+        return;
+      case Kind::IndexMaps:
+        array(v, at);
+        for (size_t i = 0; i < v.size(); ++i) value(v[i], {f.name, Kind::IndexMap}, {&at, {}, true, i});
+        return;
+    }
+  }
+};
+
+// Extensions a file may require (extensionsRequired) that octrace reads.
+constexpr std::string_view kSupportedExtensions[] = {"KHR_mesh_quantization"};
+
+void check_schema(const Json& doc, const std::string& file) {
+  const Where root;
+  if (!doc.is_object()) throw InputError(file + ": expected a JSON object at the top level, got " + describe_json(doc));
+  SchemaCheck{file}.object(doc, kRoot, root);
+  const std::string& version = doc["asset"]["version"].get_ref<const std::string&>();
+  if (version.rfind("2.", 0) != 0)
+    throw InputError(file + ": asset.version: glTF " + version + " is not supported (only 2.x)");
+  if (const auto it = doc.find("extensionsRequired"); it != doc.end()) {
+    for (size_t i = 0; i < it->size(); ++i) {
+      const std::string& name = (*it)[i].get_ref<const std::string&>();
+      if (std::find(std::begin(kSupportedExtensions), std::end(kSupportedExtensions), name) ==
+          std::end(kSupportedExtensions))
+        throw InputError(file + ": " + item("extensionsRequired", i) + ": extension " + name +
+                         " is not supported");
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------
+// the file: container, JSON, buffers and images
+// ---------------------------------------------------------------------------
+
+// The JSON chunk of a .glb, its header checked (glTF 2.0 spec, 4.4 "Binary glTF Layout").
+std::string_view glb_json(const std::string& bytes, const std::string& file) {
+  const auto u32 = [&](size_t at) {
+    uint32_t v;
+    std::memcpy(&v, bytes.data() + at, 4);  // little-endian, as the format and every host octrace runs on
+    return v;
+  };
+  if (bytes.size() < 20)
+    throw InputError(file + ": not a glTF binary: " + plural(bytes.size(), "byte") + ", less than a GLB header (20)");
+  if (u32(0) != 0x46546C67) throw InputError(file + ": not a glTF binary (no \"glTF\" magic at the start)");
+  if (u32(4) != 2) throw InputError(file + ": GLB version " + std::to_string(u32(4)) + " is not supported (only 2)");
+  if (u32(8) != bytes.size())
+    throw InputError(file + ": the GLB header gives a length of " + plural(u32(8), "byte") + ", the file has " +
+                     std::to_string(bytes.size()) + " (truncated or corrupt)");
+  if (u32(16) != 0x4E4F534A) throw InputError(file + ": the first GLB chunk is not JSON");
+  if (u32(12) > bytes.size() - 20)
+    throw InputError(file + ": the GLB JSON chunk (" + plural(u32(12), "byte") + ") runs past the end of the file");
+  return std::string_view(bytes).substr(20, u32(12));
+}
+
+bool is_data_uri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
+
+// tinygltf names no buffer when one's file is missing, and only warns about a
+// missing image; both are part of the scene, so they are checked here first.
+void check_external_files(const Json& doc, const std::string& file, const std::string& dir) {
+  for (const char* array : {"buffers", "images"}) {
+    const auto list = doc.find(array);
+    if (list == doc.end()) continue;
+    for (size_t i = 0; i < list->size(); ++i) {
+      const auto uri = (*list)[i].find("uri");
+      if (uri == (*list)[i].end() || is_data_uri(uri->get_ref<const std::string&>())) continue;
+      // As tinygltf finds it: percent-decoded, relative to the file's folder.
+      const std::string path =
+          (std::filesystem::path(dir) / tinygltf::dlib::urldecode(uri->get<std::string>())).string();
+      std::FILE* opened = std::fopen(path.c_str(), "rb");
+      if (!opened)
+        throw InputError(file + ": " + item(array, i) + ".uri: cannot open " + path + ": " + std::strerror(errno));
+      std::fclose(opened);
+    }
+  }
+}
+
+// tinygltf's image callback: checks that stb can read the image's header
+// (format and size). The pixels are not decoded: nothing draws them yet.
+// `user` is a std::string that receives the error, so that it comes out as
+// written here rather than after tinygltf's own lines.
+bool check_image(tinygltf::Image* image, int index, std::string* err, std::string*, int, int,
+                 const unsigned char* bytes, int size, void* user) {
+  int width = 0, height = 0, channels = 0;
+  if (!stbi_info_from_memory(bytes, size, &width, &height, &channels)) {
+    std::string& error = *static_cast<std::string*>(user);
+    error = item("images", size_t(index)) + ": cannot be decoded (" + stbi_failure_reason() + ")";
+    if (err) *err += error + "\n";
+    return false;
+  }
+  image->width = width;
+  image->height = height;
+  image->component = channels;
+  return true;
+}
+
+struct File {
+  std::string path;  // names the file in messages
+  tinygltf::Model model;
+  std::vector<std::string> warnings;
+
+  [[noreturn]] void fail(const std::string& at, const std::string& what) const {
+    throw InputError(path + ": " + at + ": " + what);
+  }
+
+  // model.<array>[index], checked: `at` is where the index was given.
+  template <typename T>
+  const T& get(const std::vector<T>& array, int index, const char* array_name, const std::string& at) const {
+    if (index < 0 || size_t(index) >= array.size())
+      fail(at, "index " + std::to_string(index) + " out of range (" + count_of(array.size(), array_name) + ")");
+    return array[size_t(index)];
+  }
+};
+
+void check_buffer_views(const File& f) {
+  const auto& m = f.model;
+  for (size_t i = 0; i < m.bufferViews.size(); ++i) {
+    const tinygltf::BufferView& v = m.bufferViews[i];
+    const std::string at = item("bufferViews", i);
+    const tinygltf::Buffer& b = f.get(m.buffers, v.buffer, "buffers", at + ".buffer");
+    if (v.byteOffset > b.data.size() || v.byteLength > b.data.size() - v.byteOffset)
+      f.fail(at, "byteOffset " + std::to_string(v.byteOffset) + " + byteLength " + std::to_string(v.byteLength) +
+                     " exceeds buffers[" + std::to_string(v.buffer) + "] (" + plural(b.data.size(), "byte") + ")");
+  }
+}
+
+// The file read by tinygltf after the checks tinygltf does not make.
+File open_gltf(const std::string& path) {
+  File f{path, {}, {}};
+  const std::string bytes = read_file(path);
+  if (bytes.size() > UINT_MAX) throw InputError(path + ": larger than 4 GiB, which tinygltf cannot read");
+  std::string lower = std::filesystem::path(path).extension().string();
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  // Binary by its magic, or by its name: a damaged .glb then says what is
+  // wrong with its header rather than that it is not JSON.
+  const bool binary = bytes.rfind("glTF", 0) == 0 || lower == ".glb";
+  const std::string_view text = binary ? glb_json(bytes, path) : std::string_view(bytes);
+
+  Json doc;
+  try {
+    doc = Json::parse(text.begin(), text.end());
+  } catch (const Json::exception& e) {
+    throw InputError(path + ": " + (binary ? "GLB JSON chunk: " : "") + invalid_json_message(e.what()));
+  }
+  check_schema(doc, path);
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  check_external_files(doc, path, dir);
+  doc = Json();  // tinygltf parses its own copy
+
+  tinygltf::TinyGLTF loader;
+  std::string image_error;
+  loader.SetImageLoader(&check_image, &image_error);
+  std::string err, warn;
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&f.model, &err, &warn, data, unsigned(bytes.size()), dir)
+                         : loader.LoadASCIIFromString(&f.model, &err, &warn, bytes.data(), unsigned(bytes.size()), dir);
+  if (!image_error.empty()) throw InputError(path + ": " + image_error);
+  if (!ok || !err.empty()) {
+    // tinygltf lists every problem, one per line; the first is the one to fix first.
+    std::string first = err.substr(0, err.find('\n'));
+    if (first.empty()) first = "tinygltf could not read the file and gave no reason";
+    throw InputError(path + ": " + first);
+  }
+  check_buffer_views(f);
+  return f;
+}
+
+// ---------------------------------------------------------------------------
+// accessors (glTF 2.0 spec, 3.6.2)
+// ---------------------------------------------------------------------------
+
+size_t component_bytes(int type) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return 4;
+  }
+  return 0;
+}
+
+std::string component_name(int type) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
+  }
+  return "componentType " + std::to_string(type);
+}
+
+int type_components(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    case TINYGLTF_TYPE_MAT2: return 4;
+    case TINYGLTF_TYPE_MAT3: return 9;
+    case TINYGLTF_TYPE_MAT4: return 16;
+  }
+  return 0;
+}
+
+std::string type_name(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+    case TINYGLTF_TYPE_VEC2: return "VEC2";
+    case TINYGLTF_TYPE_VEC3: return "VEC3";
+    case TINYGLTF_TYPE_VEC4: return "VEC4";
+    case TINYGLTF_TYPE_MAT2: return "MAT2";
+    case TINYGLTF_TYPE_MAT3: return "MAT3";
+    case TINYGLTF_TYPE_MAT4: return "MAT4";
+  }
+  return "type " + std::to_string(type);
+}
+
+// An accessor without a bufferView is all zeros (before its sparse values):
+// its count costs no file space, so it is bounded here rather than by the file.
+constexpr size_t kMaxZeroElements = size_t(1) << 24;
+
+// Where `count` elements of `element_size` bytes lie in a bufferView, checked
+// against the view (which check_buffer_views checked against its buffer).
+struct Elements {
+  const uint8_t* data;
+  size_t stride;
+};
+
+Elements locate(const File& f, const std::string& at, int view_index, size_t offset, size_t element_size,
+                size_t count, const std::string& view_at) {
+  const tinygltf::BufferView& view = f.get(f.model.bufferViews, view_index, "bufferViews", view_at);
+  const size_t stride = view.byteStride ? view.byteStride : element_size;
+  if (stride < element_size)
+    f.fail(at, "byteStride " + std::to_string(stride) + " of bufferView " + std::to_string(view_index) +
+                   " is less than an element (" + plural(element_size, "byte") + ")");
+  const size_t fits = offset <= view.byteLength && element_size <= view.byteLength - offset
+                          ? (view.byteLength - offset - element_size) / stride + 1
+                          : 0;
+  if (count > fits)
+    f.fail(at, "count " + std::to_string(count) + " exceeds bufferView " + std::to_string(view_index) + " (" +
+                   plural(fits, "element") + ")");
+  return {f.model.buffers[size_t(view.buffer)].data.data() + view.byteOffset + offset, stride};
+}
+
+const tinygltf::Accessor& accessor(const File& f, int index, const std::string& at) {
+  const tinygltf::Accessor& a = f.get(f.model.accessors, index, "accessors", at);
+  const std::string self = item("accessors", size_t(index));
+  if (!component_bytes(a.componentType)) f.fail(self, "unsupported " + component_name(a.componentType));
+  if (!type_components(a.type)) f.fail(self, "unsupported " + type_name(a.type));
+  if (a.bufferView < 0 && a.count > kMaxZeroElements)
+    f.fail(self, "count " + std::to_string(a.count) + " without a bufferView is more than octrace reads (" +
+                     std::to_string(kMaxZeroElements) + ")");
+  return a;
+}
+
+// Calls put(i, bytes of element i) for every element, sparse substitutions
+// (3.6.2.3) after the dense values they replace.
+template <typename Put>
+void visit_elements(const File& f, int index, const tinygltf::Accessor& a, Put&& put) {
+  const std::string at = item("accessors", size_t(index));
+  const size_t size = component_bytes(a.componentType) * size_t(type_components(a.type));
+  if (a.bufferView >= 0) {
+    const Elements e = locate(f, at, a.bufferView, a.byteOffset, size, a.count, at + ".bufferView");
+    for (size_t i = 0; i < a.count; ++i) put(i, e.data + i * e.stride);
+  } else {
+    static const uint8_t zeros[64] = {};
+    for (size_t i = 0; i < a.count; ++i) put(i, zeros);
+  }
+  if (!a.sparse.isSparse) return;
+  const auto& s = a.sparse;
+  const std::string sparse_at = at + ".sparse";
+  if (s.count < 1 || size_t(s.count) > a.count)
+    f.fail(sparse_at + ".count", "must be in [1, " + std::to_string(a.count) + "] (the accessor's count), got " +
+                                     std::to_string(s.count));
+  const int index_type = s.indices.componentType;
+  if (index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+      index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+    f.fail(sparse_at + ".indices.componentType",
+           "must be UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT, got " + component_name(index_type));
+  const size_t index_size = component_bytes(index_type);
+  const Elements indices = locate(f, sparse_at + ".indices", s.indices.bufferView, size_t(s.indices.byteOffset),
+                                  index_size, size_t(s.count), sparse_at + ".indices.bufferView");
+  const Elements values = locate(f, sparse_at + ".values", s.values.bufferView, size_t(s.values.byteOffset), size,
+                                 size_t(s.count), sparse_at + ".values.bufferView");
+  uint64_t previous = 0;
+  for (size_t k = 0; k < size_t(s.count); ++k) {
+    uint32_t i = 0;
+    const uint8_t* p = indices.data + k * index_size;
+    if (index_size == 1) i = *p;
+    else if (index_size == 2) i = uint16_t(p[0] | p[1] << 8);
+    else std::memcpy(&i, p, 4);
+    if (i >= a.count)
+      f.fail(item(sparse_at + ".indices", k), "index " + std::to_string(i) + " out of range (" +
+                                                  plural(a.count, "element") + ")");
+    if (k > 0 && i <= previous)
+      f.fail(item(sparse_at + ".indices", k), "index " + std::to_string(i) + " does not increase");
+    previous = i;
+    put(i, values.data + k * size);
+  }
+}
+
+// One component as a float; normalized integers as the spec maps them (3.11).
+float component(const uint8_t* p, int type, bool normalized) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      const auto v = int8_t(p[0]);
+      return normalized ? std::max(float(v) / 127.0f, -1.0f) : float(v);
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return normalized ? float(p[0]) / 255.0f : float(p[0]);
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      int16_t v;
+      std::memcpy(&v, p, 2);
+      return normalized ? std::max(float(v) / 32767.0f, -1.0f) : float(v);
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      uint16_t v;
+      std::memcpy(&v, p, 2);
+      return normalized ? float(v) / 65535.0f : float(v);
+    }
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+      float v;
+      std::memcpy(&v, p, 4);
+      return v;
+    }
+  }
+  return 0.0f;  // refused before: UNSIGNED_INT is no attribute type
+}
+
+// A vertex attribute as N floats per vertex: FLOAT, or (normalized) 8/16-bit
+// integers, which the spec allows for texture coordinates and
+// KHR_mesh_quantization for positions and normals. Values must be finite.
+template <int N>
+std::vector<glm::vec<N, float>> read_attribute(const File& f, int index, const std::string& at, const char* semantic) {
+  const tinygltf::Accessor& a = accessor(f, index, at);
+  const std::string self = item("accessors", size_t(index));
+  if (type_components(a.type) != N || a.type == TINYGLTF_TYPE_MAT2)
+    f.fail(self, std::string(semantic) + " must be VEC" + std::to_string(N) + ", got " + type_name(a.type));
+  if (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+    f.fail(self, std::string(semantic) + " cannot be UNSIGNED_INT");
+  const size_t size = component_bytes(a.componentType);
+  std::vector<glm::vec<N, float>> out(a.count);
+  visit_elements(f, index, a, [&](size_t i, const uint8_t* p) {
+    for (int c = 0; c < N; ++c) out[i][c] = component(p + size_t(c) * size, a.componentType, a.normalized);
+  });
+  for (size_t i = 0; i < out.size(); ++i) {
+    for (int c = 0; c < N; ++c) {
+      if (std::isfinite(out[i][c])) continue;
+      std::string got;
+      for (int k = 0; k < N; ++k) got += (k ? ", " : "") + float_string(out[i][k]);
+      f.fail(item(self, i), "must be " + std::to_string(N) + " finite numbers, got [" + got + "]");
+    }
+  }
+  return out;
+}
+
+// Vertex indices, each checked against the primitive's vertex count.
+std::vector<uint32_t> read_indices(const File& f, int index, const std::string& at, size_t vertices) {
+  const tinygltf::Accessor& a = accessor(f, index, at);
+  const std::string self = item("accessors", size_t(index));
+  if (a.type != TINYGLTF_TYPE_SCALAR) f.fail(self, "indices must be SCALAR, got " + type_name(a.type));
+  const int type = a.componentType;
+  if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+      type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+    f.fail(self, "indices must be UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT, got " + component_name(type));
+  std::vector<uint32_t> out(a.count);
+  visit_elements(f, index, a, [&](size_t i, const uint8_t* p) {
+    if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
+      out[i] = p[0];
+    } else if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+      uint16_t v;
+      std::memcpy(&v, p, 2);
+      out[i] = v;
+    } else {
+      std::memcpy(&out[i], p, 4);
+    }
+  });
+  for (size_t i = 0; i < out.size(); ++i)
+    if (out[i] >= vertices)
+      f.fail(item(self, i), "index " + std::to_string(out[i]) + " out of range (" +
+                                plural(vertices, "vertex", "vertices") + ")");
+  return out;
+}
+
+// ---------------------------------------------------------------------------
+// meshes (3.7.2)
+// ---------------------------------------------------------------------------
+
+const char* kModeNames[] = {"POINTS", "LINES", "LINE_LOOP", "LINE_STRIP", "TRIANGLES", "TRIANGLE_STRIP", "TRIANGLE_FAN"};
+
+int attribute(const tinygltf::Primitive& p, const char* name) {
+  const auto it = p.attributes.find(name);
+  return it == p.attributes.end() ? -1 : it->second;
+}
+
+// glTF mesh `m` as a Mesh whose per-triangle materials index the file's
+// materials, the index materials.size() standing for glTF's default material.
+// Returns a mesh without triangles if none of its primitives has any.
+Mesh read_mesh(File& f, size_t m) {
+  const tinygltf::Mesh& gm = f.model.meshes[m];
+  const std::string mesh_at = item("meshes", m);
+  Mesh mesh;
+  mesh.name = gm.name.empty() ? mesh_at : gm.name;
+
+  // Triangle primitives with positions; the others are skipped (and named in one warning).
+  std::vector<size_t> kept;
+  std::vector<std::string> skipped;
+  for (size_t j = 0; j < gm.primitives.size(); ++j) {
+    const tinygltf::Primitive& p = gm.primitives[j];
+    if (p.mode < 0 || p.mode > 6)
+      f.fail(item(mesh_at + ".primitives", j) + ".mode", "unknown mode " + std::to_string(p.mode) + " (expected 0 to 6)");
+    std::string reason = p.mode < TINYGLTF_MODE_TRIANGLES ? kModeNames[p.mode] : "";
+    if (reason.empty() && attribute(p, "POSITION") < 0) reason = "no POSITION";
+    if (reason.empty()) kept.push_back(j);
+    else if (std::find(skipped.begin(), skipped.end(), reason) == skipped.end()) skipped.push_back(reason);
+  }
+  if (kept.size() < gm.primitives.size()) {
+    std::string reasons;
+    for (const std::string& r : skipped) reasons += (reasons.empty() ? "" : ", ") + r;
+    f.warnings.push_back(f.path + ": " + mesh_at + (gm.name.empty() ? "" : " \"" + gm.name + "\"") + ": skipped " +
+                         plural(gm.primitives.size() - kept.size(), "primitive") + " (" + reasons +
+                         "): only triangles are rendered");
+  }
+  const auto all_have = [&](const char* name) {
+    return !kept.empty() && std::all_of(kept.begin(), kept.end(),
+                                        [&](size_t j) { return attribute(gm.primitives[j], name) >= 0; });
+  };
+  const bool normals = all_have("NORMAL"), uvs = all_have("TEXCOORD_0");
+
+  // Primitives that share their vertex accessors share the vertices.
+  struct VertexSet {
+    int position, normal, uv;
+    uint32_t base, count;
+  };
+  std::vector<VertexSet> sets;
+  const size_t default_material = f.model.materials.size();
+  for (size_t j : kept) {
+    const tinygltf::Primitive& p = gm.primitives[j];
+    const std::string at = item(mesh_at + ".primitives", j);
+    const int position = attribute(p, "POSITION");
+    const int normal = normals ? attribute(p, "NORMAL") : -1;
+    const int uv = uvs ? attribute(p, "TEXCOORD_0") : -1;
+    auto set = std::find_if(sets.begin(), sets.end(), [&](const VertexSet& s) {
+      return s.position == position && s.normal == normal && s.uv == uv;
+    });
+    if (set == sets.end()) {
+      const auto positions = read_attribute<3>(f, position, at + ".attributes.POSITION", "POSITION");
+      const auto count_check = [&](size_t count, const char* name, int index) {
+        if (count != positions.size())
+          f.fail(at + ".attributes." + name, item("accessors", size_t(index)) + " has " + plural(count, "element") +
+                                                 ", POSITION " + std::to_string(positions.size()));
+      };
+      if (normal >= 0) {
+        const auto n = read_attribute<3>(f, normal, at + ".attributes.NORMAL", "NORMAL");
+        count_check(n.size(), "NORMAL", normal);
+        mesh.normals.insert(mesh.normals.end(), n.begin(), n.end());
+      }
+      if (uv >= 0) {
+        const auto t = read_attribute<2>(f, uv, at + ".attributes.TEXCOORD_0", "TEXCOORD_0");
+        count_check(t.size(), "TEXCOORD_0", uv);
+        mesh.uvs.insert(mesh.uvs.end(), t.begin(), t.end());
+      }
+      if (mesh.positions.size() + positions.size() > UINT32_MAX)
+        f.fail(mesh_at, "more than 2^32 - 1 vertices");
+      sets.push_back({position, normal, uv, uint32_t(mesh.positions.size()), uint32_t(positions.size())});
+      mesh.positions.insert(mesh.positions.end(), positions.begin(), positions.end());
+      set = sets.end() - 1;
+    }
+
+    std::vector<uint32_t> v;
+    if (p.indices >= 0) {
+      v = read_indices(f, p.indices, at + ".indices", set->count);
+    } else {
+      v.resize(set->count);
+      for (uint32_t i = 0; i < set->count; ++i) v[i] = i;
+    }
+    const auto add = [&](uint32_t a, uint32_t b, uint32_t c) {
+      mesh.indices.insert(mesh.indices.end(), {set->base + a, set->base + b, set->base + c});
+    };
+    // Strips and fans as the spec lists their triangles (3.7.2.1), which keeps
+    // every triangle's winding that of the first.
+    if (p.mode == TINYGLTF_MODE_TRIANGLES) {
+      if (v.size() % 3)
+        f.fail(at, plural(v.size(), "vertex", "vertices") + " do not make whole triangles (TRIANGLES takes 3 each)");
+      for (size_t i = 0; i + 2 < v.size(); i += 3) add(v[i], v[i + 1], v[i + 2]);
+    } else if (p.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      for (size_t i = 0; i + 2 < v.size(); ++i) {
+        if (i % 2 == 0) add(v[i], v[i + 1], v[i + 2]);
+        else add(v[i], v[i + 2], v[i + 1]);
+      }
+    } else {  // TRIANGLE_FAN
+      for (size_t i = 0; i + 2 < v.size(); ++i) add(v[i + 1], v[i + 2], v[0]);
+    }
+    size_t material = default_material;
+    if (p.material >= 0) {
+      f.get(f.model.materials, p.material, "materials", at + ".material");
+      material = size_t(p.material);
+    }
+    mesh.materials.resize(mesh.indices.size() / 3, uint32_t(material));
+  }
+  return mesh;
+}
+
+// ---------------------------------------------------------------------------
+// materials
+// ---------------------------------------------------------------------------
+
+Material read_material(const File& f, size_t i) {
+  const std::vector<double>& c = f.model.materials[i].pbrMetallicRoughness.baseColorFactor;
+  if (!std::all_of(c.begin(), c.end(), [](double v) { return v >= 0.0 && v <= 1.0; })) {
+    std::string got;
+    for (double v : c) got += (got.empty() ? "" : ", ") + float_string(float(v));
+    f.fail(item("materials", i) + ".pbrMetallicRoughness.baseColorFactor", "must be 4 numbers in [0, 1], got [" + got + "]");
+  }
+  Material m;
+  m.albedo = {float(c[0]), float(c[1]), float(c[2])};
+  return m;
+}
+
+bool has_textures_or_emission(const tinygltf::Model& model) {
+  if (!model.textures.empty()) return true;
+  return std::any_of(model.materials.begin(), model.materials.end(), [](const tinygltf::Material& m) {
+    return m.emissiveTexture.index >= 0 ||
+           std::any_of(m.emissiveFactor.begin(), m.emissiveFactor.end(), [](double v) { return v != 0.0; });
+  });
+}
+
+// ---------------------------------------------------------------------------
+// nodes (3.5)
+// ---------------------------------------------------------------------------
+
+glm::dmat4 local_transform(const File& f, size_t n) {
+  const tinygltf::Node& node = f.model.nodes[n];
+  if (node.matrix.size() == 16) {
+    const glm::dmat4 m = glm::make_mat4(node.matrix.data());  // column-major, as glm
+    if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0)
+      f.fail(item("nodes", n) + ".matrix", "must be an affine transform (last row 0, 0, 0, 1)");
+    return m;
+  }
+  glm::dmat4 m(1.0);
+  if (node.translation.size() == 3) m = glm::translate(m, glm::make_vec3(node.translation.data()));
+  if (node.rotation.size() == 4) {
+    // (x, y, z, w) in the file; exporters write them a little off unit length.
+    const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+    if (glm::length(q) == 0.0) f.fail(item("nodes", n) + ".rotation", "must be a unit quaternion, got [0, 0, 0, 0]");
+    m *= glm::mat4_cast(glm::normalize(q));
+  }
+  if (node.scale.size() == 3) m = glm::scale(m, glm::make_vec3(node.scale.data()));
+  return m;
+}
+
+bool finite(const glm::dmat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(float(m[c][r]))) return false;
+  return true;
+}
+
+struct PlacedCamera {
+  uint32_t camera;  // index into the file's cameras
+  glm::dmat4 world;
+  bool perspective;
+  double yfov;      // radians
+};
+
+// One file's scene in the file's own space.
+struct Loaded {
+  std::vector<Mesh> meshes;         // materials index `materials`
+  std::vector<Material> materials;  // the file's, then glTF's default material if a primitive uses it
+  std::vector<Instance> instances;  // world transforms of the nodes
+  std::vector<PlacedCamera> cameras;  // camera nodes in the order of the hierarchy
+  size_t file_cameras = 0;
+  size_t scene = 0;  // the scene placed (if the file has any)
+  std::vector<std::string> warnings;
+};
+
+Loaded read_gltf(const std::string& path, std::optional<uint32_t> scene_index) {
+  File f = open_gltf(path);
+  const tinygltf::Model& model = f.model;
+  Loaded out;
+  out.file_cameras = model.cameras.size();
+
+  if (scene_index && *scene_index >= model.scenes.size())
+    throw SettingError("gltf.scene", ": index " + std::to_string(*scene_index) + " out of range (" + path + " has " +
+                                         plural(model.scenes.size(), "scene") + ")");
+  if (model.defaultScene >= 0) f.get(model.scenes, model.defaultScene, "scenes", "scene");
+  out.scene = scene_index ? *scene_index : model.defaultScene >= 0 ? size_t(model.defaultScene) : 0;
+  if (model.scenes.empty()) f.warnings.push_back(path + ": has no scenes: nothing to place");
+
+  for (size_t i = 0; i < model.materials.size(); ++i) out.materials.push_back(read_material(f, i));
+  if (has_textures_or_emission(model))
+    f.warnings.push_back(path + ": textures and emission are not rendered yet (base colour factors only)");
+
+  // Depth first with an explicit stack, so that a deep hierarchy cannot
+  // overflow the call stack. glTF nodes form disjoint trees (3.5.3): a node
+  // met twice is either in a loop (RecursiveNodes) or has two parents.
+  enum : uint8_t { Unseen, OnPath, Done };
+  std::vector<uint8_t> state(model.nodes.size(), Unseen);
+  std::vector<int> mesh_of(model.meshes.size(), -2);  // -2: not read yet, -1: no triangles
+  struct Frame {
+    size_t node;
+    glm::dmat4 world;
+    size_t next_child = 0;
+  };
+  std::vector<Frame> stack;
+  const auto enter = [&](int node, const glm::dmat4& parent, const std::string& at) {
+    f.get(model.nodes, node, "nodes", at);
+    const size_t n = size_t(node);
+    if (state[n] == OnPath)
+      f.fail(at, "node " + std::to_string(n) + " is its own ancestor (the node hierarchy loops)");
+    if (state[n] == Done) f.fail(at, "node " + std::to_string(n) + " is placed twice (glTF nodes form trees)");
+    state[n] = OnPath;
+    const glm::dmat4 world = parent * local_transform(f, n);
+    if (!finite(world)) f.fail(item("nodes", n), "the transform from the scene root is not finite");
+    stack.push_back({n, world});
+
+    const tinygltf::Node& gn = model.nodes[n];
+    if (gn.mesh >= 0) {
+      f.get(model.meshes, gn.mesh, "meshes", item("nodes", n) + ".mesh");
+      int& m = mesh_of[size_t(gn.mesh)];
+      if (m == -2) {
+        Mesh mesh = read_mesh(f, size_t(gn.mesh));
+        m = mesh.indices.empty() ? -1 : int(out.meshes.size());
+        if (m >= 0) out.meshes.push_back(std::move(mesh));
+      }
+      // A node scaled to nothing (as animations hide parts) shows nothing and
+      // has no inverse for the renderer's rays.
+      if (m >= 0 && glm::determinant(glm::dmat3(world)) != 0.0) out.instances.push_back({uint32_t(m), glm::mat4(world)});
+    }
+    if (gn.camera >= 0) {
+      const tinygltf::Camera& c = f.get(model.cameras, gn.camera, "cameras", item("nodes", n) + ".camera");
+      out.cameras.push_back({uint32_t(gn.camera), world, c.type == "perspective", c.perspective.yfov});
+    }
+  };
+  if (!model.scenes.empty()) {
+    const tinygltf::Scene& scene = model.scenes[out.scene];
+    for (size_t r = 0; r < scene.nodes.size(); ++r) {
+      enter(scene.nodes[r], glm::dmat4(1.0), item(item("scenes", out.scene) + ".nodes", r));
+      while (!stack.empty()) {
+        Frame& top = stack.back();
+        const std::vector<int>& children = model.nodes[top.node].children;
+        if (top.next_child == children.size()) {
+          state[top.node] = Done;
+          stack.pop_back();
+          continue;
+        }
+        const size_t c = top.next_child++;
+        const glm::dmat4 world = top.world;  // `top` moves when enter() grows the stack
+        enter(children[c], world, item(item("nodes", top.node) + ".children", c));
+      }
+    }
+  }
+
+  const bool default_used = std::any_of(out.meshes.begin(), out.meshes.end(), [&](const Mesh& m) {
+    return std::find(m.materials.begin(), m.materials.end(), uint32_t(model.materials.size())) != m.materials.end();
+  });
+  if (default_used) out.materials.push_back(Material{MaterialType::Lambertian, glm::vec3(1.0f)});
+  out.warnings = std::move(f.warnings);
+  return out;
+}
+
+void emit_warnings(const GltfOptions& opts, const std::vector<std::string>& warnings) {
+  if (!opts.warn) return;
+  for (const std::string& w : warnings) opts.warn(w);
+}
+
+void append(Scene& scene, const Loaded& file, std::optional<uint32_t> material_override, const glm::mat4& transform) {
+  const auto mesh_base = uint32_t(scene.meshes.size());
+  const auto material_base = uint32_t(scene.materials.size());
+  if (!material_override) {
+    scene.materials.insert(scene.materials.end(), file.materials.begin(), file.materials.end());
+    scene.mesh_file_materials += file.materials.size();
+  }
+  for (const Mesh& m : file.meshes) {
+    scene.meshes.push_back(m);
+    for (uint32_t& material : scene.meshes.back().materials)
+      material = material_override ? *material_override : material_base + material;
+  }
+  const glm::dmat4 t(transform);
+  for (const Instance& i : file.instances)
+    scene.instances.push_back({mesh_base + i.mesh, glm::mat4(t * glm::dmat4(i.transform))});
+}
+
+// ---------------------------------------------------------------------------
+// cameras
+// ---------------------------------------------------------------------------
+
+// A glTF camera looks down its node's -Z with +Y up (3.10.1); yfov in radians.
+Camera placed_camera(const std::string& path, const PlacedCamera& placed) {
+  if (!(placed.yfov > 0.0 && placed.yfov < glm::pi<double>()))
+    throw InputError(path + ": " + item("cameras", placed.camera) + ".perspective.yfov: must be in (0, pi) radians, got " +
+                     float_string(float(placed.yfov)));
+  const glm::dvec3 eye(placed.world[3]);
+  const glm::dvec3 forward = glm::normalize(-glm::dvec3(placed.world[2]));
+  Camera c;
+  c.lookfrom = glm::vec3(eye);
+  c.lookat = glm::vec3(eye + forward);
+  c.vup = glm::vec3(glm::normalize(glm::dvec3(placed.world[1])));
+  c.vfov = float(glm::degrees(placed.yfov));
+  c.aperture = 0.0f;  // glTF cameras are pinholes
+  c.focus_dist = 1.0f;
+  return c;
+}
+
+// Looks at the centre of the world bounds of the instances from rtiow's
+// direction (13, 2, 3), as far away as makes their bounding sphere fill the
+// 30 degree vertical field of view (wider images show more at the sides).
+// The bounds are those of each mesh's box transformed, a little loose under
+// rotation but cheap for many instances.
+Camera framing_camera(const Scene& scene) {
+  Camera c;
+  c.aperture = 0.0f;
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  std::vector<std::pair<glm::dvec3, glm::dvec3>> boxes;
+  for (const Mesh& m : scene.meshes) {
+    glm::dvec3 a(INFINITY), b(-INFINITY);
+    for (glm::vec3 p : m.positions) a = glm::min(a, glm::dvec3(p)), b = glm::max(b, glm::dvec3(p));
+    boxes.emplace_back(a, b);
+  }
+  for (const Instance& i : scene.instances) {
+    const auto& [a, b] = boxes[i.mesh];
+    for (int k = 0; k < 8; ++k) {
+      const glm::dvec3 corner(k & 1 ? b.x : a.x, k & 2 ? b.y : a.y, k & 4 ? b.z : a.z);
+      const glm::dvec3 p(glm::dmat4(i.transform) * glm::dvec4(corner, 1.0));
+      lo = glm::min(lo, p), hi = glm::max(hi, p);
+    }
+  }
+  if (scene.instances.empty()) return c;
+  const glm::dvec3 centre = 0.5 * (lo + hi);
+  double radius = 0.5 * glm::length(hi - lo);
+  if (radius == 0.0) radius = 1.0;  // a single point: any distance shows it
+  const double distance = radius / std::sin(glm::radians(0.5 * double(c.vfov)));
+  c.lookat = glm::vec3(centre);
+  c.lookfrom = glm::vec3(centre + distance * glm::normalize(glm::dvec3(13.0, 2.0, 3.0)));
+  c.focus_dist = float(distance);
+  return c;
+}
+
+}  // namespace
+
+void print_warning(const std::string& message) { std::fprintf(stderr, "octrace: warning: %s\n", message.c_str()); }
+
+void append_gltf(Scene& scene, const std::string& path, std::optional<uint32_t> material_override,
+                 const glm::mat4& transform, const GltfOptions& opts) {
+  if (material_override && *material_override >= scene.materials.size())
+    throw InputError(path + ": material " + std::to_string(*material_override) + " out of range (" +
+                     plural(scene.materials.size(), "material") + ")");
+  const Loaded file = read_gltf(path, opts.scene);
+  append(scene, file, material_override, transform);
+  emit_warnings(opts, file.warnings);
+}
+
+Scene load_gltf_scene(const std::string& path, const GltfOptions& opts) {
+  const Loaded file = read_gltf(path, opts.scene);
+  Scene scene;
+  append(scene, file, std::nullopt, glm::mat4(1.0f));
+  MeshRef ref;
+  ref.file = std::filesystem::absolute(path).lexically_normal().string();
+  ref.scene = opts.scene;
+  scene.mesh_refs.push_back(ref);
+
+  // The camera asked for, or the first perspective one placed, or a framing one.
+  const auto camera_error = [&](const std::string& what) { return SettingError("gltf.camera", ": " + what); };
+  const PlacedCamera* chosen = nullptr;
+  for (const PlacedCamera& p : file.cameras) {
+    const bool wanted = opts.camera ? p.camera == *opts.camera : p.perspective;
+    if (wanted && (!chosen || p.camera < chosen->camera)) chosen = &p;
+  }
+  if (opts.camera) {
+    const uint32_t c = *opts.camera;
+    if (c >= file.file_cameras)
+      throw camera_error("index " + std::to_string(c) + " out of range (" + path + " has " +
+                         plural(file.file_cameras, "camera") + ")");
+    if (!chosen)
+      throw camera_error(item("cameras", c) + " of " + path + " is not placed by a node of " +
+                         item("scenes", file.scene));
+    if (!chosen->perspective)
+      throw camera_error(item("cameras", c) + " of " + path + " is orthographic: only perspective cameras are supported");
+  }
+  scene.camera = chosen ? placed_camera(path, *chosen) : framing_camera(scene);
+  validate_scene(scene, path);
+  emit_warnings(opts, file.warnings);
+  return scene;
+}
+
+}  // namespace octrace

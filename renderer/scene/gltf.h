@@ -1,0 +1,72 @@
+// glTF 2.0 files (.gltf with its .bin and images beside it or in data URIs,
+// and .glb) as meshes, instances, materials and a camera of a Scene.
+//
+// Geometry: primitives of mode TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN
+// (strips and fans become triangles of the same winding, glTF 2.0 spec
+// 3.7.2.1); POINTS and LINES are skipped with one warning per mesh. Indexed or
+// not, 8/16/32-bit indices, byteStride, sparse accessors, normalized integer
+// attributes (and KHR_mesh_quantization). One glTF mesh is one Mesh, its
+// primitives concatenated with a material per triangle; NORMAL and TEXCOORD_0
+// are kept when every primitive of the mesh has them.
+//
+// Placement: the node hierarchy of one scene (TRS or matrix, parent * child);
+// every node with a mesh is an Instance, and a mesh placed by several nodes is
+// stored once. Windings are kept as the file has them even under a transform
+// with a negative determinant (a mirror): the renderer flips the front face of
+// such an instance, so that the file's triangles stay shared between instances.
+//
+// Materials, for now: lambertian with albedo = baseColorFactor.rgb (textures
+// and emission come with the materials step; a file that has them gets one
+// warning saying so). Primitives without a material take glTF's default
+// material (base colour 1).
+//
+// Errors: every problem with the file is an InputError of one line naming the
+// file and the glTF path ("model.glb: accessors[3]: count 900 exceeds
+// bufferView 2 (600 elements)"). Images are checked (found, and a format whose
+// header stb can read) but not decoded yet: nothing draws them.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include <glm/mat4x4.hpp>
+
+#include "scene/scene.h"
+
+namespace octrace {
+
+// Prints "octrace: warning: MESSAGE" on stderr.
+void print_warning(const std::string& message);
+
+struct GltfOptions {
+  // Which of the file's scenes to place (default: the file's default scene,
+  // else its first). Out of range: SettingError "gltf.scene".
+  std::optional<uint32_t> scene;
+  // load_gltf_scene only: which of the file's cameras to look through
+  // (default: the first perspective camera a node of the scene places, else a
+  // camera that frames the scene). Not perspective, not placed by a node of the
+  // scene, or out of range: SettingError "gltf.camera".
+  std::optional<uint32_t> camera;
+  // Receives each warning (one line, starting with the file name), once the
+  // file has loaded without error; empty: none is reported.
+  std::function<void(const std::string&)> warn = print_warning;
+};
+
+// A scene of the file alone: its meshes, instances and materials, its camera
+// (see GltfOptions::camera; the framing camera looks at the centre of the
+// scene's bounds from the direction of rtiow's (13, 2, 3) at the distance where
+// the bounding sphere fills the 30 degree vertical field of view, pinhole) and
+// the default gradient sky. Its mesh_refs holds one reference to the file (by
+// absolute path), so that --dump-scene writes a JSON scene that loads it again.
+Scene load_gltf_scene(const std::string& path, const GltfOptions& opts = {});
+
+// Adds the file's meshes to `scene` (a JSON scene's "meshes" entry), placed at
+// `transform` * (node transform). The file's materials are appended to
+// scene.materials unless `material_override` (an index into scene.materials)
+// is given, which then colours every triangle. opts.camera is ignored.
+void append_gltf(Scene& scene, const std::string& path, std::optional<uint32_t> material_override,
+                 const glm::mat4& transform, const GltfOptions& opts = {});
+
+}  // namespace octrace
