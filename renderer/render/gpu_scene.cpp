@@ -75,12 +75,6 @@ glm::vec3 to_world(const glm::dmat4& m, glm::vec3 p) { return glm::vec3(m * glm:
 
 }  // namespace
 
-uint64_t instanced_triangle_count(const Scene& scene) {
-  uint64_t n = 0;
-  for (const Instance& inst : scene.instances) n += scene.meshes[inst.mesh].triangle_count();
-  return n;
-}
-
 std::vector<gpu::GpuTriangle> world_triangles(const Scene& scene) {
   std::vector<gpu::GpuTriangle> out;
   out.reserve(instanced_triangle_count(scene));

@@ -36,7 +36,6 @@ struct GpuScene {
 // stays the front; normals go through the inverse transpose.
 std::vector<gpu::GpuTriangle> world_triangles(const Scene& scene);
 std::vector<gpu::GpuTriangleNormals> world_triangle_normals(const Scene& scene);
-uint64_t instanced_triangle_count(const Scene& scene);
 
 // The primitives' boxes, in primitive-id order (spheres, then triangles):
 // what the octree is built over.
