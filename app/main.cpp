@@ -318,7 +318,7 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
     std::printf("image     %dx%d, %u spp, depth %u, sample seed %u, %s\n", settings.width, settings.height,
                 settings.spp, settings.bounce_limit, settings.sample_seed, precision_name(settings.precision));
     if (settings.accel == Accel::Octree)
-      std::printf("octree    %u nodes, %u leaves, depth %u, %.2f refs/sphere, %.1f bytes/sphere, %u big spheres\n",
+      std::printf("octree    %u nodes, %u leaves, depth %u, %.2f refs/primitive, %.1f bytes/primitive, %u big primitives\n",
                   result.octree.nodes, result.octree.leaves, result.octree.max_depth_reached,
                   result.octree.refs_per_primitive, result.octree.bytes_per_primitive, result.octree.big_primitives);
     std::printf("times     scene %.1f ms, %s build %.1f ms, upload %.1f ms, pipeline %.1f ms, render %.1f ms (device)\n",
