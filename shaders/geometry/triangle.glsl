@@ -13,9 +13,12 @@
 // the winding), and a shear maps the ray onto +z. Vertices are then tested in
 // 2D against the origin with edge functions that agree exactly between two
 // triangles sharing an edge, so no ray slips between them.
+// The permutation is kept as three one-hot vectors, so that picking a
+// component is a dot product (exact: the other terms are 0) rather than a
+// dynamically indexed vector, which GPU compilers may move to local memory.
 struct RayShear {
-  ivec3 k;  // kx, ky, kz
-  vec3 s;   // Sx, Sy, Sz
+  vec3 ex, ey, ez;  // one-hot: component kx, ky, kz
+  vec3 s;           // Sx, Sy, Sz
 };
 
 RayShear ray_shear(vec3 dir) {
@@ -28,7 +31,9 @@ RayShear ray_shear(vec3 dir) {
     kx = ky;
     ky = t;
   }
-  return RayShear(ivec3(kx, ky, kz), vec3(dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0 / dir[kz]));
+  vec3 ex = vec3(kx == 0, kx == 1, kx == 2), ey = vec3(ky == 0, ky == 1, ky == 2), ez = vec3(kz == 0, kz == 1, kz == 2);
+  float dz = dot(dir, ez);
+  return RayShear(ex, ey, ez, vec3(dot(dir, ex) / dz, dot(dir, ey) / dz, 1.0 / dz));
 }
 
 // The edge functions U, V, W (unnormalised barycentrics of v0, v1, v2) and
@@ -37,17 +42,23 @@ RayShear ray_shear(vec3 dir) {
 // counts as inside: a ray through a shared edge hits both triangles at the
 // same t, and the tie goes to the lower id) or the triangle has no area.
 bool triangle_edges(vec3 origin, RayShear sh, vec3 v0, vec3 v1, vec3 v2, out vec3 uvw, out float T, out float det) {
-  vec3 A = v0 - origin, B = v1 - origin, C = v2 - origin;
-  float Ax = A[sh.k.x] - sh.s.x * A[sh.k.z], Ay = A[sh.k.y] - sh.s.y * A[sh.k.z];
-  float Bx = B[sh.k.x] - sh.s.x * B[sh.k.z], By = B[sh.k.y] - sh.s.y * B[sh.k.z];
-  float Cx = C[sh.k.x] - sh.s.x * C[sh.k.z], Cy = C[sh.k.y] - sh.s.y * C[sh.k.z];
-  float U = Cx * By - Cy * Bx;
-  float V = Ax * Cy - Ay * Cx;
-  float W = Bx * Ay - By * Ax;
+  // `precise`: no fused multiply-add. The test is exact only if every
+  // product is rounded on its own: with Cx*By - Cy*Bx fused, a triangle whose
+  // three vertices coincide got U = V = W = the same rounding residue, a
+  // non-zero det and a hit (seen on the H100, not on lavapipe), and two
+  // triangles sharing an edge could round their edge functions differently.
+  precise vec3 A = v0 - origin, B = v1 - origin, C = v2 - origin;
+  precise float Az = dot(A, sh.ez), Bz = dot(B, sh.ez), Cz = dot(C, sh.ez);
+  precise float Ax = dot(A, sh.ex) - sh.s.x * Az, Ay = dot(A, sh.ey) - sh.s.y * Az;
+  precise float Bx = dot(B, sh.ex) - sh.s.x * Bz, By = dot(B, sh.ey) - sh.s.y * Bz;
+  precise float Cx = dot(C, sh.ex) - sh.s.x * Cz, Cy = dot(C, sh.ey) - sh.s.y * Cz;
+  precise float U = Cx * By - Cy * Bx;
+  precise float V = Ax * Cy - Ay * Cx;
+  precise float W = Bx * Ay - By * Ax;
   if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0)) return false;
-  det = U + V + W;
+  det = U + V + W;  // exactly 0 for a repeated vertex (U = -V) or a point
   if (det == 0.0) return false;  // zero area (or seen exactly edge-on): never hit
-  T = U * (sh.s.z * A[sh.k.z]) + V * (sh.s.z * B[sh.k.z]) + W * (sh.s.z * C[sh.k.z]);
+  T = U * (sh.s.z * Az) + V * (sh.s.z * Bz) + W * (sh.s.z * Cz);
   uvw = vec3(U, V, W);
   return true;
 }
