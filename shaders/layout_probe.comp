@@ -27,8 +27,8 @@ void main() {
   scene.sphere_count = 8;
   scene.big_count = 9;
   scene.triangle_count = 10;
-  scene.pad0 = 11;
-  scene.pad1 = 12;
+  scene.vertex_normals = 11;
+  scene.pad0 = 12;
 
   pass.cam_origin = vec3(1, 2, 3);
   pass.lens_radius = 4;

@@ -75,7 +75,7 @@ vec3 trace_path(Ray ray, uint pixel_index, out uint segments) {
     // An interpolated shading normal can face away from the ray near a
     // silhouette; reflecting about it would send the path below the surface
     // (a mirror would lose it): use the geometric normal there.
-    if (HAS_VERTEX_NORMALS && dot(ray.dir, n) >= 0.0) n = g;
+    if (HAS_VERTEX_NORMALS && scene.vertex_normals != 0u && dot(ray.dir, n) >= 0.0) n = g;
 
     if (HAS_EMISSIVE && m.type == MAT_EMISSIVE) {
       radiance += throughput * m.color;

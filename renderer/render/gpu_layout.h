@@ -52,8 +52,8 @@ static_assert(offsetof(SceneParams, sky_b) == 16);
 static_assert(offsetof(SceneParams, sphere_count) == 28);
 static_assert(offsetof(SceneParams, big_count) == 32);
 static_assert(offsetof(SceneParams, triangle_count) == 36);
-static_assert(offsetof(SceneParams, pad0) == 40);
-static_assert(offsetof(SceneParams, pad1) == 44);
+static_assert(offsetof(SceneParams, vertex_normals) == 40);
+static_assert(offsetof(SceneParams, pad0) == 44);
 
 static_assert(sizeof(PassParams) == 112);
 static_assert(offsetof(PassParams, lens_radius) == 12);

@@ -167,6 +167,7 @@ void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Acc
   for (const Mesh& mesh : scene.meshes) any_normals |= !mesh.normals.empty();
   if (any_normals) normals = world_triangle_normals(scene);
   p.triangle_count = uint32_t(triangles.size());
+  p.vertex_normals = any_normals ? 1u : 0u;
 
   create_buffer(g.params, ctx, sizeof p, false, "scene parameters");
   create_buffer(g.triangles, ctx, triangle_bytes, false, "triangle buffer");

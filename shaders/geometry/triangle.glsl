@@ -1,6 +1,6 @@
 // Triangles: watertight ray/triangle intersection and the surface at a hit,
-// in fp32. The includer declares `triangles` and `triangle_normals` and the
-// specialization constant HAS_VERTEX_NORMALS.
+// in fp32. The includer declares `scene`, `triangles` and `triangle_normals`
+// and the specialization constant HAS_VERTEX_NORMALS.
 #ifndef OCTRACE_TRIANGLE_GLSL
 #define OCTRACE_TRIANGLE_GLSL
 
@@ -87,7 +87,8 @@ Surface triangle_surface(Ray ray, float t, uint i) {
   vec3 p = ray.origin + t * ray.dir;
   vec3 ng = safe_normalize(cross(tri.v1 - tri.v0, tri.v2 - tri.v0), -ray.dir);
   vec3 ns = ng;
-  if (HAS_VERTEX_NORMALS) {
+  // The general pipeline reads normals only where the scene uploaded them.
+  if (HAS_VERTEX_NORMALS && scene.vertex_normals != 0u) {
     vec3 uvw;
     float T, det;
     if (triangle_edges(ray.origin, ray_shear(ray.dir), tri.v0, tri.v1, tri.v2, uvw, T, det)) {

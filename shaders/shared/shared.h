@@ -187,8 +187,8 @@ struct SceneParams {
   uint sphere_count;
   uint big_count;     // octree: refs[0, big_count) are primitives tested before traversal
   uint triangle_count;
+  uint vertex_normals;  // 1: triangle_normals holds every triangle's normals; 0: it is empty
   uint pad0;
-  uint pad1;
 };
 
 // 112 bytes, the push constants of one pass: everything that may change from

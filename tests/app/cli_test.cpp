@@ -134,7 +134,8 @@ TEST(Cli, JsonSummaryHasTimingsAndDevice) {
   RunResult r = run_octrace("render --size 16x8 --spp 2 --spheres 10 --json --out " + tmp("summary.png"));
   ASSERT_EQ(r.code, 0) << r.output;
   for (const char* key : {"\"device\"", "\"render\"", "\"pipeline\"", "\"upload\"", "\"scene\"",
-                          "\"paths_per_second\"", "\"nonfinite_samples\": 0", "\"spp\": 2", "\"depth\": 50"})
+                          "\"paths_per_second\"", "\"rays_per_second\"", "\"nonfinite_samples\": 0", "\"spp\": 2",
+                          "\"depth\": 50"})
     EXPECT_NE(r.output.find(key), std::string::npos) << key << " missing in " << r.output;
 }
 
@@ -167,8 +168,7 @@ TEST(Cli, GltfBadInput) {
   expect_bad_input("gltf_second_file", "--scene " + two, two + ": meshes[1].file: " + tmp("gltf/corrupt.glb"));
 }
 
-// `render --scene model.glb` loads the file and reports what it holds (the
-// triangles are not drawn yet).
+// `render --scene model.glb` loads the file and reports what it holds.
 TEST(Cli, GltfSceneSummary) {
   octrace::test::GltfBuilder b = octrace::test::quad_gltf();
   b.add("nodes", {{"mesh", 0}, {"translation", {2, 0, 0}}});
@@ -183,6 +183,18 @@ TEST(Cli, GltfSceneSummary) {
   for (const char* key : {"\"meshes\": 1", "\"instances\": 2", "\"triangles_unique\": 2", "\"triangles_instanced\": 4",
                           "\"spheres\": 0"})
     EXPECT_NE(r.output.find(key), std::string::npos) << key << " missing in " << r.output;
+}
+
+// `bench --scene` times scene files (a glTF and a JSON one) per accel.
+TEST(Cli, BenchTimesSceneFiles) {
+  const std::string quad = octrace::test::quad_gltf().write(tmp("gltf/bench_quad.glb"));
+  const std::string json = write_file("bench_scene.json", VALID_SCENE);
+  RunResult r = run_octrace("bench --device cpu --scene " + quad + "," + json +
+                            " --accel octree,brute --size 16x8 --spp 1 --repeat 1 --quiet");
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* row : {"| bench_quad.glb | 0 | 2 | octree | fp32 |", "| bench_quad.glb | 0 | 2 | brute | fp32 |",
+                          "bench_scene.json | 1 | 0 | brute | fp32 |", "rays/s"})
+    EXPECT_NE(r.output.find(row), std::string::npos) << row << " missing in " << r.output;
 }
 
 // A JSON scene with meshes, dumped and loaded again, is the same scene: the

@@ -51,8 +51,8 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   EXPECT_EQ(sc.sphere_count, 8u);
   EXPECT_EQ(sc.big_count, 9u);
   EXPECT_EQ(sc.triangle_count, 10u);
-  EXPECT_EQ(sc.pad0, 11u);
-  EXPECT_EQ(sc.pad1, 12u);
+  EXPECT_EQ(sc.vertex_normals, 11u);
+  EXPECT_EQ(sc.pad0, 12u);
 
   gpu::PassParams f{};
   download_buffer(ctx, pass_buf, &f, sizeof f);
