@@ -309,7 +309,8 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
                      {"leaves", o.leaves},             {"depth_reached", o.max_depth_reached},
                      {"refs", o.refs},                 {"big_spheres", o.big_primitives},
                      {"refs_per_sphere", o.refs_per_primitive}, {"bytes", o.bytes},
-                     {"bytes_per_sphere", o.bytes_per_primitive}};
+                     {"bytes_per_sphere", o.bytes_per_primitive},
+                     {"refs_per_primitive", o.refs_per_primitive}, {"bytes_per_primitive", o.bytes_per_primitive}};
     }
     std::cout << j.dump(2) << "\n";
   } else if (!quiet) {

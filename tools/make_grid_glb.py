@@ -1,0 +1,55 @@
+#!/usr/bin/env python3
+"""Writes a .glb of one N x N grid of quads (2 N^2 triangles) on a gently
+curved sheet, for measuring the octree build over many triangles:
+
+    tools/make_grid_glb.py 708 /tmp/grid1m.glb     # 1,002,528 triangles
+
+Python standard library only.
+"""
+import json
+import math
+import struct
+import sys
+
+
+def main():
+    n, out = int(sys.argv[1]), sys.argv[2]
+    verts = bytearray()
+    for y in range(n + 1):
+        for x in range(n + 1):
+            u, v = x / n, y / n
+            verts += struct.pack("<3f", u * 10 - 5, 0.3 * math.sin(6 * u) * math.cos(5 * v), v * 10 - 5)
+    idx = bytearray()
+    for y in range(n):
+        for x in range(n):
+            a = y * (n + 1) + x
+            idx += struct.pack("<6I", a, a + n + 1, a + 1, a + 1, a + n + 1, a + n + 2)
+    lo = [-5.0, -0.3, -5.0]
+    hi = [5.0, 0.3, 5.0]
+    gltf = {
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"name": "grid", "primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+        "buffers": [{"byteLength": len(verts) + len(idx)}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(verts)},
+                        {"buffer": 0, "byteOffset": len(verts), "byteLength": len(idx)}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": (n + 1) ** 2, "type": "VEC3",
+                       "min": lo, "max": hi},
+                      {"bufferView": 1, "componentType": 5125, "count": 6 * n * n, "type": "SCALAR"}],
+    }
+    text = json.dumps(gltf).encode()
+    text += b" " * (-len(text) % 4)
+    binary = bytes(verts + idx)
+    binary += b"\0" * (-len(binary) % 4)
+    total = 12 + 8 + len(text) + 8 + len(binary)
+    with open(out, "wb") as f:
+        f.write(struct.pack("<3I", 0x46546C67, 2, total))
+        f.write(struct.pack("<2I", len(text), 0x4E4F534A) + text)
+        f.write(struct.pack("<2I", len(binary), 0x004E4942) + binary)
+    print(f"{out}: {2 * n * n} triangles")
+
+
+if __name__ == "__main__":
+    main()
