@@ -19,6 +19,8 @@ layout(std430, binding = 6) buffer B6 { GpuOctreeNode nodes[2]; };
 layout(std430, binding = 7) buffer B7 { RenderStats stats[2]; };
 layout(std430, binding = 8) buffer B8 { GpuTriangle triangles[2]; };
 layout(std430, binding = 9) buffer B9 { GpuTriangleNormals triangle_normals[2]; };
+layout(std430, binding = 10) buffer B10 { GpuInstance instances[2]; };
+layout(std430, binding = 11) buffer B11 { GpuMesh meshes[2]; };
 
 void main() {
   scene.sky_a = vec3(1, 2, 3);
@@ -28,7 +30,7 @@ void main() {
   scene.big_count = 9;
   scene.triangle_count = 10;
   scene.vertex_normals = 11;
-  scene.pad0 = 12;
+  scene.instance_count = 12;
 
   pass.cam_origin = vec3(1, 2, 3);
   pass.lens_radius = 4;
@@ -85,5 +87,20 @@ void main() {
     triangle_normals[i].pad1 = u + 52;
     triangle_normals[i].n2 = vec3(o + 53, o + 54, o + 55);
     triangle_normals[i].pad2 = u + 56;
+    instances[i].to_object0 = vec4(o + 57, o + 58, o + 59, o + 60);
+    instances[i].to_object1 = vec4(o + 61, o + 62, o + 63, o + 64);
+    instances[i].to_object2 = vec4(o + 65, o + 66, o + 67, o + 68);
+    instances[i].mesh = u + 69;
+    instances[i].first_id = u + 70;
+    instances[i].pad0 = u + 71;
+    instances[i].pad1 = u + 72;
+    meshes[i].root = u + 73;
+    meshes[i].first_ref = u + 74;
+    meshes[i].big_count = u + 75;
+    meshes[i].first_triangle = u + 76;
+    meshes[i].triangle_count = u + 77;
+    meshes[i].pad0 = u + 78;
+    meshes[i].pad1 = u + 79;
+    meshes[i].pad2 = u + 80;
   }
 }

@@ -24,6 +24,8 @@ layout(std430, binding = BINDING_OCTREE_NODES) readonly buffer NodeBuf { GpuOctr
 layout(std430, binding = BINDING_OCTREE_REFS) readonly buffer RefBuf { uint octree_refs[]; };
 layout(std430, binding = BINDING_TRIANGLES) readonly buffer TriangleBuf { GpuTriangle triangles[]; };
 layout(std430, binding = BINDING_TRIANGLE_NORMALS) readonly buffer TriangleNormalBuf { GpuTriangleNormals triangle_normals[]; };
+layout(std430, binding = BINDING_INSTANCES) readonly buffer InstanceBuf { GpuInstance instances[]; };
+layout(std430, binding = BINDING_MESHES) readonly buffer MeshBuf { GpuMesh meshes[]; };
 
 layout(push_constant) uniform Push { PassParams pass; };
 

@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """Writes a .glb of one N x N grid of quads (2 N^2 triangles) on a gently
-curved sheet, for measuring the octree build over many triangles:
+curved sheet, placed by K nodes (default 1) on a square layout, for
+measuring the octree build over many triangles and instancing:
 
-    tools/make_grid_glb.py 708 /tmp/grid1m.glb     # 1,002,528 triangles
+    tools/make_grid_glb.py 708 /tmp/grid1m.glb          # 1,002,528 triangles
+    tools/make_grid_glb.py 187 /tmp/grid400.glb 400     # 69,938 triangles, 400 instances
 
 Python standard library only.
 """
@@ -14,6 +16,8 @@ import sys
 
 def main():
     n, out = int(sys.argv[1]), sys.argv[2]
+    k = int(sys.argv[3]) if len(sys.argv) > 3 else 1
+    side = math.ceil(math.sqrt(k))
     verts = bytearray()
     for y in range(n + 1):
         for x in range(n + 1):
@@ -29,8 +33,8 @@ def main():
     gltf = {
         "asset": {"version": "2.0"},
         "scene": 0,
-        "scenes": [{"nodes": [0]}],
-        "nodes": [{"mesh": 0}],
+        "scenes": [{"nodes": list(range(k))}],
+        "nodes": [{"mesh": 0, "translation": [12.0 * (i % side), 0.0, 12.0 * (i // side)]} for i in range(k)],
         "meshes": [{"name": "grid", "primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
         "buffers": [{"byteLength": len(verts) + len(idx)}],
         "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(verts)},
@@ -48,7 +52,7 @@ def main():
         f.write(struct.pack("<3I", 0x46546C67, 2, total))
         f.write(struct.pack("<2I", len(text), 0x4E4F534A) + text)
         f.write(struct.pack("<2I", len(binary), 0x004E4942) + binary)
-    print(f"{out}: {2 * n * n} triangles")
+    print(f"{out}: {2 * n * n} triangles, {k} instances")
 
 
 if __name__ == "__main__":

@@ -53,7 +53,22 @@ static_assert(offsetof(SceneParams, sphere_count) == 28);
 static_assert(offsetof(SceneParams, big_count) == 32);
 static_assert(offsetof(SceneParams, triangle_count) == 36);
 static_assert(offsetof(SceneParams, vertex_normals) == 40);
-static_assert(offsetof(SceneParams, pad0) == 44);
+static_assert(offsetof(SceneParams, instance_count) == 44);
+
+static_assert(sizeof(GpuInstance) == 64);
+static_assert(offsetof(GpuInstance, to_object1) == 16);
+static_assert(offsetof(GpuInstance, to_object2) == 32);
+static_assert(offsetof(GpuInstance, mesh) == 48);
+static_assert(offsetof(GpuInstance, first_id) == 52);
+static_assert(offsetof(GpuInstance, pad0) == 56);
+static_assert(offsetof(GpuInstance, pad1) == 60);
+
+static_assert(sizeof(GpuMesh) == 32);
+static_assert(offsetof(GpuMesh, first_ref) == 4);
+static_assert(offsetof(GpuMesh, big_count) == 8);
+static_assert(offsetof(GpuMesh, first_triangle) == 12);
+static_assert(offsetof(GpuMesh, triangle_count) == 16);
+static_assert(offsetof(GpuMesh, pad2) == 28);
 
 static_assert(sizeof(PassParams) == 112);
 static_assert(offsetof(PassParams, lens_radius) == 12);

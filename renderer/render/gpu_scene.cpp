@@ -33,23 +33,62 @@ void check_fits(const VulkanContext& ctx, uint64_t bytes, const std::string& wha
 
 void upload_octree(GpuScene& g, const VulkanContext& ctx, const Scene& scene, const OctreeParams& params) {
   auto start = Clock::now();
+  // The top level over spheres and instances, then one octree per mesh in
+  // object space, appended: their `first` fields are moved by where they land.
   const std::vector<Aabb> boxes = primitive_boxes(scene);
   Octree octree = build_octree(boxes, params);
-  g.accel_build_ms = ms_since(start);
-  g.octree = octree.stats;
+  OctreeStats& st = octree.stats;
+  std::vector<gpu::GpuMesh> meshes = gpu_meshes(scene);
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const Octree mesh_tree = build_octree(mesh_triangle_boxes(scene.meshes[m]), params);
+    const uint32_t node_base = uint32_t(octree.nodes.size()), ref_base = uint32_t(octree.refs.size());
+    for (gpu::GpuOctreeNode n : mesh_tree.nodes) {
+      n.first += (n.count_or_mask & gpu::OCTREE_INTERNAL) ? node_base : ref_base;
+      octree.nodes.push_back(n);
+    }
+    octree.refs.insert(octree.refs.end(), mesh_tree.refs.begin(), mesh_tree.refs.end());
+    meshes[m].root = node_base;
+    meshes[m].first_ref = ref_base;
+    meshes[m].big_count = mesh_tree.big_count;
+    st.leaves += mesh_tree.stats.leaves;
+    st.max_depth_reached = std::max(st.max_depth_reached, mesh_tree.stats.max_depth_reached);
+  }
+  const uint64_t primitives = scene.spheres.size() + unique_triangle_count(scene);
+  st.nodes = uint32_t(octree.nodes.size());
+  st.refs = octree.refs.size();
+  st.bytes = octree.nodes.size() * sizeof(gpu::GpuOctreeNode) + octree.refs.size() * sizeof(uint32_t);
+  st.refs_per_primitive = primitives ? double(st.refs) / double(primitives) : 0.0;
+  st.bytes_per_primitive = primitives ? double(st.bytes) / double(primitives) : 0.0;
+  st.build_ms = ms_since(start);
+  g.accel_build_ms = st.build_ms;
+  g.octree = st;
   check_fits(ctx, octree.nodes.size() * sizeof(gpu::GpuOctreeNode),
-             "the octree nodes of " + std::to_string(boxes.size()) + " primitives (a larger leaf size needs fewer)");
+             "the octree nodes of " + std::to_string(primitives) + " primitives (a larger leaf size needs fewer)");
   check_fits(ctx, octree.refs.size() * sizeof(uint32_t),
-             "the octree references of " + std::to_string(boxes.size()) + " primitives (a larger leaf size needs fewer)");
+             "the octree references of " + std::to_string(primitives) + " primitives (a larger leaf size needs fewer)");
   start = Clock::now();
   create_buffer(g.nodes, ctx, octree.nodes.size() * sizeof(gpu::GpuOctreeNode), false, "octree node buffer");
   create_buffer(g.refs, ctx, octree.refs.size() * sizeof(uint32_t), false, "octree reference buffer");
   upload_buffer(ctx, g.nodes, octree.nodes.data(), octree.nodes.size() * sizeof(gpu::GpuOctreeNode));
   upload_buffer(ctx, g.refs, octree.refs.data(), octree.refs.size() * sizeof(uint32_t));
+  upload_buffer(ctx, g.meshes, meshes.data(), meshes.size() * sizeof(gpu::GpuMesh));
   g.values.big_count = octree.big_count;
   upload_buffer(ctx, g.params, &g.values, sizeof g.values);
   g.has_octree = true;
   g.upload_ms += ms_since(start);
+}
+
+std::vector<gpu::GpuMesh> gpu_meshes(const Scene& scene) {
+  std::vector<gpu::GpuMesh> out;
+  uint32_t first = 0;
+  for (const Mesh& mesh : scene.meshes) {
+    gpu::GpuMesh m{};
+    m.first_triangle = first;
+    m.triangle_count = uint32_t(mesh.triangle_count());
+    first += m.triangle_count;
+    out.push_back(m);
+  }
+  return out;
 }
 
 std::vector<Aabb> sphere_boxes(const std::vector<Sphere>& spheres) {
@@ -59,71 +98,91 @@ std::vector<Aabb> sphere_boxes(const std::vector<Sphere>& spheres) {
   return boxes;
 }
 
-namespace {
-
-// Calls f(instance, mesh, object->world in double, flip) for every instance.
-template <typename F>
-void for_each_instance(const Scene& scene, F&& f) {
-  for (const Instance& inst : scene.instances) {
-    const glm::dmat4 m(inst.transform);
-    const bool flip = glm::determinant(glm::dmat3(m)) < 0.0;
-    f(scene.meshes[inst.mesh], m, flip);
-  }
-}
-
-glm::vec3 to_world(const glm::dmat4& m, glm::vec3 p) { return glm::vec3(m * glm::dvec4(glm::dvec3(p), 1.0)); }
-
-}  // namespace
-
-std::vector<gpu::GpuTriangle> world_triangles(const Scene& scene) {
+std::vector<gpu::GpuTriangle> object_triangles(const Scene& scene) {
   std::vector<gpu::GpuTriangle> out;
-  out.reserve(instanced_triangle_count(scene));
-  for_each_instance(scene, [&](const Mesh& mesh, const glm::dmat4& m, bool flip) {
+  out.reserve(unique_triangle_count(scene));
+  for (const Mesh& mesh : scene.meshes)
     for (size_t k = 0; k < mesh.triangle_count(); ++k) {
       const uint32_t* idx = &mesh.indices[3 * k];
-      gpu::GpuTriangle t{};
-      t.v0 = to_world(m, mesh.positions[idx[0]]);
-      t.v1 = to_world(m, mesh.positions[idx[flip ? 2 : 1]]);
-      t.v2 = to_world(m, mesh.positions[idx[flip ? 1 : 2]]);
-      t.material = mesh.materials[k];
-      out.push_back(t);
+      out.push_back({mesh.positions[idx[0]], mesh.materials[k], mesh.positions[idx[1]], 0, mesh.positions[idx[2]], 0});
     }
-  });
   return out;
 }
 
-std::vector<gpu::GpuTriangleNormals> world_triangle_normals(const Scene& scene) {
+std::vector<gpu::GpuTriangleNormals> object_triangle_normals(const Scene& scene) {
   std::vector<gpu::GpuTriangleNormals> out;
-  out.reserve(instanced_triangle_count(scene));
-  for_each_instance(scene, [&](const Mesh& mesh, const glm::dmat4& m, bool flip) {
-    const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(m)));
-    const auto world_normal = [&](glm::vec3 n) { return glm::vec3(glm::normalize(normal_matrix * glm::dvec3(n))); };
+  out.reserve(unique_triangle_count(scene));
+  for (const Mesh& mesh : scene.meshes)
     for (size_t k = 0; k < mesh.triangle_count(); ++k) {
       const uint32_t* idx = &mesh.indices[3 * k];
       glm::vec3 n[3];
       if (mesh.normals.empty()) {
-        // Flat: the geometric normal of the world triangle, whatever the winding.
-        const glm::dvec3 a = m * glm::dvec4(glm::dvec3(mesh.positions[idx[0]]), 1.0);
-        const glm::dvec3 b = m * glm::dvec4(glm::dvec3(mesh.positions[idx[flip ? 2 : 1]]), 1.0);
-        const glm::dvec3 c = m * glm::dvec4(glm::dvec3(mesh.positions[idx[flip ? 1 : 2]]), 1.0);
+        // Flat: the geometric normal, so that a flat mesh beside smooth ones shades as itself.
+        const glm::dvec3 a(mesh.positions[idx[0]]), b(mesh.positions[idx[1]]), c(mesh.positions[idx[2]]);
         const glm::dvec3 g = glm::cross(b - a, c - a);
         const double len = glm::length(g);
         n[0] = n[1] = n[2] = len > 0.0 ? glm::vec3(g / len) : glm::vec3(0.0f, 0.0f, 1.0f);
       } else {
-        n[0] = world_normal(mesh.normals[idx[0]]);
-        n[1] = world_normal(mesh.normals[idx[flip ? 2 : 1]]);
-        n[2] = world_normal(mesh.normals[idx[flip ? 1 : 2]]);
+        for (int v = 0; v < 3; ++v) n[v] = mesh.normals[idx[v]];
       }
       out.push_back({n[0], 0, n[1], 0, n[2], 0});
     }
-  });
+  return out;
+}
+
+std::vector<Aabb> mesh_triangle_boxes(const Mesh& mesh) {
+  std::vector<Aabb> boxes(mesh.triangle_count());
+  for (size_t k = 0; k < boxes.size(); ++k)
+    for (int v = 0; v < 3; ++v) boxes[k].extend({mesh.positions[mesh.indices[3 * k + v]], mesh.positions[mesh.indices[3 * k + v]]});
+  return boxes;
+}
+
+std::vector<Aabb> instance_boxes(const Scene& scene) {
+  std::vector<Aabb> mesh_bounds(scene.meshes.size());
+  for (size_t m = 0; m < scene.meshes.size(); ++m)
+    for (uint32_t i : scene.meshes[m].indices) mesh_bounds[m].extend({scene.meshes[m].positions[i], scene.meshes[m].positions[i]});
+  std::vector<Aabb> boxes;
+  boxes.reserve(scene.instances.size());
+  for (const Instance& inst : scene.instances) {
+    const Aabb& b = mesh_bounds[inst.mesh];
+    Aabb world;
+    if (!b.empty())
+      for (int corner = 0; corner < 8; ++corner) {
+        const glm::dvec3 p(corner & 1 ? b.hi.x : b.lo.x, corner & 2 ? b.hi.y : b.lo.y, corner & 4 ? b.hi.z : b.lo.z);
+        const glm::vec3 w(glm::dmat4(inst.transform) * glm::dvec4(p, 1.0));
+        world.extend({w, w});
+      }
+    else
+      world = {glm::vec3(inst.transform[3]), glm::vec3(inst.transform[3])};  // nothing to hit: a point
+    boxes.push_back(world);
+  }
+  return boxes;
+}
+
+std::vector<gpu::GpuInstance> gpu_instances(const Scene& scene) {
+  std::vector<gpu::GpuInstance> out;
+  uint64_t next_id = scene.spheres.size() + scene.instances.size();
+  for (const Instance& inst : scene.instances) {
+    const glm::dmat4 to_object = glm::inverse(glm::dmat4(inst.transform));
+    gpu::GpuInstance g{};
+    // glm is column-major: row r is (m[0][r], m[1][r], m[2][r], m[3][r]).
+    glm::vec4* rows[3] = {&g.to_object0, &g.to_object1, &g.to_object2};
+    for (int r = 0; r < 3; ++r) *rows[r] = glm::vec4(to_object[0][r], to_object[1][r], to_object[2][r], to_object[3][r]);
+    g.mesh = inst.mesh;
+    g.first_id = uint32_t(next_id);
+    next_id += scene.meshes[inst.mesh].triangle_count();
+    out.push_back(g);
+  }
+  if (next_id >= (uint64_t(1) << 32))
+    throw InputError(std::to_string(next_id) + " primitives (spheres, instances and instanced triangles): "
+                     "more than 2^32 ids");
   return out;
 }
 
 std::vector<Aabb> primitive_boxes(const Scene& scene) {
   std::vector<Aabb> boxes = sphere_boxes(scene.spheres);
-  for (const gpu::GpuTriangle& t : world_triangles(scene))
-    boxes.push_back({glm::min(t.v0, glm::min(t.v1, t.v2)), glm::max(t.v0, glm::max(t.v1, t.v2))});
+  const std::vector<Aabb> inst = instance_boxes(scene);
+  boxes.insert(boxes.end(), inst.begin(), inst.end());
   return boxes;
 }
 
@@ -159,21 +218,28 @@ void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Acc
   p.sky_b = sky.up;
   p.sphere_count = uint32_t(scene.spheres.size());
 
-  const std::vector<gpu::GpuTriangle> triangles = world_triangles(scene);
+  const std::vector<gpu::GpuTriangle> triangles = object_triangles(scene);
   const uint64_t triangle_bytes = triangles.size() * sizeof(gpu::GpuTriangle);
   check_fits(ctx, triangle_bytes, std::to_string(triangles.size()) + " triangles");
   std::vector<gpu::GpuTriangleNormals> normals;
   bool any_normals = false;
   for (const Mesh& mesh : scene.meshes) any_normals |= !mesh.normals.empty();
-  if (any_normals) normals = world_triangle_normals(scene);
+  if (any_normals) normals = object_triangle_normals(scene);
+  const std::vector<gpu::GpuInstance> instances = gpu_instances(scene);
+  const std::vector<gpu::GpuMesh> meshes = gpu_meshes(scene);
   p.triangle_count = uint32_t(triangles.size());
   p.vertex_normals = any_normals ? 1u : 0u;
+  p.instance_count = uint32_t(instances.size());
 
   create_buffer(g.params, ctx, sizeof p, false, "scene parameters");
   create_buffer(g.triangles, ctx, triangle_bytes, false, "triangle buffer");
   create_buffer(g.triangle_normals, ctx, normals.size() * sizeof(gpu::GpuTriangleNormals), false,
                 "triangle normal buffer");
   upload_buffer(ctx, g.triangles, triangles.data(), triangle_bytes);
+  create_buffer(g.instances, ctx, instances.size() * sizeof(gpu::GpuInstance), false, "instance buffer");
+  create_buffer(g.meshes, ctx, meshes.size() * sizeof(gpu::GpuMesh), false, "mesh buffer");
+  upload_buffer(ctx, g.instances, instances.data(), instances.size() * sizeof(gpu::GpuInstance));
+  upload_buffer(ctx, g.meshes, meshes.data(), meshes.size() * sizeof(gpu::GpuMesh));
   upload_buffer(ctx, g.triangle_normals, normals.data(), normals.size() * sizeof(gpu::GpuTriangleNormals));
   create_buffer(g.spheres, ctx, sphere_bytes, false, "sphere buffer");
   create_buffer(g.sphere_materials, ctx, sphere_materials.size() * 4, false, "sphere material buffer");

@@ -18,8 +18,10 @@ struct GpuScene {
   gpu::SceneParams values{};  // what `params` holds
   Buffer params;            // SceneParams
   Buffer spheres;           // GpuSphere per sphere
-  Buffer triangles;         // GpuTriangle per instanced triangle, world space
+  Buffer triangles;         // GpuTriangle per unique triangle, object space
   Buffer triangle_normals;  // GpuTriangleNormals per triangle (placeholder without vertex normals)
+  Buffer instances;         // GpuInstance per instance
+  Buffer meshes;            // GpuMesh per mesh (roots filled in with the octree)
   Buffer sphere_materials;  // material index per sphere
   Buffer materials;         // GpuMaterial per material (fp32)
   Buffer materials_half;    // GpuMaterialHalf per material (the fp16 variants)
@@ -30,15 +32,19 @@ struct GpuScene {
   double upload_ms = 0;       // packing, buffer creation and copies (wall)
 };
 
-// Every instance's triangles in world space, in instance order then mesh
-// order: the triangle primitives. An instance whose transform has a negative
-// determinant (a mirror) gets its winding flipped, so that counter-clockwise
-// stays the front; normals go through the inverse transpose.
-std::vector<gpu::GpuTriangle> world_triangles(const Scene& scene);
-std::vector<gpu::GpuTriangleNormals> world_triangle_normals(const Scene& scene);
+// Meshes are stored once, in object space (mesh order, then triangle order);
+// instances refer to them. Two levels of octree: the top over spheres and
+// instances' world boxes, one per mesh over its triangles (upload_octree).
+std::vector<gpu::GpuTriangle> object_triangles(const Scene& scene);
+std::vector<gpu::GpuTriangleNormals> object_triangle_normals(const Scene& scene);
+std::vector<gpu::GpuInstance> gpu_instances(const Scene& scene);
+std::vector<gpu::GpuMesh> gpu_meshes(const Scene& scene);  // roots not filled in
+// A mesh's triangle boxes in object space; each instance's world box (its
+// mesh's object box, transformed).
+std::vector<Aabb> mesh_triangle_boxes(const Mesh& mesh);
+std::vector<Aabb> instance_boxes(const Scene& scene);
 
-// The primitives' boxes, in primitive-id order (spheres, then triangles):
-// what the octree is built over.
+// The top level's boxes in id order: spheres, then instances.
 std::vector<Aabb> primitive_boxes(const Scene& scene);
 std::vector<Aabb> sphere_boxes(const std::vector<Sphere>& spheres);
 

@@ -107,6 +107,8 @@ void PathTracer::State::create_pipeline() {
                    {gpu::BINDING_SPHERES, &g.spheres},
                    {gpu::BINDING_TRIANGLES, &g.triangles},
                    {gpu::BINDING_TRIANGLE_NORMALS, &g.triangle_normals},
+                   {gpu::BINDING_INSTANCES, &g.instances},
+                   {gpu::BINDING_MESHES, &g.meshes},
                    {gpu::BINDING_SPHERE_MATERIALS, &g.sphere_materials},
                    {gpu::BINDING_MATERIALS, half ? &g.materials_half : &g.materials},
                    {gpu::BINDING_OCTREE_NODES, &g.nodes},

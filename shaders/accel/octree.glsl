@@ -1,6 +1,6 @@
-// Octree traversal (renderer/accel/octree.h has the node encoding). The
-// includer defines test_primitive(ray, shear, ref, origin_prim, into_origin, hit)
-// (accel/closest_hit.glsl) and declares `octree_nodes`.
+// Octree traversal (renderer/accel/octree.h has the node encoding): the box
+// test and the stack bound here; the walk itself in accel/octree_walk.glsl,
+// once for the top level and once for the meshes' own octrees.
 #ifndef OCTRACE_OCTREE_GLSL
 #define OCTRACE_OCTREE_GLSL
 
@@ -37,55 +37,5 @@ bool hit_box(vec3 lo, vec3 hi, vec3 origin, vec3 inv_dir, float t_max, out float
 // 8 when it runs exactly along split planes), so each level leaves at most 7
 // entries behind: 7 * 20 + 1 entries for the deepest octree (depth 20).
 const uint STACK_SIZE = 141u;
-
-void traverse_octree(Ray ray, RayShear sh, uint from_prim, bool into_from, inout Hit hit) {
-  vec3 inv_dir = safe_inverse(ray.dir);
-  uint sign_mask = (floatBitsToUint(ray.dir.x) >> 31) | ((floatBitsToUint(ray.dir.y) >> 31) << 1) |
-                   ((floatBitsToUint(ray.dir.z) >> 31) << 2);
-  uint stack_node[STACK_SIZE];
-  float stack_entry[STACK_SIZE];  // where the ray enters the node's box
-  uint sp = 0;
-  float t_entry;
-  GpuOctreeNode root = octree_nodes[0];
-  if (hit_box(root.lo, root.hi, ray.origin, inv_dir, hit.t, t_entry)) {
-    stack_node[0] = 0u;
-    stack_entry[0] = t_entry;
-    sp = 1;
-  }
-
-  while (sp > 0) {
-    --sp;
-    // The node was pushed when its box was met before the nearest hit of that
-    // moment; a nearer hit found since rules it out (the early exit).
-    if (stack_entry[sp] > hit.t * WIDEN) continue;
-    GpuOctreeNode node = octree_nodes[stack_node[sp]];
-    if (node.count_or_mask < OCTREE_INTERNAL) {
-      for (uint k = node.first; k < node.first + node.count_or_mask; ++k)
-        test_primitive(ray, sh, octree_refs[k], from_prim, into_from, hit);
-      continue;
-    }
-    uint mask = node.count_or_mask & 0xffu;
-    // Visit order j = octant XOR sign_mask. Permute the child mask into that
-    // order (XOR of the index by the sign bits swaps bits, pairs and nibbles),
-    // then walk only the present children, farthest first so the nearest is
-    // pushed last and popped next: a loop of as many trips as children, not 8.
-    uint ordered = mask;
-    if ((sign_mask & 1u) != 0u) ordered = ((ordered & 0x55u) << 1) | ((ordered >> 1) & 0x55u);
-    if ((sign_mask & 2u) != 0u) ordered = ((ordered & 0x33u) << 2) | ((ordered >> 2) & 0x33u);
-    if ((sign_mask & 4u) != 0u) ordered = ((ordered & 0x0fu) << 4) | ((ordered >> 4) & 0x0fu);
-    while (ordered != 0u) {
-      uint j = uint(findMSB(ordered));
-      ordered ^= 1u << j;
-      uint octant = j ^ sign_mask;
-      uint child = node.first + bitCount(mask & ((1u << octant) - 1u));
-      GpuOctreeNode c = octree_nodes[child];
-      if (hit_box(c.lo, c.hi, ray.origin, inv_dir, hit.t, t_entry)) {
-        stack_node[sp] = child;
-        stack_entry[sp] = t_entry;
-        ++sp;
-      }
-    }
-  }
-}
 
 #endif

@@ -1,5 +1,6 @@
 // Triangles: watertight ray/triangle intersection and the surface at a hit,
 // in fp32. The includer declares `scene`, `triangles` and `triangle_normals`
+// (GpuInstance from shared.h)
 // and the specialization constant HAS_VERTEX_NORMALS.
 #ifndef OCTRACE_TRIANGLE_GLSL
 #define OCTRACE_TRIANGLE_GLSL
@@ -77,24 +78,31 @@ float intersect_triangle(vec3 origin, RayShear sh, GpuTriangle tri, float t_max,
   return T / det;
 }
 
-// The surface of triangle `i` at distance t. The geometric normal follows
-// the winding (counter-clockwise = front, outward for a closed mesh); with
-// vertex normals the shading normal interpolates them at the hit's
-// barycentrics (worked out again here, once per hit, rather than carried
-// through the traversal).
-Surface triangle_surface(Ray ray, float t, uint i) {
+// Object-space normal n of instance g in world space: the transpose of the
+// world-to-object 3x3 (the inverse transpose of the placement), unnormalised.
+vec3 normal_to_world(GpuInstance g, vec3 n) {
+  return n.x * g.to_object0.xyz + n.y * g.to_object1.xyz + n.z * g.to_object2.xyz;
+}
+
+// The surface of triangle `i` (of instance g) at distance t; `oray` is the
+// ray in the instance's object space. The geometric normal follows the
+// winding (counter-clockwise = front, outward for a closed mesh; the inverse
+// transpose keeps a mirrored instance's outside outside); with vertex normals
+// the shading normal interpolates them at the hit's barycentrics (worked out
+// again here, once per hit, rather than carried through the traversal).
+Surface triangle_surface(Ray ray, Ray oray, float t, uint i, GpuInstance g) {
   GpuTriangle tri = triangles[i];
   vec3 p = ray.origin + t * ray.dir;
-  vec3 ng = safe_normalize(cross(tri.v1 - tri.v0, tri.v2 - tri.v0), -ray.dir);
+  vec3 ng = safe_normalize(normal_to_world(g, cross(tri.v1 - tri.v0, tri.v2 - tri.v0)), -ray.dir);
   vec3 ns = ng;
   // The general pipeline reads normals only where the scene uploaded them.
   if (HAS_VERTEX_NORMALS && scene.vertex_normals != 0u) {
     vec3 uvw;
     float T, det;
-    if (triangle_edges(ray.origin, ray_shear(ray.dir), tri.v0, tri.v1, tri.v2, uvw, T, det)) {
+    if (triangle_edges(oray.origin, ray_shear(oray.dir), tri.v0, tri.v1, tri.v2, uvw, T, det)) {
       GpuTriangleNormals n = triangle_normals[i];
       vec3 b = uvw / det;
-      ns = safe_normalize(b.x * n.n0 + b.y * n.n1 + b.z * n.n2, ng);
+      ns = safe_normalize(normal_to_world(g, b.x * n.n0 + b.y * n.n1 + b.z * n.n2), ng);
     }
   }
   return Surface(p, ng, ns, tri.material, vec2(0.0));

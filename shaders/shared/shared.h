@@ -39,8 +39,11 @@ OCT_CONST(uint, SKY_NONE, 2u);
 OCT_CONST(uint, WORKGROUP_SIZE, 8u);  // 8x8 invocations per workgroup
 
 // Kinds of primitive a hit can name (Hit.kind in shaders/accel/closest_hit.glsl).
-// Primitive ids are global: spheres [0, sphere_count), then triangles
-// [sphere_count, sphere_count + triangle_count); the kind follows from the id.
+// Ids: the top level (the scene's octree) holds spheres [0, sphere_count)
+// and mesh instances [sphere_count, sphere_count + instance_count); a hit
+// on a triangle names it by a global id unique per instance and triangle,
+// GpuInstance.first_id + its index in the mesh (first_id starts at
+// sphere_count + instance_count), so no two primitives share an id.
 OCT_CONST(uint, PRIM_SPHERE, 0u);
 OCT_CONST(uint, PRIM_TRIANGLE, 1u);
 
@@ -58,7 +61,9 @@ OCT_CONST(uint, BINDING_OCTREE_NODES, 8u);
 OCT_CONST(uint, BINDING_OCTREE_REFS, 9u);
 OCT_CONST(uint, BINDING_TRIANGLES, 10u);
 OCT_CONST(uint, BINDING_TRIANGLE_NORMALS, 11u);
-OCT_CONST(uint, BINDING_COUNT, 12u);
+OCT_CONST(uint, BINDING_INSTANCES, 12u);
+OCT_CONST(uint, BINDING_MESHES, 13u);
+OCT_CONST(uint, BINDING_COUNT, 14u);
 
 // Descriptor bindings of the resolve pipeline (resolve.comp).
 OCT_CONST(uint, RESOLVE_BINDING_ACCUM_SUM, 0u);
@@ -96,10 +101,9 @@ struct GpuSphere {
   float radius;
 };
 
-// 48 bytes. One triangle in world space (an instance's mesh transformed and,
-// for a transform with a negative determinant, its winding flipped so that
-// counter-clockwise is still the front). The vertices are stored rather than
-// an index into a vertex array: the intersection test reads one 48-byte
+// 48 bytes. One triangle of a mesh, in the mesh's own (object) space, stored
+// once however many instances place the mesh. The vertices are stored rather
+// than an index into a vertex array: the intersection test reads one 48-byte
 // record, and a triangle's material sits in the same cache line.
 struct GpuTriangle {
   vec3 v0;
@@ -110,7 +114,7 @@ struct GpuTriangle {
   uint pad1;
 };
 
-// 48 bytes. Triangle i's vertex normals in world space (unit), for smooth
+// 48 bytes. Triangle i's vertex normals in object space (unit), for smooth
 // shading; uploaded only when some mesh has normals (a flat triangle's three
 // are its geometric normal).
 struct GpuTriangleNormals {
@@ -119,6 +123,35 @@ struct GpuTriangleNormals {
   vec3 n1;
   uint pad1;
   vec3 n2;
+  uint pad2;
+};
+
+// 64 bytes. One placement of a mesh. A ray enters the instance through
+// to_object (the rows of the 3x4 world-to-object matrix: the ray's t stays
+// the world t, its direction is not renormalised); normals leave it through
+// the transpose of the same 3x3 part (the inverse transpose of the
+// placement), which keeps a mirrored mesh's outside outside.
+struct GpuInstance {
+  vec4 to_object0;
+  vec4 to_object1;
+  vec4 to_object2;
+  uint mesh;      // index into the mesh table
+  uint first_id;  // global id of the mesh's triangle 0 in this instance
+  uint pad0;
+  uint pad1;
+};
+
+// 32 bytes. A mesh: its triangles triangles[first_triangle, + triangle_count)
+// and its own octree in object space (octree: nodes[root]; refs of mesh-local
+// triangle indices; refs[first_ref, first_ref + big_count) tested first).
+struct GpuMesh {
+  uint root;
+  uint first_ref;
+  uint big_count;
+  uint first_triangle;
+  uint triangle_count;
+  uint pad0;
+  uint pad1;
   uint pad2;
 };
 
@@ -186,9 +219,9 @@ struct SceneParams {
   vec3 sky_b;         // gradient: up
   uint sphere_count;
   uint big_count;     // octree: refs[0, big_count) are primitives tested before traversal
-  uint triangle_count;
+  uint triangle_count;  // unique (object-space) triangles
   uint vertex_normals;  // 1: triangle_normals holds every triangle's normals; 0: it is empty
-  uint pad0;
+  uint instance_count;
 };
 
 // 112 bytes, the push constants of one pass: everything that may change from

@@ -1,6 +1,6 @@
-// Packing the scene for the device: mesh instances become world-space
-// triangles whose counter-clockwise side is still their front, with normals
-// that follow, and the octree is built over spheres then triangles.
+// Packing the scene for the device: meshes stored once in object space,
+// instances that carry the inverse of their placement and unique ids, and
+// boxes for the top level (spheres, then instances).
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "render/gpu_scene.h"
@@ -9,64 +9,83 @@
 namespace octrace {
 namespace {
 
-glm::vec3 centroid(const gpu::GpuTriangle& t) { return (t.v0 + t.v1 + t.v2) / 3.0f; }
-glm::vec3 face_normal(const gpu::GpuTriangle& t) { return glm::cross(t.v1 - t.v0, t.v2 - t.v0); }
-
-// Every triangle of a closed convex mesh about `center` faces away from it.
-void expect_outward(const std::vector<gpu::GpuTriangle>& tris, glm::vec3 center, const char* what) {
-  for (size_t k = 0; k < tris.size(); ++k)
-    ASSERT_GT(glm::dot(face_normal(tris[k]), centroid(tris[k]) - center), 0.0f) << what << ": triangle " << k;
+glm::vec3 apply(const gpu::GpuInstance& g, glm::vec3 p) {
+  const glm::vec4 h(p, 1.0f);
+  return {glm::dot(g.to_object0, h), glm::dot(g.to_object1, h), glm::dot(g.to_object2, h)};
 }
 
-TEST(GpuScene, InstancesBecomeWorldTrianglesFacingOutEvenWhenMirrored) {
+// As the shader's normal_to_world: the transpose of the world-to-object 3x3.
+glm::vec3 normal_to_world(const gpu::GpuInstance& g, glm::vec3 n) {
+  return n.x * glm::vec3(g.to_object0) + n.y * glm::vec3(g.to_object1) + n.z * glm::vec3(g.to_object2);
+}
+
+Scene two_placements() {
   Scene s;
   s.materials = {test::lambertian(0.5f), test::lambertian(0.2f)};
-  const Mesh mesh = test::icosphere(1, 1, true);
-  expect_outward(world_triangles([&] {
-                   Scene one = s;
-                   test::place(one, mesh);
-                   return one;
-                 }()),
-                 glm::vec3(0), "the mesh itself");
-  const glm::mat4 mirror = glm::translate(glm::mat4(1.0f), glm::vec3(5, 0, 0)) *
-                           glm::scale(glm::mat4(1.0f), glm::vec3(-2.0f, 1.0f, 1.0f));
-  test::place(s, mesh, glm::translate(glm::mat4(1.0f), glm::vec3(-5, 0, 0)));
-  s.instances.push_back({0, mirror});  // the same mesh placed again: stored once
-  ASSERT_EQ(s.meshes.size(), 1u);
-  const auto tris = world_triangles(s);
-  ASSERT_EQ(tris.size(), 2 * mesh.triangle_count());
-  EXPECT_EQ(instanced_triangle_count(s), 2 * mesh.triangle_count());
-  const std::vector<gpu::GpuTriangle> first(tris.begin(), tris.begin() + long(mesh.triangle_count()));
-  const std::vector<gpu::GpuTriangle> second(tris.begin() + long(mesh.triangle_count()), tris.end());
-  expect_outward(first, glm::vec3(-5, 0, 0), "translated");
-  expect_outward(second, glm::vec3(5, 0, 0), "mirrored (negative determinant)");
-  for (const auto& t : tris) EXPECT_EQ(t.material, 1u);
+  s.spheres = {{{1, 2, 3}, 0.5f, 0}};
+  test::place(s, test::icosphere(1, 1, true), glm::translate(glm::mat4(1.0f), glm::vec3(-5, 0, 0)));
+  // The same mesh placed again, mirrored and stretched: stored once.
+  s.instances.push_back({0, glm::translate(glm::mat4(1.0f), glm::vec3(5, 0, 0)) *
+                                glm::scale(glm::mat4(1.0f), glm::vec3(-2.0f, 1.0f, 1.0f))});
+  return s;
+}
 
-  // Vertex normals go through the inverse transpose: still outward and unit
-  // under the non-uniform mirror.
-  const auto normals = world_triangle_normals(s);
-  ASSERT_EQ(normals.size(), tris.size());
-  for (size_t k = mesh.triangle_count(); k < tris.size(); ++k) {
-    for (glm::vec3 n : {normals[k].n0, normals[k].n1, normals[k].n2}) {
-      EXPECT_NEAR(glm::length(n), 1.0f, 1e-5f);
-      EXPECT_GT(glm::dot(n, centroid(tris[k]) - glm::vec3(5, 0, 0)), 0.0f) << "triangle " << k;
+TEST(GpuScene, MeshesAreStoredOnceAndInstancesCarryTheirInverseAndIds) {
+  const Scene s = two_placements();
+  const size_t t = s.meshes[0].triangle_count();
+  EXPECT_EQ(object_triangles(s).size(), t);
+  EXPECT_EQ(object_triangle_normals(s).size(), t);
+  const auto inst = gpu_instances(s);
+  ASSERT_EQ(inst.size(), 2u);
+  // Ids: spheres [0,1), instances [1,3), then each instance's triangles.
+  EXPECT_EQ(inst[0].first_id, 3u);
+  EXPECT_EQ(inst[1].first_id, 3u + t);
+  const auto meshes = gpu_meshes(s);
+  ASSERT_EQ(meshes.size(), 1u);
+  EXPECT_EQ(meshes[0].triangle_count, t);
+  // to_object undoes the placement.
+  for (size_t i = 0; i < 2; ++i)
+    for (glm::vec3 p : s.meshes[0].positions) {
+      const glm::vec3 world(s.instances[i].transform * glm::vec4(p, 1.0f));
+      const glm::vec3 back = apply(inst[i], world);
+      EXPECT_NEAR(glm::distance(back, p), 0.0f, 1e-5f) << "instance " << i;
+    }
+}
+
+// A closed mesh's normals leave every instance outward, the mirrored one too
+// (the inverse transpose, not the winding of the world triangle, decides).
+TEST(GpuScene, NormalsLeaveInstancesOutward) {
+  const Scene s = two_placements();
+  const auto tris = object_triangles(s);
+  const auto inst = gpu_instances(s);
+  for (size_t i = 0; i < 2; ++i) {
+    const glm::vec3 center(s.instances[i].transform[3]);
+    for (size_t k = 0; k < tris.size(); ++k) {
+      const glm::vec3 n = normal_to_world(inst[i], glm::cross(tris[k].v1 - tris[k].v0, tris[k].v2 - tris[k].v0));
+      const glm::vec3 c = (tris[k].v0 + tris[k].v1 + tris[k].v2) / 3.0f;
+      const glm::vec3 world_c(s.instances[i].transform * glm::vec4(c, 1.0f));
+      ASSERT_GT(glm::dot(n, world_c - center), 0.0f) << "instance " << i << ", triangle " << k;
     }
   }
 }
 
-TEST(GpuScene, BoxesAreSpheresThenTriangles) {
-  Scene s;
-  s.materials = {test::lambertian(0.5f)};
-  s.spheres = {{{1, 2, 3}, 0.5f, 0}};
-  test::place(s, test::grid(1, 0), glm::translate(glm::mat4(1.0f), glm::vec3(10, 0, 0)));
+TEST(GpuScene, TopLevelBoxesAreSpheresThenInstances) {
+  const Scene s = two_placements();
   const auto boxes = primitive_boxes(s);
   ASSERT_EQ(boxes.size(), 3u);
   EXPECT_EQ(boxes[0].lo, glm::vec3(0.5f, 1.5f, 2.5f));
   EXPECT_EQ(boxes[0].hi, glm::vec3(1.5f, 2.5f, 3.5f));
-  EXPECT_EQ(boxes[1].lo, glm::vec3(10, 0, 0));  // (10,0)-(11,0)-(11,1)
-  EXPECT_EQ(boxes[1].hi, glm::vec3(11, 1, 0));
-  EXPECT_EQ(boxes[2].lo, glm::vec3(10, 0, 0));  // (10,0)-(11,1)-(10,1)
-  EXPECT_EQ(boxes[2].hi, glm::vec3(11, 1, 0));
+  for (size_t i = 0; i < 2; ++i)
+    for (glm::vec3 p : s.meshes[0].positions) {
+      const glm::vec3 w(s.instances[i].transform * glm::vec4(p, 1.0f));
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_LE(boxes[1 + i].lo[a], w[a] + 1e-5f);
+        EXPECT_GE(boxes[1 + i].hi[a], w[a] - 1e-5f);
+      }
+    }
+  // The mirrored, stretched instance: x spans 5 +- 2.
+  EXPECT_NEAR(boxes[2].lo.x, 3.0f, 1e-5f);
+  EXPECT_NEAR(boxes[2].hi.x, 7.0f, 1e-5f);
 }
 
 }  // namespace

@@ -20,7 +20,7 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   // The probe writes the half material too: it needs 16-bit storage, which
   // every device the suite runs on (lavapipe, the H100) has.
   ASSERT_TRUE(ctx.fp16_enabled) << ctx.info.name << " lacks 16-bit storage";
-  Buffer scene_buf, pass_buf, resolve_buf, sphere_buf, material_buf, half_buf, node_buf, stats_buf, tri_buf, normal_buf;
+  Buffer scene_buf, pass_buf, resolve_buf, sphere_buf, material_buf, half_buf, node_buf, stats_buf, tri_buf, normal_buf, inst_buf, mesh_buf;
   create_buffer(scene_buf, ctx, sizeof(gpu::SceneParams), false, "probe");
   create_buffer(pass_buf, ctx, sizeof(gpu::PassParams), false, "probe");
   create_buffer(resolve_buf, ctx, sizeof(gpu::ResolveParams), false, "probe");
@@ -31,11 +31,13 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   create_buffer(stats_buf, ctx, 2 * sizeof(gpu::RenderStats), false, "probe");
   create_buffer(tri_buf, ctx, 2 * sizeof(gpu::GpuTriangle), false, "probe");
   create_buffer(normal_buf, ctx, 2 * sizeof(gpu::GpuTriangleNormals), false, "probe");
+  create_buffer(inst_buf, ctx, 2 * sizeof(gpu::GpuInstance), false, "probe");
+  create_buffer(mesh_buf, ctx, 2 * sizeof(gpu::GpuMesh), false, "probe");
   ComputePipeline pipeline;
-  create_compute_pipeline(pipeline, ctx, layout_probe_spv, sizeof(layout_probe_spv), 10, 0);
+  create_compute_pipeline(pipeline, ctx, layout_probe_spv, sizeof(layout_probe_spv), 12, 0);
   bind_buffers(pipeline, {{0, &scene_buf}, {1, &pass_buf}, {2, &resolve_buf}, {3, &sphere_buf},
                           {4, &material_buf}, {5, &half_buf}, {6, &node_buf}, {7, &stats_buf},
-                          {8, &tri_buf},   {9, &normal_buf}});
+                          {8, &tri_buf},   {9, &normal_buf}, {10, &inst_buf}, {11, &mesh_buf}});
   submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout, 0, 1, &pipeline.set, 0, nullptr);
@@ -52,7 +54,7 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   EXPECT_EQ(sc.big_count, 9u);
   EXPECT_EQ(sc.triangle_count, 10u);
   EXPECT_EQ(sc.vertex_normals, 11u);
-  EXPECT_EQ(sc.pad0, 12u);
+  EXPECT_EQ(sc.instance_count, 12u);
 
   gpu::PassParams f{};
   download_buffer(ctx, pass_buf, &f, sizeof f);
@@ -89,6 +91,10 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   gpu::GpuTriangleNormals normals[2];
   download_buffer(ctx, tri_buf, tris, sizeof tris);
   download_buffer(ctx, normal_buf, normals, sizeof normals);
+  gpu::GpuInstance insts[2];
+  gpu::GpuMesh meshes[2];
+  download_buffer(ctx, inst_buf, insts, sizeof insts);
+  download_buffer(ctx, mesh_buf, meshes, sizeof meshes);
   download_buffer(ctx, sphere_buf, spheres, sizeof spheres);
   download_buffer(ctx, material_buf, materials, sizeof materials);
   download_buffer(ctx, half_buf, halves, sizeof halves);
@@ -130,6 +136,21 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(normals[i].pad1, u + 52) << "normals " << i;
     EXPECT_EQ(normals[i].n2, glm::vec3(o + 53, o + 54, o + 55)) << "normals " << i;
     EXPECT_EQ(normals[i].pad2, u + 56) << "normals " << i;
+    EXPECT_EQ(insts[i].to_object0, glm::vec4(o + 57, o + 58, o + 59, o + 60)) << "instance " << i;
+    EXPECT_EQ(insts[i].to_object1, glm::vec4(o + 61, o + 62, o + 63, o + 64)) << "instance " << i;
+    EXPECT_EQ(insts[i].to_object2, glm::vec4(o + 65, o + 66, o + 67, o + 68)) << "instance " << i;
+    EXPECT_EQ(insts[i].mesh, u + 69) << "instance " << i;
+    EXPECT_EQ(insts[i].first_id, u + 70) << "instance " << i;
+    EXPECT_EQ(insts[i].pad0, u + 71) << "instance " << i;
+    EXPECT_EQ(insts[i].pad1, u + 72) << "instance " << i;
+    EXPECT_EQ(meshes[i].root, u + 73) << "mesh " << i;
+    EXPECT_EQ(meshes[i].first_ref, u + 74) << "mesh " << i;
+    EXPECT_EQ(meshes[i].big_count, u + 75) << "mesh " << i;
+    EXPECT_EQ(meshes[i].first_triangle, u + 76) << "mesh " << i;
+    EXPECT_EQ(meshes[i].triangle_count, u + 77) << "mesh " << i;
+    EXPECT_EQ(meshes[i].pad0, u + 78) << "mesh " << i;
+    EXPECT_EQ(meshes[i].pad1, u + 79) << "mesh " << i;
+    EXPECT_EQ(meshes[i].pad2, u + 80) << "mesh " << i;
   }
 }
 
