@@ -105,8 +105,17 @@ Scene only_triangles() {
   return s;
 }
 
+// One mesh stored once and placed 25 times (one of them mirrored).
+Scene instanced() {
+  Scene s = only_triangles();
+  s.meshes.resize(1);
+  for (Instance& inst : s.instances) inst.mesh = 0;
+  return s;
+}
+
 const AccelCase CASES[] = {
     {"meshes_and_spheres", meshes_and_spheres},
+    {"instanced", instanced},
     {"only_triangles", only_triangles},
     {"rtiow_488_r02", [] { return rtiow(488, 0.2f, 1); }},
     {"rtiow_2000_r01", [] { return rtiow(2000, 0.1f, 2); }},

@@ -4,6 +4,8 @@
 
 #include <tuple>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "render/camera.h"
 #include "test_util.h"
 
@@ -147,6 +149,33 @@ TEST_F(RenderTest, RaysCountEverySegment) {
   inside.spheres = {{{0, 0, 6}, 2.0f, 0}};  // around the camera
   EXPECT_EQ(render_small(inside, 3, 5).rays, 5 * paths);
   EXPECT_EQ(render_small(inside, 3, 1).rays, paths);
+}
+
+// Instancing changes what is stored, not what is seen: one mesh placed nine
+// times renders bit for bit as nine copies of it, each placed once.
+TEST_F(RenderTest, InstancesRenderAsCopies) {
+  Scene copies = test::furnace_scene();
+  copies.sky.type = SkyType::Gradient;
+  copies.materials = {test::lambertian({0.7f, 0.4f, 0.3f}), test::glass(1.5f)};
+  for (int i = 0; i < 9; ++i)
+    test::place(copies, test::icosphere(2, uint32_t(i & 1), i % 3 == 0),
+                glm::translate(glm::mat4(1.0f), glm::vec3(float(i % 3) - 1.0f, float(i / 3) - 1.0f, 0.0f)) *
+                    glm::scale(glm::mat4(1.0f), glm::vec3(i == 4 ? -0.4f : 0.4f, 0.4f, 0.4f)));
+  Scene shared = copies;
+  // The four distinct meshes: (material 0, smooth), (1, smooth), (0, flat), (1, flat).
+  shared.meshes = {copies.meshes[0], copies.meshes[3], copies.meshes[2], copies.meshes[1]};
+  for (int i = 0; i < 9; ++i) shared.instances[size_t(i)].mesh = uint32_t((i % 3 == 0 ? 0 : 2) + (i & 1));
+  ASSERT_EQ(instanced_triangle_count(shared), instanced_triangle_count(copies));
+  for (Accel accel : {Accel::Octree, Accel::Brute}) {
+    RenderSettings s;
+    s.width = 48;
+    s.height = 32;
+    s.spp = 2;
+    s.accel = accel;
+    EXPECT_TRUE(same_bits(render(test::shared_context(), shared, s).mean,
+                          render(test::shared_context(), copies, s).mean))
+        << accel_name(accel);
+  }
 }
 
 // Every pixel gets exactly spp samples and none is NaN/Inf on the default scene.
