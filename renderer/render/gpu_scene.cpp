@@ -31,7 +31,8 @@ void check_fits(const VulkanContext& ctx, uint64_t bytes, const std::string& wha
 
 }  // namespace
 
-void upload_octree(GpuScene& g, const VulkanContext& ctx, const Scene& scene, const OctreeParams& params) {
+// The device's view of the scene (bake_single_use_meshes applied).
+static void upload_octree_of(GpuScene& g, const VulkanContext& ctx, const Scene& scene, const OctreeParams& params) {
   auto start = Clock::now();
   // The top level over spheres and instances, then one octree per mesh in
   // object space, appended: their `first` fields are moved by where they land.
@@ -186,7 +187,7 @@ std::vector<Aabb> primitive_boxes(const Scene& scene) {
   return boxes;
 }
 
-void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel, const OctreeParams& params) {
+static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel, const OctreeParams& params) {
   const uint64_t sphere_bytes = scene.spheres.size() * sizeof(gpu::GpuSphere);
   check_fits(ctx, sphere_bytes, std::to_string(scene.spheres.size()) + " spheres");
 
@@ -254,7 +255,79 @@ void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Acc
   upload_buffer(ctx, g.materials, materials.data(), materials.size() * sizeof(gpu::GpuMaterial));
   upload_buffer(ctx, g.materials_half, materials_half.data(), materials_half.size() * sizeof(gpu::GpuMaterialHalf));
   g.upload_ms = ms_since(start);
-  if (accel == Accel::Octree) upload_octree(g, ctx, scene, params);
+  if (accel == Accel::Octree) upload_octree_of(g, ctx, scene, params);
+}
+
+Scene bake_single_use_meshes(const Scene& scene) {
+  std::vector<uint32_t> uses(scene.meshes.size(), 0);
+  for (const Instance& inst : scene.instances) ++uses[inst.mesh];
+  Scene out;
+  out.camera = scene.camera;
+  out.sky = scene.sky;
+  out.materials = scene.materials;
+  out.spheres = scene.spheres;
+  // Meshes placed more than once stay instanced, in their order.
+  std::vector<uint32_t> remap(scene.meshes.size(), UINT32_MAX);
+  for (size_t m = 0; m < scene.meshes.size(); ++m)
+    if (uses[m] > 1) {
+      remap[m] = uint32_t(out.meshes.size());
+      out.meshes.push_back(scene.meshes[m]);
+    }
+  bool single_smooth = false, single_flat = false;
+  for (const Instance& inst : scene.instances)
+    if (uses[inst.mesh] == 1) (scene.meshes[inst.mesh].normals.empty() ? single_flat : single_smooth) = true;
+  Mesh baked;
+  baked.name = "baked";
+  for (const Instance& inst : scene.instances) {
+    if (uses[inst.mesh] != 1) {
+      out.instances.push_back({remap[inst.mesh], inst.transform});
+      continue;
+    }
+    // Into world space: positions by the placement, normals by its inverse
+    // transpose, and a mirror's winding flipped so that counter-clockwise is
+    // still the front.
+    const Mesh& mesh = scene.meshes[inst.mesh];
+    const glm::dmat4 m(inst.transform);
+    const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(m)));
+    const bool flip = glm::determinant(glm::dmat3(m)) < 0.0;
+    const auto world = [&](glm::vec3 p) { return glm::vec3(m * glm::dvec4(glm::dvec3(p), 1.0)); };
+    const auto world_normal = [&](glm::vec3 n) { return glm::vec3(glm::normalize(normal_matrix * glm::dvec3(n))); };
+    for (size_t k = 0; k < mesh.triangle_count(); ++k) {
+      uint32_t idx[3] = {mesh.indices[3 * k], mesh.indices[3 * k + (flip ? 2 : 1)], mesh.indices[3 * k + (flip ? 1 : 2)]};
+      const uint32_t base = uint32_t(baked.positions.size());
+      glm::vec3 p[3];
+      for (int v = 0; v < 3; ++v) p[v] = world(mesh.positions[idx[v]]);
+      baked.positions.insert(baked.positions.end(), {p[0], p[1], p[2]});
+      if (single_smooth) {
+        if (mesh.normals.empty()) {
+          // Beside smooth meshes a flat one keeps its face normal at each vertex.
+          const glm::vec3 f = glm::cross(p[1] - p[0], p[2] - p[0]);
+          const glm::vec3 n = glm::length(f) > 0.0f ? glm::normalize(f) : glm::vec3(0, 0, 1);
+          baked.normals.insert(baked.normals.end(), {n, n, n});
+        } else {
+          for (int v = 0; v < 3; ++v) baked.normals.push_back(world_normal(mesh.normals[idx[v]]));
+        }
+      }
+      baked.indices.insert(baked.indices.end(), {base, base + 1, base + 2});
+      baked.materials.push_back(mesh.materials[k]);
+    }
+  }
+  (void)single_flat;
+  if (!baked.indices.empty()) {
+    out.meshes.push_back(std::move(baked));
+    out.instances.push_back({uint32_t(out.meshes.size() - 1), glm::mat4(1.0f)});
+  }
+  return out;
+}
+
+void upload_octree(GpuScene& g, const VulkanContext& ctx, const Scene& scene, const OctreeParams& params) {
+  if (scene.meshes.empty()) upload_octree_of(g, ctx, scene, params);
+  else upload_octree_of(g, ctx, bake_single_use_meshes(scene), params);
+}
+
+void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel, const OctreeParams& params) {
+  if (scene.meshes.empty()) upload_scene_of(g, ctx, scene, accel, params);
+  else upload_scene_of(g, ctx, bake_single_use_meshes(scene), accel, params);
 }
 
 void check_precision(const Scene& scene, Precision precision) {

@@ -32,6 +32,13 @@ struct GpuScene {
   double upload_ms = 0;       // packing, buffer creation and copies (wall)
 };
 
+// What the device holds of the meshes: a mesh placed by one instance only
+// gains nothing from its own octree (and costs a transform and a second
+// walk), so all of those are transformed into world space and baked into one
+// mesh, placed once with no transform; meshes placed several times stay
+// instanced. upload_scene and upload_octree apply it.
+Scene bake_single_use_meshes(const Scene& scene);
+
 // Meshes are stored once, in object space (mesh order, then triangle order);
 // instances refer to them. Two levels of octree: the top over spheres and
 // instances' world boxes, one per mesh over its triangles (upload_octree).

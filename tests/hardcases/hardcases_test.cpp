@@ -857,10 +857,10 @@ void mesh_back_faces(CaseRun& run) {
   run.at_most("thin lambertian quad in the furnace, from both sides: max |pixel - 1|", worst, 1e-6);
 }
 
-// 5m. An instance with a negative-scale (mirroring) transform: its winding
-// is flipped so that its outside stays outside. A glass icosphere mirrored
-// in x (the icosahedron is symmetric under it) renders as the unmirrored
-// one; control: the same icosphere turned inside out (its winding reversed
+// 5m. An instance with a negative-scale (mirroring) transform: its normals
+// leave it through the inverse transpose, so that its outside stays outside.
+// A glass icosphere mirrored in x (the icosahedron is symmetric under it)
+// renders as the unmirrored one; control: the same icosphere turned inside out (its winding reversed
 // in the mesh) does not, so the comparison sees a wrong winding.
 void mesh_negative_scale(CaseRun& run) {
   Scene s = street();

@@ -88,5 +88,27 @@ TEST(GpuScene, TopLevelBoxesAreSpheresThenInstances) {
   EXPECT_NEAR(boxes[2].hi.x, 7.0f, 1e-5f);
 }
 
+// A mesh placed once is baked into world space (mirrors flipped to keep
+// their outside), one placed more often stays instanced.
+TEST(GpuScene, MeshesPlacedOnceAreBakedIntoWorldSpace) {
+  Scene s = two_placements();  // mesh 0 placed twice
+  test::place(s, test::icosphere(1, 0), glm::translate(glm::mat4(1.0f), glm::vec3(0, 5, 0)) *
+                                            glm::scale(glm::mat4(1.0f), glm::vec3(1.0f, -1.0f, 1.0f)));
+  const Scene b = bake_single_use_meshes(s);
+  ASSERT_EQ(b.meshes.size(), 2u);     // the shared mesh, then the baked one
+  ASSERT_EQ(b.instances.size(), 3u);  // two of the shared mesh, one identity
+  EXPECT_EQ(b.instances[2].transform, glm::mat4(1.0f));
+  EXPECT_EQ(b.meshes[1].triangle_count(), s.meshes[1].triangle_count());
+  EXPECT_EQ(unique_triangle_count(b), unique_triangle_count(s));
+  EXPECT_EQ(instanced_triangle_count(b), instanced_triangle_count(s));
+  const Mesh& baked = b.meshes[1];
+  for (size_t k = 0; k < baked.triangle_count(); ++k) {
+    const glm::vec3 a = baked.positions[baked.indices[3 * k]], c1 = baked.positions[baked.indices[3 * k + 1]],
+                    c2 = baked.positions[baked.indices[3 * k + 2]];
+    ASSERT_GT(glm::dot(glm::cross(c1 - a, c2 - a), (a + c1 + c2) / 3.0f - glm::vec3(0, 5, 0)), 0.0f)
+        << "baked mirrored triangle " << k << " faces inward";
+  }
+}
+
 }  // namespace
 }  // namespace octrace
