@@ -76,6 +76,17 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// Device times of `repeat` renders of s.spp passes, after one warm-up.
+std::vector<double> timed_runs(PathTracer& tracer, const Scene& scene, const RenderSettings& s, uint32_t repeat) {
+  std::vector<double> times;
+  for (uint32_t rep = 0; rep <= repeat; ++rep) {
+    tracer.reset();
+    const double ms = tracer.run_passes(pass_settings(scene, s), 0, s.spp);
+    if (rep > 0) times.push_back(ms);
+  }
+  return times;
+}
+
 std::string fmt(const char* f, double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, f, v);
@@ -174,12 +185,7 @@ int run_scene_bench(const VulkanContext& ctx, const BenchOptions& o, const Rende
         s.accel = accel;
         s.precision = precision;
         PathTracer tracer(ctx, scene, s);
-        std::vector<double> times;
-        for (uint32_t rep = 0; rep <= o.repeat; ++rep) {
-          tracer.reset();
-          double ms = tracer.run_passes(pass_settings(scene, s), 0, s.spp);
-          if (rep > 0) times.push_back(ms);  // repetition 0 is the warm-up
-        }
+        const std::vector<double> times = timed_runs(tracer, scene, s, o.repeat);
         SceneRow row{name, scene.spheres.size(), instanced_triangle_count(scene), accel, precision};
         row.median_ms = median(times);
         row.min_ms = *std::min_element(times.begin(), times.end());
@@ -277,12 +283,7 @@ int run_bench(const BenchOptions& o) {
           s.accel = accel;
           s.precision = precision;
           PathTracer tracer(ctx, scene, s);
-          std::vector<double> times;
-          for (uint32_t rep = 0; rep <= o.repeat; ++rep) {
-            tracer.reset();
-            double ms = tracer.run_passes(pass_settings(scene, s), 0, s.spp);
-            if (rep > 0) times.push_back(ms);  // repetition 0 is the warm-up
-          }
+          const std::vector<double> times = timed_runs(tracer, scene, s, o.repeat);
           row.median_ms = median(times);
           row.min_ms = *std::min_element(times.begin(), times.end());
           row.max_ms = *std::max_element(times.begin(), times.end());

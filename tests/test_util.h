@@ -86,6 +86,18 @@ inline double ray_sphere(glm::dvec3 o, glm::dvec3 d, glm::dvec3 center, double r
   return std::numeric_limits<double>::infinity();
 }
 
+// The message of the InputError that `f` throws, or a test failure if it throws none.
+template <typename F>
+std::string input_error(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError thrown";
+  return {};
+}
+
 // Materials for scenes built in tests.
 inline Material lambertian(glm::vec3 albedo) { return {MaterialType::Lambertian, albedo}; }
 inline Material lambertian(float albedo) { return lambertian(glm::vec3(albedo)); }

@@ -150,12 +150,7 @@ struct Where {
   bool is_element = false;
   size_t index = 0;
 
-  std::string path() const {
-    if (!parent) return "";
-    const std::string p = parent->path();
-    if (is_element) return p + "[" + std::to_string(index) + "]";
-    return p.empty() ? std::string(key) : p + "." + std::string(key);
-  }
+  std::string path() const { return json_path(*this); }
 };
 
 struct SchemaCheck {

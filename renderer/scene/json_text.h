@@ -24,4 +24,14 @@ inline std::string invalid_json_message(const std::string& what) {
   return "invalid JSON" + (at == std::string::npos ? ": " + what : what.substr(at));
 }
 
+// "materials[2].albedo": the path of a node in a tree of nodes that know
+// their parent, their member key or element index (is_element, index).
+template <typename Node>
+std::string json_path(const Node& n) {
+  if (!n.parent) return "";
+  const std::string p = json_path(*n.parent);
+  if (n.is_element) return p + "[" + std::to_string(n.index) + "]";
+  return p.empty() ? std::string(n.key) : p + "." + std::string(n.key);
+}
+
 }  // namespace octrace

@@ -76,12 +76,7 @@ struct Node {
   bool is_element = false;
   size_t index = 0;
 
-  std::string path() const {
-    if (!parent) return "";
-    const std::string p = parent->path();
-    if (is_element) return p + "[" + std::to_string(index) + "]";
-    return p.empty() ? std::string(key) : p + "." + std::string(key);
-  }
+  std::string path() const { return json_path(*this); }
 
   [[noreturn]] void fail(const std::string& what) const {
     const std::string p = path();

@@ -18,6 +18,7 @@
 
 #include "core/errors.h"
 #include "scene/gltf_builder.h"
+#include "test_util.h"
 
 namespace octrace {
 namespace {
@@ -41,17 +42,7 @@ Scene load(const GltfBuilder& b, const std::string& name, GltfOptions opts = {},
   return load_gltf_scene(b.write(tmp(name)), opts);
 }
 
-// The message of the InputError that `f` throws, or a failure if it throws none.
-template <typename F>
-std::string input_error(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return {};
-}
+using test::input_error;
 
 // What loading `b` as `name` says; the file's path is written as PATH.
 std::string load_error(const GltfBuilder& b, const std::string& name, GltfOptions opts = {}) {

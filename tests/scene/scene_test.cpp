@@ -13,6 +13,7 @@
 
 #include "core/errors.h"
 #include "scene/gltf_builder.h"
+#include "test_util.h"
 
 namespace octrace {
 namespace {
@@ -27,17 +28,7 @@ Scene rtiow(uint64_t spheres, float radius, uint64_t seed = 1) {
   return make_rtiow_scene(p);
 }
 
-// The message of the InputError that `f` throws, or a failure if it throws none.
-template <typename F>
-std::string input_error(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return {};
-}
+using test::input_error;
 
 std::string parse_error(const std::string& json) {
   return input_error([&] { parse_scene_json(json, "scene.json"); });
