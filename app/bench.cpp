@@ -76,6 +76,14 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// The line above a bench table: device, settings and what the times are.
+void print_header(const VulkanContext& ctx, const RenderSettings& settings, uint32_t repeat, const char* more) {
+  std::printf("Device: %s (%s, %s). Image %dx%d, %u spp, depth %u; render = device time of the passes "
+              "(timestamp queries), median of %u runs after a warm-up%s.\n\n",
+              ctx.info.name.c_str(), ctx.info.type.c_str(), ctx.info.driver.c_str(), settings.width,
+              settings.height, settings.spp, settings.bounce_limit, repeat, more);
+}
+
 // Device times of `repeat` renders of s.spp passes, after one warm-up.
 std::vector<double> timed_runs(PathTracer& tracer, const Scene& scene, const RenderSettings& s, uint32_t repeat) {
   std::vector<double> times;
@@ -204,11 +212,7 @@ int run_scene_bench(const VulkanContext& ctx, const BenchOptions& o, const Rende
       }
     }
   }
-  std::printf("Device: %s (%s, %s). Image %dx%d, %u spp, depth %u; render = device time of the passes "
-              "(timestamp queries), median of %u runs after a warm-up; paths/s and rays/s (every segment: "
-              "camera rays and bounces) of the last run.\n\n",
-              ctx.info.name.c_str(), ctx.info.type.c_str(), ctx.info.driver.c_str(), settings.width,
-              settings.height, settings.spp, settings.bounce_limit, o.repeat);
+  print_header(ctx, settings, o.repeat, "; paths/s and rays/s (every segment: camera rays and bounces) of the last run");
   std::printf("| scene | spheres | triangles | accel | precision | render ms (median) | min | max | paths/s | rays/s | "
               "octree build ms | octree bytes/primitive |\n");
   std::printf("|---|---:|---:|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
@@ -308,10 +312,7 @@ int run_bench(const BenchOptions& o) {
         r.speedup = b.median_ms / r.median_ms;
   }
 
-  std::printf("Device: %s (%s, %s). Image %dx%d, %u spp, depth %u; render = device time of the passes "
-              "(timestamp queries), median of %u runs after a warm-up.\n\n",
-              ctx.info.name.c_str(), ctx.info.type.c_str(), ctx.info.driver.c_str(), settings.width,
-              settings.height, settings.spp, settings.bounce_limit, o.repeat);
+  print_header(ctx, settings, o.repeat, "");
   std::printf("| spheres | radius | accel | precision | render ms (median) | min | max | speedup vs brute | "
               "octree build ms | octree bytes/sphere |\n");
   std::printf("|---:|---:|---|---|---:|---:|---:|---:|---:|---:|\n");

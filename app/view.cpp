@@ -81,7 +81,7 @@ class Viewer {
   // Where accumulation stops: --max-spp, else where the sample count stops
   // being an exact float (as --spp of render).
   uint32_t target_spp() const { return options_.max_spp ? options_.max_spp : kSampleLimit; }
-  PassSettings pass() const { return {scene_.camera, settings_.bounce_limit, settings_.sample_seed, settings_.rr_depth}; }
+  PassSettings pass() const { return pass_settings(scene_, settings_); }
 
   void on_key(int key, int action);
   void on_button(int button, int action);

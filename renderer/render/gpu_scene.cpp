@@ -29,6 +29,14 @@ void check_fits(const VulkanContext& ctx, uint64_t bytes, const std::string& wha
 }
 
 
+// The unit normal of triangle (a, b, c) by its winding (in double: thin
+// triangles lose nothing to the cross product), +z for one of no area.
+glm::vec3 face_normal(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+  const glm::dvec3 g = glm::cross(glm::dvec3(b) - glm::dvec3(a), glm::dvec3(c) - glm::dvec3(a));
+  const double len = glm::length(g);
+  return len > 0.0 ? glm::vec3(g / len) : glm::vec3(0.0f, 0.0f, 1.0f);
+}
+
 }  // namespace
 
 // The device's view of the scene (bake_single_use_meshes applied).
@@ -119,10 +127,7 @@ std::vector<gpu::GpuTriangleNormals> object_triangle_normals(const Scene& scene)
       glm::vec3 n[3];
       if (mesh.normals.empty()) {
         // Flat: the geometric normal, so that a flat mesh beside smooth ones shades as itself.
-        const glm::dvec3 a(mesh.positions[idx[0]]), b(mesh.positions[idx[1]]), c(mesh.positions[idx[2]]);
-        const glm::dvec3 g = glm::cross(b - a, c - a);
-        const double len = glm::length(g);
-        n[0] = n[1] = n[2] = len > 0.0 ? glm::vec3(g / len) : glm::vec3(0.0f, 0.0f, 1.0f);
+        n[0] = n[1] = n[2] = face_normal(mesh.positions[idx[0]], mesh.positions[idx[1]], mesh.positions[idx[2]]);
       } else {
         for (int v = 0; v < 3; ++v) n[v] = mesh.normals[idx[v]];
       }
@@ -273,9 +278,10 @@ Scene bake_single_use_meshes(const Scene& scene) {
       remap[m] = uint32_t(out.meshes.size());
       out.meshes.push_back(scene.meshes[m]);
     }
-  bool single_smooth = false, single_flat = false;
+  // The baked mesh has vertex normals if any mesh baked into it has them.
+  bool single_smooth = false;
   for (const Instance& inst : scene.instances)
-    if (uses[inst.mesh] == 1) (scene.meshes[inst.mesh].normals.empty() ? single_flat : single_smooth) = true;
+    single_smooth |= uses[inst.mesh] == 1 && !scene.meshes[inst.mesh].normals.empty();
   Mesh baked;
   baked.name = "baked";
   for (const Instance& inst : scene.instances) {
@@ -301,8 +307,7 @@ Scene bake_single_use_meshes(const Scene& scene) {
       if (single_smooth) {
         if (mesh.normals.empty()) {
           // Beside smooth meshes a flat one keeps its face normal at each vertex.
-          const glm::vec3 f = glm::cross(p[1] - p[0], p[2] - p[0]);
-          const glm::vec3 n = glm::length(f) > 0.0f ? glm::normalize(f) : glm::vec3(0, 0, 1);
+          const glm::vec3 n = face_normal(p[0], p[1], p[2]);
           baked.normals.insert(baked.normals.end(), {n, n, n});
         } else {
           for (int v = 0; v < 3; ++v) baked.normals.push_back(world_normal(mesh.normals[idx[v]]));
@@ -312,7 +317,6 @@ Scene bake_single_use_meshes(const Scene& scene) {
       baked.materials.push_back(mesh.materials[k]);
     }
   }
-  (void)single_flat;
   if (!baked.indices.empty()) {
     out.meshes.push_back(std::move(baked));
     out.instances.push_back({uint32_t(out.meshes.size() - 1), glm::mat4(1.0f)});
