@@ -85,9 +85,18 @@ TEST_F(RenderTest, CameraBounceLimitAndSeedArePerPass) {
   const RenderResult fresh = render(ctx, moved, other);
   EXPECT_TRUE(same_bits(per_pass.mean, fresh.mean));
   EXPECT_EQ(per_pass.min_samples, 3u);
-  // The move did change the image (the test would see a camera that stayed).
-  const RenderResult unmoved = render(ctx, scene, other);
-  EXPECT_FALSE(same_bits(per_pass.mean, unmoved.mean));
+  // Each per-pass setting reaches the passes: the camera, the bounce limit
+  // and the seed each change the image (the test would see one that stayed
+  // as it was set up).
+  EXPECT_FALSE(same_bits(per_pass.mean, render(ctx, scene, other).mean)) << "camera";
+  for (auto [what, change] : {std::pair<const char*, void (*)(PassSettings&)>{"bounce limit", [](PassSettings& p) { p.bounce_limit = 50; }},
+                              {"seed", [](PassSettings& p) { p.sample_seed = 1; }}}) {
+    PassSettings p = pass_settings(moved, other);
+    change(p);
+    tracer.reset();
+    tracer.run_passes(p, 0, 3);
+    EXPECT_FALSE(same_bits(tracer.read_result().mean, per_pass.mean)) << what;
+  }
 }
 
 // A tracer resized and switched to another accel (the octree built on the
