@@ -122,6 +122,7 @@ struct RenderOptions {
   RenderSettings settings;
   std::string device = "auto";
   bool validation = false;
+  bool pipeline_stats = false;
 
   void add_to(CLI::App& cmd) {
     cmd.add_option("--accel", accel, "Acceleration structure: octree | brute")->capture_default_str();
@@ -145,8 +146,14 @@ struct RenderOptions {
     cmd.add_option("--rr-depth", settings.rr_depth,
                    "Russian roulette from this bounce on (0: off; changes the noise, not the expectation)")
         ->capture_default_str();
+    cmd.add_option("--samples-per-dispatch", settings.samples_per_dispatch,
+                   "Samples each GPU dispatch adds per pixel (0: a whole batch in one); same image, other speed")
+        ->capture_default_str();
     cmd.add_option("--device", device, "auto | cpu | gpu | INDEX (see `octrace devices`)")->capture_default_str();
     cmd.add_flag("--validation", validation, "Enable the Khronos validation layer (also OCTRACE_VALIDATION=1)");
+    cmd.add_flag("--pipeline-stats", pipeline_stats,
+                 "Print the driver's statistics of the compiled path-tracing pipeline (registers, spills, ...; "
+                 "VK_KHR_pipeline_executable_properties)");
   }
 
   RenderSettings parsed() const {
@@ -253,7 +260,11 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
 
   start = Clock::now();
   VulkanContext ctx;
-  create_context(ctx, {render_opts.device, settings.precision != Precision::FP32, render_opts.validation});
+  ContextOptions context_opts{render_opts.device, settings.precision != Precision::FP32, render_opts.validation};
+  context_opts.pipeline_statistics = render_opts.pipeline_stats;
+  create_context(ctx, context_opts);
+  if (render_opts.pipeline_stats && !ctx.pipeline_statistics)
+    print_warning(ctx.info.name + " has no VK_KHR_pipeline_executable_properties: no pipeline statistics");
   double device_ms = ms_since(start);
   if (ctx.info.software && !quiet && !as_json) std::fprintf(stderr, "octrace: %s\n", software_device_note(ctx.info).c_str());
 
@@ -287,6 +298,7 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
               {"precision", precision_name(settings.precision)},
               {"effects", settings.all_effects ? "all" : "auto"},
               {"rr_depth", settings.rr_depth},
+              {"samples_per_dispatch", settings.samples_per_dispatch},
               {"features", feature_names(result.features)},
               {"times_ms", {{"scene", scene_ms},
                             {"device_init", device_ms},
@@ -312,6 +324,11 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
                      {"bytes_per_sphere", o.bytes_per_primitive},
                      {"refs_per_primitive", o.refs_per_primitive}, {"bytes_per_primitive", o.bytes_per_primitive}};
     }
+    if (render_opts.pipeline_stats) {
+      json stats = json::object();
+      for (const auto& [name, value] : result.pipeline_statistics) stats[name] = value;
+      j["pipeline_statistics"] = stats;
+    }
     std::cout << j.dump(2) << "\n";
   } else if (!quiet) {
     std::printf("device    %s (%s)\n", ctx.info.name.c_str(), ctx.info.type.c_str());
@@ -327,6 +344,8 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
                 t.render_device_ms);
     std::printf("speed     %.3g paths/s, %.3g rays/s (%.2f segments per path)\n", paths_per_s, rays_per_s,
                 paths > 0 ? double(result.rays) / paths : 0.0);
+    for (const auto& [name, value] : result.pipeline_statistics)
+      std::printf("pipeline  %s: %s\n", name.c_str(), value.c_str());
     if (result.nonfinite_samples)
       std::printf("warning   %llu NaN/Inf samples were rejected\n", (unsigned long long)result.nonfinite_samples);
     for (const auto& o : outputs) std::printf("wrote     %s\n", o.c_str());

@@ -45,7 +45,7 @@ void main() {
   pass.pixel_dv = vec3(21, 22, 23);
   pass.sample_index = 24;
   pass.rr_depth = 25;
-  pass.pad0 = 26;
+  pass.sample_count = 26;
   pass.pad1 = 27;
   pass.pad2 = 28;
 

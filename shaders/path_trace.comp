@@ -54,7 +54,7 @@ layout(constant_id = SPEC_VERTEX_NORMALS) const bool HAS_VERTEX_NORMALS = true;
 #include "shading/sky.glsl"
 
 // `segments`: how many rays the path traced (camera ray and bounces).
-vec3 trace_path(Ray ray, uint pixel_index, out uint segments) {
+vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments) {
   segments = 0u;
   real3 radiance = real3(0.0);
   real3 throughput = real3(1.0);
@@ -84,7 +84,7 @@ vec3 trace_path(Ray ray, uint pixel_index, out uint segments) {
       break;
     }
 
-    Rng rng = rng_init(pass.sample_seed, pixel_index, pass.sample_index, bounce);
+    Rng rng = rng_init(pass.sample_seed, pixel_index, sample_index, bounce);
     // Directions are worked out in dreal and re-normalised in fp32 for the
     // next intersection test.
     dreal3 dn = dreal3(n);
@@ -125,7 +125,7 @@ vec3 trace_path(Ray ray, uint pixel_index, out uint segments) {
     // Russian roulette (--rr-depth): unbiased, since a surviving path is
     // weighted by 1/p.
     if (bounce + 1u >= pass.rr_depth) {
-      Rng rr = rng_init(pass.sample_seed, pixel_index, pass.sample_index, bounce | RR_STREAM);
+      Rng rr = rng_init(pass.sample_seed, pixel_index, sample_index, bounce | RR_STREAM);
       float p = min(float(max(max(throughput.r, throughput.g), throughput.b)), 0.95);
       if (rng_next(rr) >= p) break;
       throughput /= real(p);
@@ -151,32 +151,41 @@ void main() {
   if (pixel.x >= pass.width || pixel.y >= pass.height) return;
   uint index = pixel.y * pass.width + pixel.x;
 
-  // A scene with no emitter under a black sky is black: nothing to trace.
-  uint segments = 0u;
-  vec3 value = ANY_LIGHT ? trace_path(camera_ray(pixel, index), index, segments) : vec3(0.0);
-
-  // A NaN or Inf sample is counted, never added: one would poison the pixel.
-  if (any(isnan(value)) || any(isinf(value))) {
-    atomicAdd(stats.nonfinite_samples, 1u);
-    return;
-  }
-  // Kahan summation keeps the mean unbiased over millions of samples; `precise`
-  // stops the compiler from reassociating the compensation away.
+  // The pixel's accumulation state is read once, takes the invocation's
+  // samples in sample-index order, and is written once: the same arithmetic
+  // in the same order as one dispatch per sample, so the image does not
+  // depend on how samples are batched into dispatches (PassParams).
   vec4 acc = accum_sum[index];
   precise vec3 comp = accum_comp[index].rgb;
-  precise vec3 y = value - comp;
-  precise vec3 t = acc.rgb + y;
-  float n = acc.w;
-  vec3 mean_old = n > 0.0 ? (acc.rgb - comp) / n : vec3(0.0);
-  comp = (t - acc.rgb) - y;
-  vec3 mean_new = (t - comp) / (n + 1.0);
-  accum_comp[index].rgb = comp;
-  accum_sum[index] = vec4(t, n + 1.0);
-  // Welford's update of the sum of squared deviations (M2): no cancellation of
-  // two large sums, so a pixel with tiny variance keeps an accurate one.
   vec4 sq = accum_sq[index];
-  sq.rgb += (value - mean_old) * (value - mean_new);
-  // .w counts the pixel's ray segments, as the bits of a uint (shared.h).
-  sq.w = uintBitsToFloat(floatBitsToUint(sq.w) + segments);
+  for (uint s = 0u; s < pass.sample_count; ++s) {
+    uint sample_index = pass.sample_index + s;
+    // A scene with no emitter under a black sky is black: nothing to trace.
+    uint segments = 0u;
+    vec3 value = ANY_LIGHT ? trace_path(camera_ray(pixel, index, sample_index), index, sample_index, segments)
+                           : vec3(0.0);
+
+    // A NaN or Inf sample is counted, never added: one would poison the pixel.
+    if (any(isnan(value)) || any(isinf(value))) {
+      atomicAdd(stats.nonfinite_samples, 1u);
+      continue;
+    }
+    // Kahan summation keeps the mean unbiased over millions of samples; `precise`
+    // stops the compiler from reassociating the compensation away.
+    precise vec3 y = value - comp;
+    precise vec3 t = acc.rgb + y;
+    float n = acc.w;
+    vec3 mean_old = n > 0.0 ? (acc.rgb - comp) / n : vec3(0.0);
+    comp = (t - acc.rgb) - y;
+    vec3 mean_new = (t - comp) / (n + 1.0);
+    acc = vec4(t, n + 1.0);
+    // Welford's update of the sum of squared deviations (M2): no cancellation of
+    // two large sums, so a pixel with tiny variance keeps an accurate one.
+    sq.rgb += (value - mean_old) * (value - mean_new);
+    // .w counts the pixel's ray segments, as the bits of a uint (shared.h).
+    sq.w = uintBitsToFloat(floatBitsToUint(sq.w) + segments);
+  }
+  accum_comp[index].rgb = comp;
+  accum_sum[index] = acc;
   accum_sq[index] = sq;
 }

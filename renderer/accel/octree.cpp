@@ -72,11 +72,27 @@ BuildNode child_node(const BuildNode& parent, const Split& split, int k) {
   return {split.box[k], parent.depth + 1, parent.budget * split.count[k] / static_cast<double>(split.total)};
 }
 
+// Octant k of `box` split at `mid` (an axis not split has mid = +inf: its
+// whole extent is the low half).
+Box octant_cell(const Box& box, const glm::vec3& mid, int k) {
+  Box cell = box;
+  for (int a = 0; a < 3; ++a) {
+    if (!(mid[a] < std::numeric_limits<float>::infinity())) continue;
+    if ((k >> a) & 1) cell.lo[a] = mid[a];
+    else cell.hi[a] = mid[a];
+  }
+  return cell;
+}
+
 // Decides whether the node (references `refs`, box and depth in `node`) splits (octree.h
 // "How it is built"). If it does, fills `split` and the octant set of each
 // reference in `octants`.
-bool plan_split(const Ref* refs, size_t n, const BuildNode& node, const OctreeParams& params, uint8_t* octants,
-                Split& split) {
+//
+// With `clip`, a reference goes only to the octants its primitive reaches
+// (not every octant its box overlaps), and carries into each the box of the
+// part inside: `parts` receives those, reference by reference in octant order.
+bool plan_split(const Ref* refs, size_t n, const BuildNode& node, const OctreeParams& params, const ClipFn& clip,
+                uint8_t* octants, std::vector<Ref>& parts, Split& split) {
   if (n <= params.leaf_size || node.depth >= params.max_depth) return false;
   const Box& box = node.box;
   const glm::vec3 extent = box.hi - box.lo;
@@ -95,17 +111,47 @@ bool plan_split(const Ref* refs, size_t n, const BuildNode& node, const OctreePa
   }
   if (!any) return false;
 
+  parts.clear();
   for (size_t i = 0; i < n; ++i) {
     const Ref& r = refs[i];
     uint32_t set = 0xFF;
     for (int a = 0; a < 3; ++a)
       set &= (r.lo[a] < mid[a] ? kLower[a] : 0u) | (r.hi[a] >= mid[a] ? ~kLower[a] & 0xFFu : 0u);
-    octants[i] = static_cast<uint8_t>(set);
-    for (uint32_t s = set; s != 0; s &= s - 1) {
-      const int k = std::countr_zero(s);
-      ++split.count[k];
-      split.box[k].extend({r.lo, r.hi});
+    if (clip && std::popcount(set) > 1) {
+      const uint32_t candidates = set;
+      set = 0;
+      for (uint32_t s = candidates; s != 0; s &= s - 1) {
+        const int k = std::countr_zero(s);
+        Box part;
+        if (!clip(r.prim, octant_cell(box, mid, k), part)) continue;
+        // Never larger than what the reference had: the part lies in both.
+        part.lo = glm::max(part.lo, r.lo);
+        part.hi = glm::min(part.hi, r.hi);
+        set |= 1u << k;
+        parts.push_back({part.lo, part.hi, r.prim});
+        ++split.count[k];
+        split.box[k].extend(part);
+      }
+      // The primitive reached none (rounding, for a part on an octant's
+      // face): it keeps every octant its box overlaps, so it is never lost.
+      if (set == 0) {
+        for (uint32_t s = candidates; s != 0; s &= s - 1) {
+          const int k = std::countr_zero(s);
+          parts.push_back(r);
+          ++split.count[k];
+          split.box[k].extend({r.lo, r.hi});
+        }
+        set = candidates;
+      }
+    } else {
+      for (uint32_t s = set; s != 0; s &= s - 1) {
+        const int k = std::countr_zero(s);
+        if (clip) parts.push_back(r);
+        ++split.count[k];
+        split.box[k].extend({r.lo, r.hi});
+      }
     }
+    octants[i] = static_cast<uint8_t>(set);
     split.mask |= set;
   }
   // Clip each child's union of AABBs to its octant of the node's box.
@@ -131,16 +177,19 @@ bool plan_split(const Ref* refs, size_t n, const BuildNode& node, const OctreePa
 
 // Copies each reference into the ranges of its octants, keeping their order
 // (so leaf references stay in ascending primitive order). Child k's range starts
-// at dst + offset[k].
-void scatter(const Ref* refs, size_t n, const uint8_t* octants, const Split& split, Ref* dst) {
+// at dst + offset[k]. With clipped `parts` (plan_split), those are copied instead.
+void scatter(const Ref* refs, size_t n, const uint8_t* octants, const std::vector<Ref>& parts, const Split& split,
+             Ref* dst) {
   size_t offset[8];
   size_t at = 0;
   for (int k = 0; k < 8; ++k) {
     offset[k] = at;
     at += split.count[k];
   }
+  size_t part = 0;
   for (size_t i = 0; i < n; ++i)
-    for (uint32_t s = octants[i]; s != 0; s &= s - 1) dst[offset[std::countr_zero(s)]++] = refs[i];
+    for (uint32_t s = octants[i]; s != 0; s &= s - 1)
+      dst[offset[std::countr_zero(s)]++] = parts.empty() ? refs[i] : parts[part++];
 }
 
 gpu::GpuOctreeNode make_node(const Box& box) { return {box.lo, 0, box.hi, 0}; }
@@ -159,7 +208,7 @@ struct Subtree {
 // build allocates nothing per node once the buffers have grown.
 class SubtreeBuilder {
  public:
-  explicit SubtreeBuilder(const OctreeParams& params) : params_(params) {}
+  SubtreeBuilder(const OctreeParams& params, const ClipFn& clip) : params_(params), clip_(clip) {}
 
   Subtree build(const std::vector<Ref>& refs, const BuildNode& root) {
     out_ = {};
@@ -182,7 +231,7 @@ class SubtreeBuilder {
     out_.max_depth = std::max(out_.max_depth, node.depth);
     reserve(n);
     Split split;
-    if (!plan_split(scratch_.data() + begin, n, node, params_, octants_.data(), split)) {
+    if (!plan_split(scratch_.data() + begin, n, node, params_, clip_, octants_.data(), parts_, split)) {
       out_.nodes[index].first = static_cast<uint32_t>(out_.refs.size());
       out_.nodes[index].count_or_mask = static_cast<uint32_t>(n);
       for (size_t i = begin; i < end; ++i) out_.refs.push_back(scratch_[i].prim);
@@ -190,7 +239,7 @@ class SubtreeBuilder {
       return;
     }
     reserve(top + split.total);
-    scatter(scratch_.data() + begin, n, octants_.data(), split, scratch_.data() + top);
+    scatter(scratch_.data() + begin, n, octants_.data(), parts_, split, scratch_.data() + top);
 
     const uint32_t first = static_cast<uint32_t>(out_.nodes.size());
     out_.nodes[index].first = first;
@@ -207,7 +256,9 @@ class SubtreeBuilder {
   }
 
   const OctreeParams& params_;
+  const ClipFn& clip_;
   Subtree out_;
+  std::vector<Ref> parts_;
   std::vector<Ref> scratch_;
   std::vector<uint8_t> octants_;
 };
@@ -258,7 +309,7 @@ void check_params(const OctreeParams& params) {
 
 }  // namespace
 
-Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params) {
+Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params, const ClipFn& clip) {
   check_params(params);
   const auto start = Clock::now();
   Octree tree;
@@ -288,6 +339,7 @@ Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params) {
   std::vector<Pending> pending;
   pending.push_back(std::move(root));
   std::vector<uint8_t> octants;
+  std::vector<Ref> parts;
   for (;;) {
     size_t largest = pending.size();
     for (size_t i = 0; i < pending.size(); ++i)
@@ -299,12 +351,12 @@ Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params) {
     Pending& p = pending[largest];
     octants.resize(p.refs.size());
     Split split;
-    if (!plan_split(p.refs.data(), p.refs.size(), p.node, params, octants.data(), split)) {
+    if (!plan_split(p.refs.data(), p.refs.size(), p.node, params, clip, octants.data(), parts, split)) {
       p.splittable = false;
       continue;
     }
     std::vector<Ref> children(split.total);
-    scatter(p.refs.data(), p.refs.size(), octants.data(), split, children.data());
+    scatter(p.refs.data(), p.refs.size(), octants.data(), parts, split, children.data());
     const uint32_t first = static_cast<uint32_t>(tree.nodes.size());
     tree.nodes[p.index].first = first;
     tree.nodes[p.index].count_or_mask = gpu::OCTREE_INTERNAL | split.mask;
@@ -331,7 +383,7 @@ Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params) {
   std::vector<Subtree> subtrees(pending.size());
   std::atomic<size_t> next{0};
   const auto work = [&] {
-    SubtreeBuilder builder(params);
+    SubtreeBuilder builder(params, clip);
     for (size_t i; (i = next++) < schedule.size();) {
       const Pending& p = pending[schedule[i]];
       subtrees[schedule[i]] = builder.build(p.refs, p.node);

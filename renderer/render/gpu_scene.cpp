@@ -1,5 +1,7 @@
 #include "render/gpu_scene.h"
 
+#include "accel/clip.h"
+
 #include <algorithm>
 #include <string>
 
@@ -49,7 +51,13 @@ static void upload_octree_of(GpuScene& g, const VulkanContext& ctx, const Scene&
   OctreeStats& st = octree.stats;
   std::vector<gpu::GpuMesh> meshes = gpu_meshes(scene);
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
-    const Octree mesh_tree = build_octree(mesh_triangle_boxes(scene.meshes[m]), params);
+    const Mesh& mesh = scene.meshes[m];
+    // Triangles are clipped to the cells they reach (octree.h ClipFn).
+    const auto clip = [&mesh](uint32_t t, const Aabb& cell, Aabb& part) {
+      const uint32_t* v = &mesh.indices[3 * size_t(t)];
+      return clip_triangle(mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]], cell, part);
+    };
+    const Octree mesh_tree = build_octree(mesh_triangle_boxes(mesh), params, clip);
     const uint32_t node_base = uint32_t(octree.nodes.size()), ref_base = uint32_t(octree.refs.size());
     for (gpu::GpuOctreeNode n : mesh_tree.nodes) {
       n.first += (n.count_or_mask & gpu::OCTREE_INTERNAL) ? node_base : ref_base;

@@ -209,9 +209,11 @@ void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, ui
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.pipeline);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.layout, 0, 1, &s.pipeline.set, 0,
                           nullptr);
-  for (uint32_t i = 0; i < count; ++i) {
-    if (i > 0) compute_barrier(cmd);
-    pc.sample_index = first_sample + i;
+  const uint32_t per_dispatch = s.settings.samples_per_dispatch ? s.settings.samples_per_dispatch : count;
+  for (uint32_t done = 0; done < count; done += pc.sample_count) {
+    if (done > 0) compute_barrier(cmd);
+    pc.sample_index = first_sample + done;
+    pc.sample_count = std::min(per_dispatch, count - done);
     vkCmdPushConstants(cmd, s.pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
     vkCmdDispatch(cmd, groups_x, groups_y, 1);
   }
@@ -267,6 +269,7 @@ RenderResult PathTracer::read_result() {
   r.timings = s.timings;
   r.octree = s.scene.octree;
   r.features = s.features;
+  r.pipeline_statistics = s.pipeline.statistics;
   return r;
 }
 

@@ -50,6 +50,8 @@ struct RenderResult {
   RenderTimings timings;
   OctreeStats octree;             // zeros for Accel::Brute
   SceneFeatures features;         // what the pipeline was specialised to
+  // The driver's statistics of the path-tracing pipeline (ComputePipeline::statistics).
+  std::vector<std::pair<std::string, std::string>> pipeline_statistics;
 };
 
 // Called after each batch of passes: passes done, total passes.

@@ -41,6 +41,10 @@ struct RenderSettings {
   // probability p = min(max throughput, 0.95) and carries 1/p more, so the
   // expectation is unchanged and the noise grows; paths end sooner.
   uint32_t rr_depth = 0;
+  // Samples one dispatch adds (each invocation loops over them for its
+  // pixel); 0: every pass of a batch in one dispatch. The image is the same
+  // whatever the value; only the time changes (docs/performance.md).
+  uint32_t samples_per_dispatch = 0;
 };
 
 // Checks sizes and counts; throws SettingError naming the setting

@@ -344,6 +344,17 @@ void create_context(VulkanContext& ctx, const ContextOptions& options) {
   ctx.fp16_enabled = options.need_fp16 || ctx.info.supports_fp16();
   f11.storageBuffer16BitAccess = ctx.fp16_enabled;
   f12.shaderFloat16 = ctx.fp16_enabled;
+  VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR exec_props{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
+  std::vector<const char*> extensions;
+  if (options.can_present) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  ctx.pipeline_statistics = options.pipeline_statistics &&
+                            has_device_extension(ctx.physical, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+  if (ctx.pipeline_statistics) {
+    extensions.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+    exec_props.pipelineExecutableInfo = VK_TRUE;
+    f12.pNext = &exec_props;
+  }
   VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   features.pNext = &f11;
 
@@ -351,11 +362,8 @@ void create_context(VulkanContext& ctx, const ContextOptions& options) {
   info.pNext = &features;
   info.queueCreateInfoCount = 1;
   info.pQueueCreateInfos = &queue_info;
-  const char* swapchain = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
-  if (options.can_present) {
-    info.enabledExtensionCount = 1;
-    info.ppEnabledExtensionNames = &swapchain;
-  }
+  info.enabledExtensionCount = uint32_t(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
   VK_CHECK(vkCreateDevice(ctx.physical, &info, nullptr, &ctx.device));
   vkGetDeviceQueue(ctx.device, ctx.queue_family, 0, &ctx.queue);
 

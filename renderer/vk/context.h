@@ -75,6 +75,10 @@ struct ContextOptions {
   // present; headless runs leave both empty.
   std::vector<const char*> instance_extensions;
   std::function<bool(VkInstance, VkPhysicalDevice, uint32_t family)> can_present;
+  // Ask the driver for what it compiled each pipeline into (registers,
+  // spills, ...) through VK_KHR_pipeline_executable_properties, where the
+  // device has it (VulkanContext::pipeline_statistics says whether it did).
+  bool pipeline_statistics = false;
 };
 
 // One line for a render on a software device, so that its timings are not
@@ -99,6 +103,7 @@ struct VulkanContext {
   VkPhysicalDeviceLimits limits{};
   DeviceInfo info;
   bool fp16_enabled = false;
+  bool pipeline_statistics = false;  // VK_KHR_pipeline_executable_properties enabled
 
   VulkanContext() = default;
   VulkanContext(const VulkanContext&) = delete;

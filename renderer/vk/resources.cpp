@@ -90,6 +90,49 @@ void download_buffer(const VulkanContext& ctx, const Buffer& src, void* data, si
   std::memcpy(data, staging.mapped, bytes);
 }
 
+namespace {
+
+// VK_KHR_pipeline_executable_properties: every statistic of every executable
+// of the pipeline, as text ("Register Count" = "64"); the names and what they
+// mean are the driver's.
+std::vector<std::pair<std::string, std::string>> pipeline_statistics(const VulkanContext& ctx, VkPipeline pipeline) {
+  auto get_executables = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
+      vkGetDeviceProcAddr(ctx.device, "vkGetPipelineExecutablePropertiesKHR"));
+  auto get_statistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
+      vkGetDeviceProcAddr(ctx.device, "vkGetPipelineExecutableStatisticsKHR"));
+  std::vector<std::pair<std::string, std::string>> out;
+  if (!get_executables || !get_statistics) return out;
+  VkPipelineInfoKHR pipeline_info{VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR};
+  pipeline_info.pipeline = pipeline;
+  uint32_t count = 0;
+  VK_CHECK(get_executables(ctx.device, &pipeline_info, &count, nullptr));
+  std::vector<VkPipelineExecutablePropertiesKHR> executables(count, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR});
+  VK_CHECK(get_executables(ctx.device, &pipeline_info, &count, executables.data()));
+  for (uint32_t e = 0; e < count; ++e) {
+    VkPipelineExecutableInfoKHR exec{VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR};
+    exec.pipeline = pipeline;
+    exec.executableIndex = e;
+    uint32_t n = 0;
+    VK_CHECK(get_statistics(ctx.device, &exec, &n, nullptr));
+    std::vector<VkPipelineExecutableStatisticKHR> stats(n, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR});
+    VK_CHECK(get_statistics(ctx.device, &exec, &n, stats.data()));
+    std::string prefix = count > 1 ? std::string(executables[e].name) + ": " : "";
+    for (const auto& st : stats) {
+      std::string value;
+      switch (st.format) {
+        case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR: value = st.value.b32 ? "true" : "false"; break;
+        case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR: value = std::to_string(st.value.i64); break;
+        case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR: value = std::to_string(st.value.u64); break;
+        default: value = std::to_string(st.value.f64); break;
+      }
+      out.emplace_back(prefix + st.name, value);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 void create_compute_pipeline(ComputePipeline& p, const VulkanContext& ctx, const uint32_t* spirv,
                              size_t spirv_bytes, uint32_t binding_count, uint32_t push_bytes,
                              const std::vector<SpecConstant>& spec) {
@@ -136,9 +179,12 @@ void create_compute_pipeline(ComputePipeline& p, const VulkanContext& ctx, const
   info.stage.pName = "main";
   info.stage.pSpecializationInfo = spec.empty() ? nullptr : &spec_info;
   info.layout = p.layout;
+  if (ctx.pipeline_statistics) info.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
   VkResult r = vkCreateComputePipelines(ctx.device, ctx.pipeline_cache, 1, &info, nullptr, &p.pipeline);
   vkDestroyShaderModule(ctx.device, module, nullptr);
   VK_CHECK(r);
+  p.statistics.clear();
+  if (ctx.pipeline_statistics) p.statistics = pipeline_statistics(ctx, p.pipeline);
 
   VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, binding_count};
   VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};

@@ -50,6 +50,9 @@ struct ComputePipeline {
   VkPipeline pipeline = VK_NULL_HANDLE;
   VkDescriptorPool pool = VK_NULL_HANDLE;
   VkDescriptorSet set = VK_NULL_HANDLE;
+  // What the driver reports of the compiled pipeline (name, value), e.g.
+  // register counts and spills; empty unless ctx.pipeline_statistics.
+  std::vector<std::pair<std::string, std::string>> statistics;
 
   ComputePipeline() = default;
   ComputePipeline(const ComputePipeline&) = delete;

@@ -7,8 +7,8 @@
 #include "geometry/ray.glsl"
 #include "sampling/warp.glsl"
 
-Ray camera_ray(uvec2 pixel, uint pixel_index) {
-  Rng rng = rng_init(pass.sample_seed, pixel_index, pass.sample_index, CAMERA_BOUNCE);
+Ray camera_ray(uvec2 pixel, uint pixel_index, uint sample_index) {
+  Rng rng = rng_init(pass.sample_seed, pixel_index, sample_index, CAMERA_BOUNCE);
   vec2 jitter = vec2(rng_next(rng), rng_next(rng));
   vec2 lens = HAS_DEFOCUS ? random_in_unit_disk(rng) * pass.lens_radius : vec2(0.0);
   vec3 origin = pass.cam_origin + lens.x * pass.lens_u + lens.y * pass.lens_v;

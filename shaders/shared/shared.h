@@ -224,7 +224,7 @@ struct SceneParams {
   uint instance_count;
 };
 
-// 112 bytes, the push constants of one pass: everything that may change from
+// 112 bytes, the push constants of one dispatch of passes: everything that may change from
 // one pass to the next without touching the scene (the camera, the image
 // size, the bounce limit, the sampler's seed and the sample index). The camera
 // is precomputed on the host (render/camera.h): a pixel (x, y) (top row
@@ -242,9 +242,9 @@ struct PassParams {
   vec3 pixel_du;
   uint sample_seed;
   vec3 pixel_dv;
-  uint sample_index;  // the sample this pass adds to every pixel
+  uint sample_index;  // the first sample this dispatch adds to every pixel ...
   uint rr_depth;      // Russian roulette from this bounce on (0xffffffff: never)
-  uint pad0;
+  uint sample_count;  // ... and how many: sample_index .. sample_index + sample_count - 1
   uint pad1;
   uint pad2;
 };

@@ -4,6 +4,7 @@
 // order XOR the ray's sign mask is front-to-back); the build is deterministic;
 // the stats add up; bad parameters are errors that name the flag.
 #include "accel/octree.h"
+#include "accel/clip.h"
 #include "render/gpu_scene.h"
 
 #include <gtest/gtest.h>
@@ -462,6 +463,79 @@ TEST(Octree, AtMost64BytesPerSphere) {
   for (const RtiowCase c : {RtiowCase{488, 0.2f}, RtiowCase{8000, 0.1f}, RtiowCase{1000000, 0.01f}}) {
     const Octree tree = build_octree(sphere_boxes(rtiow(c.spheres, c.radius)), {});
     EXPECT_LE(tree.stats.bytes_per_primitive, 64.0) << c.spheres << " spheres of radius " << c.radius;
+  }
+}
+
+// Split clipping (octree.h ClipFn): long thin triangles in every direction.
+// Every point of every triangle lies in a leaf box that references it (what
+// the traversal needs), the build is deterministic, and the triangles are
+// referenced by fewer leaves than their boxes would be.
+TEST(Octree, ClippedTrianglesAreFindableWithFewerReferences) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<float> pos(-10.0f, 10.0f), small(-0.05f, 0.05f);
+  struct Tri {
+    glm::vec3 a, b, c;
+  };
+  std::vector<Tri> tris(4000);
+  std::vector<Aabb> boxes(tris.size());
+  for (size_t i = 0; i < tris.size(); ++i) {
+    // Half slivers across the scene, half small triangles.
+    const glm::vec3 a(pos(rng), pos(rng), pos(rng));
+    const glm::vec3 b = i % 2 ? glm::vec3(pos(rng), pos(rng), pos(rng)) : a + glm::vec3(small(rng), small(rng), small(rng));
+    const glm::vec3 c = a + glm::vec3(small(rng), small(rng), small(rng));
+    tris[i] = {a, b, c};
+    for (const glm::vec3& v : {a, b, c}) boxes[i].extend({v, v});
+  }
+  const ClipFn clip = [&](uint32_t t, const Aabb& cell, Aabb& part) {
+    return clip_triangle(tris[t].a, tris[t].b, tris[t].c, cell, part);
+  };
+  const Octree plain = build_octree(boxes, {});
+  const Octree clipped = build_octree(boxes, {}, clip);
+  const Octree again = build_octree(boxes, {}, clip);
+  EXPECT_EQ(clipped.refs, again.refs);
+  ASSERT_EQ(clipped.nodes.size(), again.nodes.size());
+  EXPECT_EQ(std::memcmp(clipped.nodes.data(), again.nodes.data(), clipped.nodes.size() * sizeof(GpuOctreeNode)), 0);
+  EXPECT_LE(clipped.refs.size(), 8 * tris.size());
+  // What a ray pays: the references in every leaf whose box it crosses (no
+  // early exit), over random rays through the scene.
+  const auto refs_met = [&](const Octree& tree) {
+    std::mt19937_64 ray_rng(23);
+    uint64_t met = 0;
+    for (int r = 0; r < 2000; ++r) {
+      const Ray ray{glm::dvec3(pos(ray_rng), pos(ray_rng), pos(ray_rng)), random_unit(ray_rng)};
+      std::vector<uint32_t> stack = {0};
+      while (!stack.empty()) {
+        const GpuOctreeNode& n = tree.nodes[stack.back()];
+        stack.pop_back();
+        double t0, t1;
+        if (!hit_box(n, ray, t0, t1)) continue;
+        if (!(n.count_or_mask & OCTREE_INTERNAL)) {
+          met += n.count_or_mask;
+          continue;
+        }
+        for (uint32_t c = 0; c < uint32_t(std::popcount(n.count_or_mask & 0xFFu)); ++c) stack.push_back(n.first + c);
+      }
+    }
+    return met;
+  };
+  const uint64_t met_plain = refs_met(plain), met_clipped = refs_met(clipped);
+  EXPECT_LT(double(met_clipped), 0.5 * double(met_plain)) << "clipped " << met_clipped << ", by boxes " << met_plain;
+
+  std::vector<bool> big(tris.size());
+  for (uint32_t i = 0; i < clipped.big_count; ++i) big[clipped.refs[i]] = true;
+  std::uniform_real_distribution<float> w(0.0f, 1.0f);
+  for (uint32_t i = 0; i < tris.size(); ++i) {
+    if (big[i]) continue;
+    const Tri& t = tris[i];
+    std::vector<glm::vec3> points = {t.a, t.b, t.c, (t.a + t.b) * 0.5f};
+    for (int j = 0; j < 12; ++j) {
+      float u = w(rng), v = w(rng);
+      if (u + v > 1.0f) u = 1.0f - u, v = 1.0f - v;
+      points.push_back(t.a + u * (t.b - t.a) + v * (t.c - t.a));
+    }
+    for (const glm::vec3& p : points)
+      ASSERT_TRUE(leaf_holds(clipped, 0, p, i)) << "triangle " << i << " not referenced at (" << p.x << ", " << p.y
+                                                << ", " << p.z << ")";
   }
 }
 

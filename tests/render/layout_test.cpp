@@ -71,7 +71,7 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   EXPECT_EQ(f.pixel_dv, glm::vec3(21, 22, 23));
   EXPECT_EQ(f.sample_index, 24u);
   EXPECT_EQ(f.rr_depth, 25u);
-  EXPECT_EQ(f.pad0, 26u);
+  EXPECT_EQ(f.sample_count, 26u);
   EXPECT_EQ(f.pad1, 27u);
   EXPECT_EQ(f.pad2, 28u);
 

@@ -1,0 +1,109 @@
+// clip_triangle: the box of a triangle's part inside a cell holds every point
+// of that part, lies in the cell, and a triangle that only passes by a cell
+// (its box overlaps, the triangle does not) is not in it.
+#include "accel/clip.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include <glm/geometric.hpp>
+
+namespace octrace {
+namespace {
+
+bool contains(const Aabb& b, const glm::dvec3& p) {
+  for (int a = 0; a < 3; ++a)
+    if (p[a] < double(b.lo[a]) || p[a] > double(b.hi[a])) return false;
+  return true;
+}
+
+const Aabb kUnit{glm::vec3(0.0f), glm::vec3(1.0f)};
+
+TEST(ClipTriangle, InsideIsItsOwnBox) {
+  Aabb part;
+  ASSERT_TRUE(clip_triangle({0.1f, 0.2f, 0.3f}, {0.9f, 0.25f, 0.3f}, {0.5f, 0.8f, 0.7f}, kUnit, part));
+  // Its box, to the ulps the result is widened by.
+  EXPECT_NEAR(part.lo.x, 0.1f, 1e-6f);
+  EXPECT_NEAR(part.hi.x, 0.9f, 1e-6f);
+  EXPECT_NEAR(part.lo.y, 0.2f, 1e-6f);
+  EXPECT_NEAR(part.hi.y, 0.8f, 1e-6f);
+  EXPECT_NEAR(part.lo.z, 0.3f, 1e-6f);
+  EXPECT_NEAR(part.hi.z, 0.7f, 1e-6f);
+}
+
+TEST(ClipTriangle, SliverPassingByACornerIsNotInTheCell) {
+  // A thin triangle beyond the diagonal x + y = 3 in the plane z = 0.5: its
+  // box [1, 2]^2 overlaps the cell [0, 1.4]^3 in [1, 1.4]^2, where x + y is
+  // at most 2.8: the triangle itself passes the cell by.
+  const Aabb cell{glm::vec3(0.0f), glm::vec3(1.4f)};
+  Aabb part;
+  EXPECT_FALSE(clip_triangle({1.0f, 2.0f, 0.5f}, {2.0f, 1.0f, 0.5f}, {1.6f, 1.6f, 0.5f}, cell, part));
+  // Moved across the corner (1.4, 1.4): in.
+  EXPECT_TRUE(clip_triangle({0.6f, 2.0f, 0.5f}, {2.0f, 0.6f, 0.5f}, {1.6f, 1.6f, 0.5f}, cell, part));
+}
+
+TEST(ClipTriangle, CutByTheCellKeepsOnlyThePartInside) {
+  // A triangle across x = 1: its part in the unit cell spans x in [0.5, 1].
+  Aabb part;
+  ASSERT_TRUE(clip_triangle({0.5f, 0.1f, 0.5f}, {3.0f, 0.1f, 0.5f}, {0.5f, 0.9f, 0.5f}, kUnit, part));
+  EXPECT_NEAR(part.lo.x, 0.5f, 1e-6f);
+  EXPECT_EQ(part.hi.x, 1.0f);  // clamped to the cell
+  EXPECT_NEAR(part.hi.y, 0.9f, 1e-6f);
+  EXPECT_NEAR(part.lo.y, 0.1f, 1e-6f);
+}
+
+TEST(ClipTriangle, OnAFaceIsInTheCell) {
+  // Lying in the cell's face x = 1, and touching it at one vertex only.
+  Aabb part;
+  EXPECT_TRUE(clip_triangle({1.0f, 0.2f, 0.2f}, {1.0f, 0.8f, 0.2f}, {1.0f, 0.5f, 0.8f}, kUnit, part));
+  EXPECT_NEAR(part.lo.x, 1.0f, 1e-6f);
+  EXPECT_EQ(part.hi.x, 1.0f);
+  EXPECT_TRUE(clip_triangle({1.0f, 0.5f, 0.5f}, {2.0f, 0.5f, 0.5f}, {2.0f, 0.9f, 0.5f}, kUnit, part));
+  EXPECT_FALSE(clip_triangle({1.5f, 0.5f, 0.5f}, {2.0f, 0.5f, 0.5f}, {2.0f, 0.9f, 0.5f}, kUnit, part));
+}
+
+TEST(ClipTriangle, DegenerateTrianglesAreClippedToo) {
+  Aabb part;
+  // A segment through the cell, and a point outside it.
+  EXPECT_TRUE(clip_triangle({-1.0f, 0.5f, 0.5f}, {2.0f, 0.5f, 0.5f}, {2.0f, 0.5f, 0.5f}, kUnit, part));
+  EXPECT_EQ(part.lo.x, 0.0f);
+  EXPECT_EQ(part.hi.x, 1.0f);
+  EXPECT_FALSE(clip_triangle({2.0f, 2.0f, 2.0f}, {2.0f, 2.0f, 2.0f}, {2.0f, 2.0f, 2.0f}, kUnit, part));
+}
+
+// Random triangles against random cells: every sampled point of a triangle
+// inside the cell lies in the part's box; where no sampled point is inside
+// and the part is empty, fine; a reported part always lies in the cell.
+TEST(ClipTriangle, PartHoldsEveryPointOfTheTriangleInTheCell) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<float> pos(-2.0f, 3.0f), w(0.0f, 1.0f);
+  int kept = 0, dropped = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const glm::vec3 a(pos(rng), pos(rng), pos(rng)), b(pos(rng), pos(rng), pos(rng)), c(pos(rng), pos(rng), pos(rng));
+    Aabb part;
+    const bool in = clip_triangle(a, b, c, kUnit, part);
+    (in ? kept : dropped)++;
+    if (in) {
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_GE(part.lo[k], 0.0f);
+        EXPECT_LE(part.hi[k], 1.0f);
+      }
+    }
+    for (int s = 0; s < 200; ++s) {
+      float u = w(rng), v = w(rng);
+      if (u + v > 1.0f) u = 1.0f - u, v = 1.0f - v;
+      const glm::dvec3 p = glm::dvec3(a) + double(u) * (glm::dvec3(b) - glm::dvec3(a)) +
+                           double(v) * (glm::dvec3(c) - glm::dvec3(a));
+      if (!contains(kUnit, p)) continue;
+      ASSERT_TRUE(in) << "trial " << trial << ": a point of the triangle is in the cell";
+      ASSERT_TRUE(contains(part, p)) << "trial " << trial;
+    }
+  }
+  // Both outcomes occur: the test exercises both.
+  EXPECT_GT(kept, 100);
+  EXPECT_GT(dropped, 100);
+}
+
+}  // namespace
+}  // namespace octrace
