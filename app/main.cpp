@@ -149,6 +149,9 @@ struct RenderOptions {
     cmd.add_option("--samples-per-dispatch", settings.samples_per_dispatch,
                    "Samples each GPU dispatch adds per pixel (0: a whole batch in one); same image, other speed")
         ->capture_default_str();
+    cmd.add_option("--sample-lanes", settings.sample_lanes,
+                   "Invocations sharing a pixel's samples in a dispatch: 1, 2, 4, 8 (0: auto); same image")
+        ->capture_default_str();
     cmd.add_option("--device", device, "auto | cpu | gpu | INDEX (see `octrace devices`)")->capture_default_str();
     cmd.add_flag("--validation", validation, "Enable the Khronos validation layer (also OCTRACE_VALIDATION=1)");
     cmd.add_flag("--pipeline-stats", pipeline_stats,
@@ -179,6 +182,7 @@ std::string message_for_cli(const SettingError& e) {
       {"bounce_limit", "--depth"},
       {"first_sample", "--first-sample"},
       {"rr_depth", "--rr-depth"},
+      {"sample_lanes", "--sample-lanes"},
       {"sample_seed", "--sample-seed"},
       {"octree.leaf_size", "--octree-leaf"},
       {"octree.max_depth", "--octree-depth"},
@@ -299,6 +303,7 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
               {"effects", settings.all_effects ? "all" : "auto"},
               {"rr_depth", settings.rr_depth},
               {"samples_per_dispatch", settings.samples_per_dispatch},
+              {"sample_lanes", settings.sample_lanes},
               {"features", feature_names(result.features)},
               {"times_ms", {{"scene", scene_ms},
                             {"device_init", device_ms},

@@ -46,7 +46,7 @@ void main() {
   pass.sample_index = 24;
   pass.rr_depth = 25;
   pass.sample_count = 26;
-  pass.pad1 = 27;
+  pass.sample_lanes = 27;
   pass.pad2 = 28;
 
   resolve.width = 1;

@@ -6,7 +6,9 @@
 #include "shared/shared.h"
 #include "shading/precision.glsl"
 
-layout(local_size_x = WORKGROUP_SIZE, local_size_y = WORKGROUP_SIZE) in;
+// 64 invocations per workgroup; PassParams.sample_lanes of them share a
+// pixel (main() says how).
+layout(local_size_x = WORKGROUP_SIZE * WORKGROUP_SIZE) in;
 
 layout(std430, binding = BINDING_SCENE) readonly buffer SceneBuf { SceneParams scene; };
 layout(std430, binding = BINDING_SPHERES) readonly buffer SphereBuf { GpuSphere spheres[]; };
@@ -45,6 +47,7 @@ layout(constant_id = SPEC_ANY_LIGHT) const bool ANY_LIGHT = true;
 layout(constant_id = SPEC_SPHERES) const bool HAS_SPHERES = true;
 layout(constant_id = SPEC_TRIANGLES) const bool HAS_TRIANGLES = true;
 layout(constant_id = SPEC_VERTEX_NORMALS) const bool HAS_VERTEX_NORMALS = true;
+layout(constant_id = SPEC_SAMPLE_LANES) const bool SAMPLE_LANES = true;
 
 #include "shared/rng.h"
 #include "sampling/warp.glsl"
@@ -146,46 +149,85 @@ vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments)
   return vec3(radiance);
 }
 
+// Adds one sample to a pixel's accumulation state. Kahan summation keeps the
+// mean unbiased over millions of samples; `precise` stops the compiler from
+// reassociating the compensation away. Welford's update of the sum of squared
+// deviations (M2): no cancellation of two large sums, so a pixel with tiny
+// variance keeps an accurate one. sq.w counts the pixel's ray segments, as the
+// bits of a uint (shared.h).
+void add_sample(vec3 value, uint segments, inout vec4 acc, inout vec3 comp, inout vec4 sq) {
+  // A NaN or Inf sample is counted, never added: one would poison the pixel.
+  if (any(isnan(value)) || any(isinf(value))) {
+    atomicAdd(stats.nonfinite_samples, 1u);
+    return;
+  }
+  precise vec3 c = comp;
+  precise vec3 y = value - c;
+  precise vec3 t = acc.rgb + y;
+  float n = acc.w;
+  vec3 mean_old = n > 0.0 ? (acc.rgb - c) / n : vec3(0.0);
+  c = (t - acc.rgb) - y;
+  vec3 mean_new = (t - c) / (n + 1.0);
+  comp = c;
+  acc = vec4(t, n + 1.0);
+  sq.rgb += (value - mean_old) * (value - mean_new);
+  sq.w = uintBitsToFloat(floatBitsToUint(sq.w) + segments);
+}
+
+// Samples that lanes traced, for their pixel's first lane to add in order.
+shared vec4 lane_sample[WORKGROUP_SIZE * WORKGROUP_SIZE];
+
+// A dispatch adds samples sample_index .. + sample_count - 1 to every pixel.
+// Each pixel's state is read once, takes the samples in sample-index order
+// and is written once: the same arithmetic in the same order however the
+// samples are split into dispatches, so the image does not depend on it.
+// `sample_lanes` invocations share a pixel: lane l traces samples l, l +
+// lanes, ... and the pixel's first lane adds each round of them in order.
+// One pixel whose paths are long (light trapped inside a closed mesh runs to
+// the bounce limit) then costs the dispatch a path per round, not a path per
+// sample.
 void main() {
-  uvec2 pixel = gl_GlobalInvocationID.xy;
-  if (pixel.x >= pass.width || pixel.y >= pass.height) return;
-  uint index = pixel.y * pass.width + pixel.x;
+  const uint lanes = SAMPLE_LANES ? pass.sample_lanes : 1u;
+  const uint lane = gl_LocalInvocationIndex % lanes;
+  const uint local_pixel = gl_LocalInvocationIndex / lanes;
+  const uvec2 pixel = uvec2(gl_WorkGroupID.x * WORKGROUP_SIZE + local_pixel % WORKGROUP_SIZE,
+                            gl_WorkGroupID.y * (WORKGROUP_SIZE / lanes) + local_pixel / WORKGROUP_SIZE);
+  const bool in_image = pixel.x < pass.width && pixel.y < pass.height;
+  const uint index = pixel.y * pass.width + pixel.x;
 
-  // The pixel's accumulation state is read once, takes the invocation's
-  // samples in sample-index order, and is written once: the same arithmetic
-  // in the same order as one dispatch per sample, so the image does not
-  // depend on how samples are batched into dispatches (PassParams).
-  vec4 acc = accum_sum[index];
-  precise vec3 comp = accum_comp[index].rgb;
-  vec4 sq = accum_sq[index];
-  for (uint s = 0u; s < pass.sample_count; ++s) {
-    uint sample_index = pass.sample_index + s;
-    // A scene with no emitter under a black sky is black: nothing to trace.
+  vec4 acc = vec4(0.0), sq = vec4(0.0);
+  vec3 comp = vec3(0.0);
+  if (in_image && lane == 0u) {
+    acc = accum_sum[index];
+    comp = accum_comp[index].rgb;
+    sq = accum_sq[index];
+  }
+  for (uint first = 0u; first < pass.sample_count; first += lanes) {
+    const uint s = first + lane;
+    vec3 value = vec3(0.0);
     uint segments = 0u;
-    vec3 value = ANY_LIGHT ? trace_path(camera_ray(pixel, index, sample_index), index, sample_index, segments)
-                           : vec3(0.0);
-
-    // A NaN or Inf sample is counted, never added: one would poison the pixel.
-    if (any(isnan(value)) || any(isinf(value))) {
-      atomicAdd(stats.nonfinite_samples, 1u);
+    // A scene with no emitter under a black sky is black: nothing to trace.
+    if (in_image && s < pass.sample_count && ANY_LIGHT) {
+      const uint sample_index = pass.sample_index + s;
+      value = trace_path(camera_ray(pixel, index, sample_index), index, sample_index, segments);
+    }
+    if (!SAMPLE_LANES || lanes == 1u) {
+      if (in_image) add_sample(value, segments, acc, comp, sq);
       continue;
     }
-    // Kahan summation keeps the mean unbiased over millions of samples; `precise`
-    // stops the compiler from reassociating the compensation away.
-    precise vec3 y = value - comp;
-    precise vec3 t = acc.rgb + y;
-    float n = acc.w;
-    vec3 mean_old = n > 0.0 ? (acc.rgb - comp) / n : vec3(0.0);
-    comp = (t - acc.rgb) - y;
-    vec3 mean_new = (t - comp) / (n + 1.0);
-    acc = vec4(t, n + 1.0);
-    // Welford's update of the sum of squared deviations (M2): no cancellation of
-    // two large sums, so a pixel with tiny variance keeps an accurate one.
-    sq.rgb += (value - mean_old) * (value - mean_new);
-    // .w counts the pixel's ray segments, as the bits of a uint (shared.h).
-    sq.w = uintBitsToFloat(floatBitsToUint(sq.w) + segments);
+    lane_sample[gl_LocalInvocationIndex] = vec4(value, uintBitsToFloat(segments));
+    barrier();
+    if (in_image && lane == 0u) {
+      for (uint l = 0u; l < lanes && first + l < pass.sample_count; ++l) {
+        vec4 v = lane_sample[gl_LocalInvocationIndex + l];
+        add_sample(v.rgb, floatBitsToUint(v.w), acc, comp, sq);
+      }
+    }
+    barrier();
   }
-  accum_comp[index].rgb = comp;
-  accum_sum[index] = acc;
-  accum_sq[index] = sq;
+  if (in_image && lane == 0u) {
+    accum_comp[index].rgb = comp;
+    accum_sum[index] = acc;
+    accum_sq[index] = sq;
+  }
 }

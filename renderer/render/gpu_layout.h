@@ -84,7 +84,7 @@ static_assert(offsetof(PassParams, pixel_dv) == 80);
 static_assert(offsetof(PassParams, sample_index) == 92);
 static_assert(offsetof(PassParams, rr_depth) == 96);
 static_assert(offsetof(PassParams, sample_count) == 100);
-static_assert(offsetof(PassParams, pad1) == 104);
+static_assert(offsetof(PassParams, sample_lanes) == 104);
 static_assert(offsetof(PassParams, pad2) == 108);
 // Vulkan guarantees at least 128 bytes of push constants on every device.
 static_assert(sizeof(PassParams) <= 128);

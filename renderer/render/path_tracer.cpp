@@ -28,6 +28,12 @@ struct PathTracer::State {
   RenderTimings timings;
   SceneFeatures scene_features, every_feature;  // for --effects auto and all
   SceneFeatures features;                        // what the pipeline is specialised to
+
+  // Lanes (PassParams.sample_lanes) are compiled in on GPUs, and on software
+  // devices only when asked for: llvmpipe (Mesa 22.3) lost whole workgroups
+  // of the pipeline with the barrier when paths were long (brute force over
+  // 8000 spheres, depth >= 10), and a CPU device has no tail to hide anyway.
+  bool sample_lanes_enabled() const { return !ctx.info.software || settings.sample_lanes > 1; }
   GpuScene scene;
   Buffer accum_sum, accum_comp, accum_sq, stats;
   ComputePipeline pipeline;
@@ -97,6 +103,7 @@ void PathTracer::State::create_pipeline() {
                            {gpu::SPEC_DIELECTRIC, f.dielectric},
                            {gpu::SPEC_EMISSIVE, f.emissive},
                            {gpu::SPEC_DEFOCUS, f.defocus},
+                           {gpu::SPEC_SAMPLE_LANES, s.sample_lanes_enabled()},
                            {gpu::SPEC_SKY, sky},
                            {gpu::SPEC_ANY_LIGHT, f.any_light},
                            {gpu::SPEC_SPHERES, f.spheres},
@@ -193,6 +200,21 @@ void PathTracer::reconfigure(const Scene& scene, Accel accel, Precision precisio
   reset();
 }
 
+// Invocations per pixel for a dispatch of `count` samples (PassParams): the
+// setting, at most `count`, a power of two, and few enough that the workgroup
+// count stays within the guaranteed 65535. Auto (0): 8 for scenes with
+// triangles, 4 for spheres only. Measured on the H100 (docs/performance.md,
+// optimisation log): lanes cut the balloon from 31 ms to 11 ms (8) and 14 ms
+// (4), because light trapped in a closed mesh makes a few pixels' paths run
+// to the bounce limit; on the sphere fields 4 lanes cost nothing and 8 cost
+// 6-14% (a barrier per round for paths of even length).
+static uint32_t sample_lanes(uint32_t setting, bool triangles, uint32_t count, uint32_t height) {
+  uint32_t lanes = setting ? setting : triangles ? 8u : 4u;
+  while (lanes > 1 && (lanes > count || (height + gpu::WORKGROUP_SIZE / lanes - 1) / (gpu::WORKGROUP_SIZE / lanes) > 65535))
+    lanes /= 2;
+  return lanes;
+}
+
 void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, uint32_t first_sample,
                                uint32_t count) const {
   const State& s = *state_;
@@ -205,7 +227,6 @@ void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, ui
   pc.sample_seed = pass.sample_seed;
   pc.rr_depth = pass.rr_depth ? pass.rr_depth : UINT32_MAX;
   const uint32_t groups_x = (width + gpu::WORKGROUP_SIZE - 1) / gpu::WORKGROUP_SIZE;
-  const uint32_t groups_y = (height + gpu::WORKGROUP_SIZE - 1) / gpu::WORKGROUP_SIZE;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.pipeline);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.layout, 0, 1, &s.pipeline.set, 0,
                           nullptr);
@@ -214,8 +235,12 @@ void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, ui
     if (done > 0) compute_barrier(cmd);
     pc.sample_index = first_sample + done;
     pc.sample_count = std::min(per_dispatch, count - done);
+    pc.sample_lanes = s.sample_lanes_enabled()
+                          ? sample_lanes(s.settings.sample_lanes, s.scene_features.triangles, pc.sample_count, height)
+                          : 1u;
+    const uint32_t tile_height = gpu::WORKGROUP_SIZE / pc.sample_lanes;
     vkCmdPushConstants(cmd, s.pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
-    vkCmdDispatch(cmd, groups_x, groups_y, 1);
+    vkCmdDispatch(cmd, groups_x, (height + tile_height - 1) / tile_height, 1);
   }
 }
 

@@ -41,6 +41,8 @@ void validate_settings(const RenderSettings& s) {
   if (s.spp > (1u << 24))
     throw SettingError("spp", ": must be <= 16777216 (sample counts are exact fp32 integers)");
   if (s.bounce_limit < 1) throw SettingError("bounce_limit", ": must be >= 1");
+  if (s.sample_lanes > gpu::MAX_SAMPLE_LANES || (s.sample_lanes & (s.sample_lanes - 1)) != 0)
+    throw SettingError("sample_lanes", ": must be 0 (auto), 1, 2, 4 or 8, got " + std::to_string(s.sample_lanes));
 }
 
 }  // namespace octrace

@@ -45,6 +45,10 @@ struct RenderSettings {
   // pixel); 0: every pass of a batch in one dispatch. The image is the same
   // whatever the value; only the time changes (docs/performance.md).
   uint32_t samples_per_dispatch = 0;
+  // Invocations that share a pixel's samples in a dispatch: 1, 2, 4 or 8; 0:
+  // auto (8 with triangles, else 4; render/path_tracer.cpp). The image is the
+  // same whatever the value (shaders/path_trace.comp).
+  uint32_t sample_lanes = 0;
 };
 
 // Checks sizes and counts; throws SettingError naming the setting

@@ -37,6 +37,9 @@ OCT_CONST(uint, SKY_UNIFORM, 1u);
 OCT_CONST(uint, SKY_NONE, 2u);
 
 OCT_CONST(uint, WORKGROUP_SIZE, 8u);  // 8x8 invocations per workgroup
+// At most this many invocations of a path-tracing workgroup share one pixel's
+// samples (PassParams.sample_lanes).
+OCT_CONST(uint, MAX_SAMPLE_LANES, 8u);
 
 // Kinds of primitive a hit can name (Hit.kind in shaders/accel/closest_hit.glsl).
 // Ids: the top level (the scene's octree) holds spheres [0, sphere_count)
@@ -87,6 +90,9 @@ OCT_CONST(uint, SPEC_ANY_LIGHT, 8u);
 OCT_CONST(uint, SPEC_SPHERES, 9u);
 OCT_CONST(uint, SPEC_TRIANGLES, 10u);
 OCT_CONST(uint, SPEC_VERTEX_NORMALS, 11u);
+// Whether invocations may share a pixel's samples (PassParams.sample_lanes);
+// off, the workgroup barrier that sharing needs is compiled out.
+OCT_CONST(uint, SPEC_SAMPLE_LANES, 14u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 3u);
 
@@ -245,7 +251,7 @@ struct PassParams {
   uint sample_index;  // the first sample this dispatch adds to every pixel ...
   uint rr_depth;      // Russian roulette from this bounce on (0xffffffff: never)
   uint sample_count;  // ... and how many: sample_index .. sample_index + sample_count - 1
-  uint pad1;
+  uint sample_lanes;  // invocations per pixel (1, 2, 4 or 8): a workgroup covers an 8 x (8 / lanes) tile
   uint pad2;
 };
 

@@ -72,7 +72,7 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   EXPECT_EQ(f.sample_index, 24u);
   EXPECT_EQ(f.rr_depth, 25u);
   EXPECT_EQ(f.sample_count, 26u);
-  EXPECT_EQ(f.pad1, 27u);
+  EXPECT_EQ(f.sample_lanes, 27u);
   EXPECT_EQ(f.pad2, 28u);
 
   gpu::ResolveParams r{};

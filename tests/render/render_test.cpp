@@ -60,6 +60,36 @@ bool same_bits(const Image& a, const Image& b) {
          std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)) == 0;
 }
 
+// How samples are split into dispatches and shared among invocations does
+// not change a bit of the result: mean, variance, sample and ray counts
+// (shaders/path_trace.comp main()). The image size is not a multiple of the
+// workgroup's tile, and the scene has spheres and a mesh.
+TEST_F(RenderTest, BatchingAndSampleLanesDoNotChangeTheResult) {
+  Scene scene = make_rtiow_scene({40, 0.2f, 3});
+  test::place(scene, test::icosphere(2, 1, true), glm::translate(glm::mat4(1.0f), glm::vec3(2, 1, 2)));
+  RenderSettings s;
+  s.width = 45;
+  s.height = 29;
+  s.spp = 7;
+  // The reference: one dispatch per sample, one invocation per pixel.
+  s.samples_per_dispatch = 1;
+  s.sample_lanes = 1;
+  const RenderResult want = render(test::shared_context(), scene, s);
+  for (auto [per_dispatch, lanes] : {std::pair{0u, 0u}, {0u, 8u}, {0u, 4u}, {0u, 2u}, {3u, 4u}, {5u, 8u}, {2u, 1u}}) {
+    s.samples_per_dispatch = per_dispatch;
+    s.sample_lanes = lanes;
+    PathTracer tracer(test::shared_context(), scene, s);
+    tracer.run_passes(pass_settings(scene, s), 0, s.spp);  // all 7 in one batch
+    const RenderResult got = tracer.read_result();
+    SCOPED_TRACE("samples per dispatch " + std::to_string(per_dispatch) + ", lanes " + std::to_string(lanes));
+    EXPECT_TRUE(same_bits(got.mean, want.mean));
+    EXPECT_TRUE(same_bits(got.variance_of_mean, want.variance_of_mean));
+    EXPECT_EQ(got.count, want.count);
+    EXPECT_EQ(got.rays, want.rays);
+    EXPECT_EQ(got.min_samples, 7u);
+  }
+}
+
 // The seam of the preview window: a tracer made once renders another camera,
 // bounce limit and seed per pass, and gives exactly the image of a tracer
 // made for them from the start. A move rebuilds nothing.
