@@ -91,15 +91,17 @@ struct SceneOptions {
   }
 };
 
-// "488 spheres, 3 meshes, 5 instances, 1200 triangles (800 unique), 4 materials";
-// the mesh part only when there are meshes.
+// "488 spheres, 3 meshes, 5 instances, 1200 triangles (800 unique), 4 materials, 2 textures";
+// the mesh part only when there are meshes, the textures only when there are some.
 std::string scene_summary(const Scene& scene) {
   std::string out = std::to_string(scene.spheres.size()) + " spheres, ";
   if (!scene.meshes.empty())
     out += std::to_string(scene.meshes.size()) + " meshes, " + std::to_string(scene.instances.size()) +
            " instances, " + std::to_string(instanced_triangle_count(scene)) + " triangles (" +
            std::to_string(unique_triangle_count(scene)) + " unique), ";
-  return out + std::to_string(scene.materials.size()) + " materials";
+  out += std::to_string(scene.materials.size()) + " materials";
+  if (!scene.textures.empty()) out += ", " + std::to_string(scene.textures.size()) + " textures";
+  return out;
 }
 
 // Parses "WxH": two decimal integers; values beyond int range are reported
@@ -292,7 +294,8 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
                          {"instances", scene.instances.size()},
                          {"triangles_unique", unique_triangle_count(scene)},
                          {"triangles_instanced", instanced_triangle_count(scene)},
-                         {"materials", scene.materials.size()}}},
+                         {"materials", scene.materials.size()},
+                         {"textures", scene.textures.size()}}},
               {"width", settings.width},
               {"height", settings.height},
               {"spp", settings.spp},

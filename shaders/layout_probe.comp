@@ -21,6 +21,8 @@ layout(std430, binding = 8) buffer B8 { GpuTriangle triangles[2]; };
 layout(std430, binding = 9) buffer B9 { GpuTriangleNormals triangle_normals[2]; };
 layout(std430, binding = 10) buffer B10 { GpuInstance instances[2]; };
 layout(std430, binding = 11) buffer B11 { GpuMesh meshes[2]; };
+layout(std430, binding = 12) buffer B12 { GpuTexture textures[2]; };
+layout(std430, binding = 13) buffer B13 { GpuTriangleUvs triangle_uvs[2]; };
 
 void main() {
   scene.sky_a = vec3(1, 2, 3);
@@ -31,6 +33,10 @@ void main() {
   scene.triangle_count = 10;
   scene.vertex_normals = 11;
   scene.instance_count = 12;
+  scene.triangle_uvs = 13;
+  scene.pad0 = 14;
+  scene.pad1 = 15;
+  scene.pad2 = 16;
 
   pass.cam_origin = vec3(1, 2, 3);
   pass.lens_radius = 4;
@@ -63,14 +69,19 @@ void main() {
     materials[i].type = u + 8;
     materials[i].fuzz = o + 9;
     materials[i].ior = o + 10;
-    materials[i].pad0 = u + 11;
-    materials[i].pad1 = u + 12;
+    materials[i].base_color_texture = u + 11;
+    materials[i].emission_texture = u + 12;
+    materials[i].emission = vec3(o + 81, o + 82, o + 83);
+    materials[i].pad0 = u + 84;
     stats[i].nonfinite_samples = u + 13;
     stats[i].pad0 = u + 14;
     stats[i].pad1 = u + 15;
     stats[i].pad2 = u + 16;
     materials_half[i].color_type = f16vec4(o + 17, o + 18, o + 19, o + 20);
     materials_half[i].params = f16vec4(o + 21, o + 22, o + 23, o + 24);
+    materials_half[i].emission = f16vec4(o + 85, o + 86, o + 87, o + 88);
+    materials_half[i].base_color_texture = u + 89;
+    materials_half[i].emission_texture = u + 90;
     nodes[i].lo = vec3(o + 25, o + 26, o + 27);
     nodes[i].first = u + 28;
     nodes[i].hi = vec3(o + 29, o + 30, o + 31);
@@ -102,5 +113,12 @@ void main() {
     meshes[i].pad0 = u + 78;
     meshes[i].pad1 = u + 79;
     meshes[i].pad2 = u + 80;
+    textures[i].first_texel = u + 91;
+    textures[i].width = u + 92;
+    textures[i].height = u + 93;
+    textures[i].wrap = u + 94;
+    triangle_uvs[i].uv0 = vec2(o + 95, o + 96);
+    triangle_uvs[i].uv1 = vec2(o + 97, o + 98);
+    triangle_uvs[i].uv2 = vec2(o + 99, o + 100);
   }
 }

@@ -28,6 +28,9 @@ layout(std430, binding = BINDING_TRIANGLES) readonly buffer TriangleBuf { GpuTri
 layout(std430, binding = BINDING_TRIANGLE_NORMALS) readonly buffer TriangleNormalBuf { GpuTriangleNormals triangle_normals[]; };
 layout(std430, binding = BINDING_INSTANCES) readonly buffer InstanceBuf { GpuInstance instances[]; };
 layout(std430, binding = BINDING_MESHES) readonly buffer MeshBuf { GpuMesh meshes[]; };
+layout(std430, binding = BINDING_TEXTURES) readonly buffer TextureBuf { GpuTexture textures[]; };
+layout(std430, binding = BINDING_TEXELS) readonly buffer TexelBuf { uint texels[]; };
+layout(std430, binding = BINDING_TRIANGLE_UVS) readonly buffer TriangleUvBuf { GpuTriangleUvs triangle_uvs[]; };
 
 layout(push_constant) uniform Push { PassParams pass; };
 
@@ -47,6 +50,8 @@ layout(constant_id = SPEC_ANY_LIGHT) const bool ANY_LIGHT = true;
 layout(constant_id = SPEC_SPHERES) const bool HAS_SPHERES = true;
 layout(constant_id = SPEC_TRIANGLES) const bool HAS_TRIANGLES = true;
 layout(constant_id = SPEC_VERTEX_NORMALS) const bool HAS_VERTEX_NORMALS = true;
+layout(constant_id = SPEC_TEXTURES) const bool HAS_TEXTURES = true;
+layout(constant_id = SPEC_SURFACE_EMISSION) const bool HAS_SURFACE_EMISSION = true;
 layout(constant_id = SPEC_SAMPLE_LANES) const bool SAMPLE_LANES = true;
 
 #include "shared/rng.h"
@@ -95,10 +100,13 @@ vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments)
     vec3 dir;
     bool refracted = false;
     if (HAS_LAMBERTIAN && m.type == MAT_LAMBERTIAN) {
+      // A glTF surface emits and reflects: its emission is added here and
+      // the path goes on.
+      if (HAS_SURFACE_EMISSION) radiance += throughput * lambertian_emission(m, surf.uv);
       // Cosine-weighted: normal + uniform unit vector (book v4); the rare sum
       // that cancels to zero falls back to the normal.
       dir = safe_normalize(vec3(dn + dreal3(random_unit_vector(rng))), n);
-      throughput *= m.color;
+      throughput *= lambertian_albedo(m, surf.uv);
     } else if (HAS_METAL && m.type == MAT_METAL) {
       dreal3 d = reflect(d_in, dn);
       if (HAS_FUZZ) d += dreal(m.fuzz) * dreal3(random_unit_vector(rng));

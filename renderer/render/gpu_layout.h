@@ -26,15 +26,29 @@ static_assert(offsetof(GpuTriangleNormals, n1) == 16);
 static_assert(offsetof(GpuTriangleNormals, n2) == 32);
 static_assert(offsetof(GpuTriangleNormals, pad2) == 44);
 
-static_assert(sizeof(GpuMaterial) == 32);
+static_assert(sizeof(GpuTriangleUvs) == 24);
+static_assert(offsetof(GpuTriangleUvs, uv1) == 8);
+static_assert(offsetof(GpuTriangleUvs, uv2) == 16);
+
+static_assert(sizeof(GpuMaterial) == 48);
 static_assert(offsetof(GpuMaterial, type) == 12);
 static_assert(offsetof(GpuMaterial, fuzz) == 16);
 static_assert(offsetof(GpuMaterial, ior) == 20);
-static_assert(offsetof(GpuMaterial, pad0) == 24);
-static_assert(offsetof(GpuMaterial, pad1) == 28);
+static_assert(offsetof(GpuMaterial, base_color_texture) == 24);
+static_assert(offsetof(GpuMaterial, emission_texture) == 28);
+static_assert(offsetof(GpuMaterial, emission) == 32);
+static_assert(offsetof(GpuMaterial, pad0) == 44);
 
-static_assert(sizeof(GpuMaterialHalf) == 16);
+static_assert(sizeof(GpuMaterialHalf) == 32);
 static_assert(offsetof(GpuMaterialHalf, params) == 8);
+static_assert(offsetof(GpuMaterialHalf, emission) == 16);
+static_assert(offsetof(GpuMaterialHalf, base_color_texture) == 24);
+static_assert(offsetof(GpuMaterialHalf, emission_texture) == 28);
+
+static_assert(sizeof(GpuTexture) == 16);
+static_assert(offsetof(GpuTexture, width) == 4);
+static_assert(offsetof(GpuTexture, height) == 8);
+static_assert(offsetof(GpuTexture, wrap) == 12);
 
 static_assert(sizeof(RenderStats) == 16);
 static_assert(offsetof(RenderStats, pad0) == 4);
@@ -46,7 +60,7 @@ static_assert(offsetof(GpuOctreeNode, first) == 12);
 static_assert(offsetof(GpuOctreeNode, hi) == 16);
 static_assert(offsetof(GpuOctreeNode, count_or_mask) == 28);
 
-static_assert(sizeof(SceneParams) == 48);
+static_assert(sizeof(SceneParams) == 64);
 static_assert(offsetof(SceneParams, sky_type) == 12);
 static_assert(offsetof(SceneParams, sky_b) == 16);
 static_assert(offsetof(SceneParams, sphere_count) == 28);
@@ -54,6 +68,10 @@ static_assert(offsetof(SceneParams, big_count) == 32);
 static_assert(offsetof(SceneParams, triangle_count) == 36);
 static_assert(offsetof(SceneParams, vertex_normals) == 40);
 static_assert(offsetof(SceneParams, instance_count) == 44);
+static_assert(offsetof(SceneParams, triangle_uvs) == 48);
+static_assert(offsetof(SceneParams, pad0) == 52);
+static_assert(offsetof(SceneParams, pad1) == 56);
+static_assert(offsetof(SceneParams, pad2) == 60);
 
 static_assert(sizeof(GpuInstance) == 64);
 static_assert(offsetof(GpuInstance, to_object1) == 16);
@@ -100,5 +118,8 @@ static_assert(uint32_t(MaterialType::Emissive) == MAT_EMISSIVE);
 static_assert(uint32_t(SkyType::Gradient) == SKY_GRADIENT);
 static_assert(uint32_t(SkyType::Uniform) == SKY_UNIFORM);
 static_assert(uint32_t(SkyType::None) == SKY_NONE);
+static_assert(uint32_t(Wrap::Repeat) == WRAP_REPEAT);
+static_assert(uint32_t(Wrap::ClampToEdge) == WRAP_CLAMP_TO_EDGE);
+static_assert(uint32_t(Wrap::MirroredRepeat) == WRAP_MIRRORED_REPEAT);
 
 }  // namespace octrace::gpu

@@ -39,6 +39,12 @@ glm::vec3 face_normal(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
   return len > 0.0 ? glm::vec3(g / len) : glm::vec3(0.0f, 0.0f, 1.0f);
 }
 
+uint64_t texel_count(const Scene& scene) {
+  uint64_t n = 0;
+  for (const Texture& t : scene.textures) n += t.texels.size();
+  return n;
+}
+
 }  // namespace
 
 // The device's view of the scene (bake_single_use_meshes applied).
@@ -144,6 +150,32 @@ std::vector<gpu::GpuTriangleNormals> object_triangle_normals(const Scene& scene)
   return out;
 }
 
+std::vector<gpu::GpuTriangleUvs> object_triangle_uvs(const Scene& scene) {
+  std::vector<gpu::GpuTriangleUvs> out;
+  out.reserve(unique_triangle_count(scene));
+  for (const Mesh& mesh : scene.meshes)
+    for (size_t k = 0; k < mesh.triangle_count(); ++k) {
+      gpu::GpuTriangleUvs t{};
+      if (!mesh.uvs.empty()) {
+        const uint32_t* idx = &mesh.indices[3 * k];
+        t = {mesh.uvs[idx[0]], mesh.uvs[idx[1]], mesh.uvs[idx[2]]};
+      }
+      out.push_back(t);
+    }
+  return out;
+}
+
+GpuTextures gpu_textures(const Scene& scene) {
+  GpuTextures out;
+  out.texels.reserve(texel_count(scene));
+  for (const Texture& t : scene.textures) {
+    const uint32_t wrap = uint32_t(t.wrap_s) | uint32_t(t.wrap_t) << 16;
+    out.table.push_back({uint32_t(out.texels.size()), t.width, t.height, wrap});
+    out.texels.insert(out.texels.end(), t.texels.begin(), t.texels.end());
+  }
+  return out;
+}
+
 std::vector<Aabb> mesh_triangle_boxes(const Mesh& mesh) {
   std::vector<Aabb> boxes(mesh.triangle_count());
   for (size_t k = 0; k < boxes.size(); ++k)
@@ -220,10 +252,21 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
     f.color = m.type == MaterialType::Emissive ? m.radiance : m.albedo;
     f.fuzz = m.fuzz;
     f.ior = m.ior;
-    materials_half[i].color_type = {glm::packHalf1x16(f.color.r), glm::packHalf1x16(f.color.g),
-                                    glm::packHalf1x16(f.color.b), glm::packHalf1x16(float(f.type))};
-    materials_half[i].params = {glm::packHalf1x16(f.fuzz), glm::packHalf1x16(f.ior), 0, 0};
+    f.base_color_texture = m.base_color_texture.value_or(gpu::NO_TEXTURE);
+    f.emission_texture = m.emission_texture.value_or(gpu::NO_TEXTURE);
+    f.emission = m.emission;
+    gpu::GpuMaterialHalf& h = materials_half[i];
+    h.color_type = {glm::packHalf1x16(f.color.r), glm::packHalf1x16(f.color.g), glm::packHalf1x16(f.color.b),
+                    glm::packHalf1x16(float(f.type))};
+    h.params = {glm::packHalf1x16(f.fuzz), glm::packHalf1x16(f.ior), 0, 0};
+    h.emission = {glm::packHalf1x16(f.emission.r), glm::packHalf1x16(f.emission.g), glm::packHalf1x16(f.emission.b), 0};
+    h.base_color_texture = f.base_color_texture;
+    h.emission_texture = f.emission_texture;
   }
+  const size_t texture_count = scene.textures.size();
+  check_fits(ctx, texel_count(scene) * sizeof(uint32_t),
+             "the texels of " + std::to_string(texture_count) + (texture_count == 1 ? " texture" : " textures"));
+  const GpuTextures textures = gpu_textures(scene);
   gpu::SceneParams& p = g.values;
   p = {};
   const Sky& sky = scene.sky;
@@ -239,11 +282,17 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   bool any_normals = false;
   for (const Mesh& mesh : scene.meshes) any_normals |= !mesh.normals.empty();
   if (any_normals) normals = object_triangle_normals(scene);
+  // Uvs only where a material can sample a texture with them.
+  std::vector<gpu::GpuTriangleUvs> uvs;
+  bool any_uvs = false;
+  for (const Mesh& mesh : scene.meshes) any_uvs |= !mesh.uvs.empty();
+  if (any_uvs && !textures.table.empty()) uvs = object_triangle_uvs(scene);
   const std::vector<gpu::GpuInstance> instances = gpu_instances(scene);
   const std::vector<gpu::GpuMesh> meshes = gpu_meshes(scene);
   p.triangle_count = uint32_t(triangles.size());
   p.vertex_normals = any_normals ? 1u : 0u;
   p.instance_count = uint32_t(instances.size());
+  p.triangle_uvs = uvs.empty() ? 0u : 1u;
 
   create_buffer(g.params, ctx, sizeof p, false, "scene parameters");
   create_buffer(g.triangles, ctx, triangle_bytes, false, "triangle buffer");
@@ -260,6 +309,12 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   create_buffer(g.materials, ctx, materials.size() * sizeof(gpu::GpuMaterial), false, "material buffer");
   create_buffer(g.materials_half, ctx, materials_half.size() * sizeof(gpu::GpuMaterialHalf), false,
                 "material buffer");
+  create_buffer(g.textures, ctx, textures.table.size() * sizeof(gpu::GpuTexture), false, "texture table");
+  create_buffer(g.texels, ctx, textures.texels.size() * sizeof(uint32_t), false, "texel buffer");
+  create_buffer(g.triangle_uvs, ctx, uvs.size() * sizeof(gpu::GpuTriangleUvs), false, "triangle uv buffer");
+  upload_buffer(ctx, g.textures, textures.table.data(), textures.table.size() * sizeof(gpu::GpuTexture));
+  upload_buffer(ctx, g.texels, textures.texels.data(), textures.texels.size() * sizeof(uint32_t));
+  upload_buffer(ctx, g.triangle_uvs, uvs.data(), uvs.size() * sizeof(gpu::GpuTriangleUvs));
   create_buffer(g.nodes, ctx, 0, false, "octree node buffer");
   create_buffer(g.refs, ctx, 0, false, "octree reference buffer");
   upload_buffer(ctx, g.params, &p, sizeof p);
@@ -278,6 +333,7 @@ Scene bake_single_use_meshes(const Scene& scene) {
   out.camera = scene.camera;
   out.sky = scene.sky;
   out.materials = scene.materials;
+  out.textures = scene.textures;
   out.spheres = scene.spheres;
   // Meshes placed more than once stay instanced, in their order.
   std::vector<uint32_t> remap(scene.meshes.size(), UINT32_MAX);
@@ -286,10 +342,12 @@ Scene bake_single_use_meshes(const Scene& scene) {
       remap[m] = uint32_t(out.meshes.size());
       out.meshes.push_back(scene.meshes[m]);
     }
-  // The baked mesh has vertex normals if any mesh baked into it has them.
-  bool single_smooth = false;
-  for (const Instance& inst : scene.instances)
+  // The baked mesh has vertex normals (uvs) if any mesh baked into it has them.
+  bool single_smooth = false, single_uvs = false;
+  for (const Instance& inst : scene.instances) {
     single_smooth |= uses[inst.mesh] == 1 && !scene.meshes[inst.mesh].normals.empty();
+    single_uvs |= uses[inst.mesh] == 1 && !scene.meshes[inst.mesh].uvs.empty();
+  }
   Mesh baked;
   baked.name = "baked";
   for (const Instance& inst : scene.instances) {
@@ -321,6 +379,8 @@ Scene bake_single_use_meshes(const Scene& scene) {
           for (int v = 0; v < 3; ++v) baked.normals.push_back(world_normal(mesh.normals[idx[v]]));
         }
       }
+      if (single_uvs)
+        for (int v = 0; v < 3; ++v) baked.uvs.push_back(mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[idx[v]]);
       baked.indices.insert(baked.indices.end(), {base, base + 1, base + 2});
       baked.materials.push_back(mesh.materials[k]);
     }
@@ -347,9 +407,10 @@ void check_precision(const Scene& scene, Precision precision) {
   for (size_t i = 0; i < scene.materials.size(); ++i) {
     const Material& m = scene.materials[i];
     const glm::vec3 color = m.type == MaterialType::Emissive ? m.radiance : m.albedo;
-    if (std::max({color.r, color.g, color.b}) > kHalfMax)
-      throw SettingError("precision", std::string(" ") + precision_name(precision) + ": materials[" +
-                                          std::to_string(i) + "]: radiance above 65504 does not fit half");
+    for (const auto& [c, name] : {std::pair{color, "radiance"}, std::pair{m.emission, "emission"}})
+      if (std::max({c.r, c.g, c.b}) > kHalfMax)
+        throw SettingError("precision", std::string(" ") + precision_name(precision) + ": materials[" +
+                                            std::to_string(i) + "]: " + name + " above 65504 does not fit half");
   }
 }
 

@@ -25,6 +25,9 @@ struct GpuScene {
   Buffer sphere_materials;  // material index per sphere
   Buffer materials;         // GpuMaterial per material (fp32)
   Buffer materials_half;    // GpuMaterialHalf per material (the fp16 variants)
+  Buffer textures;          // GpuTexture per texture (the texture table)
+  Buffer texels;            // every texture's texels, one uint (RGBA8) each
+  Buffer triangle_uvs;      // GpuTriangleUvs per triangle (placeholder without textures)
   Buffer nodes, refs;       // the octree (16-byte placeholders without one)
   bool has_octree = false;
   OctreeStats octree;
@@ -44,6 +47,7 @@ Scene bake_single_use_meshes(const Scene& scene);
 // instances' world boxes, one per mesh over its triangles (upload_octree).
 std::vector<gpu::GpuTriangle> object_triangles(const Scene& scene);
 std::vector<gpu::GpuTriangleNormals> object_triangle_normals(const Scene& scene);
+std::vector<gpu::GpuTriangleUvs> object_triangle_uvs(const Scene& scene);
 std::vector<gpu::GpuInstance> gpu_instances(const Scene& scene);
 std::vector<gpu::GpuMesh> gpu_meshes(const Scene& scene);  // roots not filled in
 // A mesh's triangle boxes in object space; each instance's world box (its
@@ -55,6 +59,13 @@ std::vector<Aabb> instance_boxes(const Scene& scene);
 std::vector<Aabb> primitive_boxes(const Scene& scene);
 std::vector<Aabb> sphere_boxes(const std::vector<Sphere>& spheres);
 
+// The texture table and the texels of every texture, in the scene's order.
+struct GpuTextures {
+  std::vector<gpu::GpuTexture> table;
+  std::vector<uint32_t> texels;
+};
+GpuTextures gpu_textures(const Scene& scene);
+
 // Packs and uploads `scene`; with Accel::Octree also builds and uploads its
 // octree. Throws InputError when an array does not fit one storage buffer of
 // the device (naming the array, its size and the limit).
@@ -65,7 +76,7 @@ void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Acc
 void upload_octree(GpuScene& g, const VulkanContext& ctx, const Scene& scene, const OctreeParams& params);
 
 // Throws InputError when a value of the scene does not fit the precision
-// (a radiance beyond half's largest value, 65504, would be inf in fp16).
+// (a radiance or emission beyond half's largest value, 65504, would be inf in fp16).
 void check_precision(const Scene& scene, Precision precision);
 
 }  // namespace octrace

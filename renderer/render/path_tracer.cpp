@@ -108,7 +108,9 @@ void PathTracer::State::create_pipeline() {
                            {gpu::SPEC_ANY_LIGHT, f.any_light},
                            {gpu::SPEC_SPHERES, f.spheres},
                            {gpu::SPEC_TRIANGLES, f.triangles},
-                           {gpu::SPEC_VERTEX_NORMALS, f.vertex_normals}});
+                           {gpu::SPEC_VERTEX_NORMALS, f.vertex_normals},
+                           {gpu::SPEC_TEXTURES, f.textures},
+                           {gpu::SPEC_SURFACE_EMISSION, f.surface_emission}});
   const GpuScene& g = s.scene;
   bind_buffers(p, {{gpu::BINDING_SCENE, &g.params},
                    {gpu::BINDING_SPHERES, &g.spheres},
@@ -119,7 +121,10 @@ void PathTracer::State::create_pipeline() {
                    {gpu::BINDING_SPHERE_MATERIALS, &g.sphere_materials},
                    {gpu::BINDING_MATERIALS, half ? &g.materials_half : &g.materials},
                    {gpu::BINDING_OCTREE_NODES, &g.nodes},
-                   {gpu::BINDING_OCTREE_REFS, &g.refs}});
+                   {gpu::BINDING_OCTREE_REFS, &g.refs},
+                   {gpu::BINDING_TEXTURES, &g.textures},
+                   {gpu::BINDING_TEXELS, &g.texels},
+                   {gpu::BINDING_TRIANGLE_UVS, &g.triangle_uvs}});
   bind_accumulation();
   s.timings.pipeline_ms = ms_since(start);
 }

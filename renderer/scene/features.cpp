@@ -28,7 +28,11 @@ SceneFeatures scene_features(const Scene& scene) {
     if (!used[i]) continue;
     const Material& m = scene.materials[i];
     switch (m.type) {
-      case MaterialType::Lambertian: f.lambertian = true; break;
+      case MaterialType::Lambertian:
+        f.lambertian = true;
+        f.textures |= m.base_color_texture.has_value() || m.emission_texture.has_value();
+        f.surface_emission |= !is_black(m.emission);
+        break;
       case MaterialType::Metal:
         f.metal = true;
         f.fuzzy_metal |= m.fuzz > 0.0f;
@@ -44,7 +48,7 @@ SceneFeatures scene_features(const Scene& scene) {
     case SkyType::Uniform: f.sky_black = is_black(scene.sky.radiance); break;
     case SkyType::Gradient: f.sky_black = is_black(scene.sky.down) && is_black(scene.sky.up); break;
   }
-  f.any_light = f.emissive || !f.sky_black;
+  f.any_light = f.emissive || f.surface_emission || !f.sky_black;
   f.spheres = !scene.spheres.empty();
   f.empty = !f.spheres && !f.triangles;
   return f;
@@ -57,7 +61,7 @@ SceneFeatures all_features(const Scene& scene) {
   f.sky_black = false;
   f.any_light = true;
   f.empty = false;
-  f.spheres = f.triangles = f.vertex_normals = true;
+  f.spheres = f.triangles = f.vertex_normals = f.textures = f.surface_emission = true;
   return f;
 }
 
@@ -71,6 +75,8 @@ std::vector<std::string> feature_names(const SceneFeatures& f) {
   if (f.defocus) names.push_back("defocus");
   if (f.triangles) names.push_back("triangles");
   if (f.vertex_normals) names.push_back("vertex_normals");
+  if (f.textures) names.push_back("textures");
+  if (f.surface_emission) names.push_back("surface_emission");
   names.push_back(f.sky == SkyType::Gradient ? "sky_gradient" : f.sky == SkyType::Uniform ? "sky_uniform" : "sky_none");
   if (f.sky_black) names.push_back("sky_black");
   if (!f.any_light) names.push_back("no_light");

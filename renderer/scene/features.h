@@ -27,6 +27,8 @@ struct SceneFeatures {
   bool spheres = true;       // some sphere
   bool triangles = false;    // some instanced mesh triangle
   bool vertex_normals = false;  // some instanced mesh has vertex normals (smooth shading)
+  bool textures = false;          // some material samples a texture
+  bool surface_emission = false;  // some lambertian material emits (glTF emission)
 
   bool operator==(const SceneFeatures&) const = default;
 };

@@ -10,7 +10,7 @@
 //
 // Section numbers refer to the glTF 2.0 specification (Khronos, 2021).
 #define TINYGLTF_IMPLEMENTATION
-#define TINYGLTF_NO_STB_IMAGE        // images go through check_image below
+#define TINYGLTF_NO_STB_IMAGE        // images go through decode_image below
 #define TINYGLTF_NO_STB_IMAGE_WRITE  // octrace writes no glTF
 #include <tiny_gltf.h>
 
@@ -93,11 +93,14 @@ constexpr Field kTextureInfo[] = {required("index", Kind::Index), {"texCoord", K
 constexpr Field kPbr[] = {{"baseColorFactor", Kind::Numbers, nullptr, 4}, {"baseColorTexture", Kind::Object, kTextureInfo},
                           {"metallicFactor", Kind::Number}, {"roughnessFactor", Kind::Number},
                           {"metallicRoughnessTexture", Kind::Object, kTextureInfo}, {}};
+constexpr Field kEmissiveStrength[] = {{"emissiveStrength", Kind::Number}, {}};
+constexpr Field kMaterialExtensions[] = {{"KHR_materials_emissive_strength", Kind::Object, kEmissiveStrength}, {}};
 constexpr Field kMaterial[] = {{"pbrMetallicRoughness", Kind::Object, kPbr}, {"normalTexture", Kind::Object, kTextureInfo},
                                {"occlusionTexture", Kind::Object, kTextureInfo},
                                {"emissiveTexture", Kind::Object, kTextureInfo},
                                {"emissiveFactor", Kind::Numbers, nullptr, 3}, {"alphaMode", Kind::String},
-                               {"alphaCutoff", Kind::Number}, {"doubleSided", Kind::Bool}, {}};
+                               {"alphaCutoff", Kind::Number}, {"doubleSided", Kind::Bool},
+                               {"extensions", Kind::Object, kMaterialExtensions}, {}};
 constexpr Field kPrimitive[] = {required("attributes", Kind::IndexMap), {"indices", Kind::Index},
                                 {"material", Kind::Index}, {"mode", Kind::Integer}, {"targets", Kind::IndexMaps}, {}};
 constexpr Field kMesh[] = {required("primitives", Kind::Objects, kPrimitive), {"weights", Kind::Numbers}, {}};
@@ -247,7 +250,7 @@ struct SchemaCheck {
 };
 
 // Extensions a file may require (extensionsRequired) that octrace reads.
-constexpr std::string_view kSupportedExtensions[] = {"KHR_mesh_quantization"};
+constexpr std::string_view kSupportedExtensions[] = {"KHR_mesh_quantization", "KHR_materials_emissive_strength"};
 
 void check_schema(const Json& doc, const std::string& file) {
   const Where root;
@@ -313,14 +316,16 @@ void check_external_files(const Json& doc, const std::string& file, const std::s
   }
 }
 
-// tinygltf's image callback: checks that stb can read the image's header
-// (format and size). The pixels are not decoded: nothing draws them yet.
-// `user` is a std::string that receives the error, so that it comes out as
-// written here rather than after tinygltf's own lines.
-bool check_image(tinygltf::Image* image, int index, std::string* err, std::string*, int, int,
-                 const unsigned char* bytes, int size, void* user) {
+// tinygltf's image callback: decodes the image with stb_image (PNG and JPEG,
+// the formats of the core spec, 3.8.1, and the others stb reads) to RGBA8,
+// whatever its channels and bit depth (16-bit PNGs are rounded to 8 bits),
+// rows from the top. `user` is a std::string that receives the error, so that
+// it comes out as written here rather than after tinygltf's own lines.
+bool decode_image(tinygltf::Image* image, int index, std::string* err, std::string*, int, int,
+                  const unsigned char* bytes, int size, void* user) {
   int width = 0, height = 0, channels = 0;
-  if (!stbi_info_from_memory(bytes, size, &width, &height, &channels)) {
+  stbi_uc* pixels = stbi_load_from_memory(bytes, size, &width, &height, &channels, 4);
+  if (!pixels) {
     std::string& error = *static_cast<std::string*>(user);
     error = item("images", size_t(index)) + ": cannot be decoded (" + stbi_failure_reason() + ")";
     if (err) *err += error + "\n";
@@ -328,7 +333,11 @@ bool check_image(tinygltf::Image* image, int index, std::string* err, std::strin
   }
   image->width = width;
   image->height = height;
-  image->component = channels;
+  image->component = 4;
+  image->bits = 8;
+  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+  image->image.assign(pixels, pixels + size_t(width) * size_t(height) * 4);
+  stbi_image_free(pixels);
   return true;
 }
 
@@ -387,7 +396,7 @@ File open_gltf(const std::string& path) {
 
   tinygltf::TinyGLTF loader;
   std::string image_error;
-  loader.SetImageLoader(&check_image, &image_error);
+  loader.SetImageLoader(&decode_image, &image_error);
   std::string err, warn;
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
   const bool ok = binary ? loader.LoadBinaryFromMemory(&f.model, &err, &warn, data, unsigned(bytes.size()), dir)
@@ -666,11 +675,12 @@ Mesh read_mesh(File& f, size_t m) {
                          plural(gm.primitives.size() - kept.size(), "primitive") + " (" + reasons +
                          "): only triangles are rendered");
   }
-  const auto all_have = [&](const char* name) {
-    return !kept.empty() && std::all_of(kept.begin(), kept.end(),
-                                        [&](size_t j) { return attribute(gm.primitives[j], name) >= 0; });
-  };
-  const bool normals = all_have("NORMAL"), uvs = all_have("TEXCOORD_0");
+  const auto has = [&](size_t j, const char* name) { return attribute(gm.primitives[j], name) >= 0; };
+  const bool normals =
+      !kept.empty() && std::all_of(kept.begin(), kept.end(), [&](size_t j) { return has(j, "NORMAL"); });
+  // Uvs matter only under a texture: a primitive without them beside one
+  // with them (an untextured part of a textured mesh) gets uv (0, 0).
+  const bool uvs = std::any_of(kept.begin(), kept.end(), [&](size_t j) { return has(j, "TEXCOORD_0"); });
 
   // Primitives that share their vertex accessors share the vertices.
   struct VertexSet {
@@ -704,6 +714,8 @@ Mesh read_mesh(File& f, size_t m) {
         const auto t = read_attribute<2>(f, uv, at + ".attributes.TEXCOORD_0", "TEXCOORD_0");
         count_check(t.size(), "TEXCOORD_0", uv);
         mesh.uvs.insert(mesh.uvs.end(), t.begin(), t.end());
+      } else if (uvs) {
+        mesh.uvs.insert(mesh.uvs.end(), positions.size(), glm::vec2(0.0f));
       }
       if (mesh.positions.size() + positions.size() > UINT32_MAX)
         f.fail(mesh_at, "more than 2^32 - 1 vertices");
@@ -750,24 +762,122 @@ Mesh read_mesh(File& f, size_t m) {
 // materials
 // ---------------------------------------------------------------------------
 
-Material read_material(const File& f, size_t i) {
-  const std::vector<double>& c = f.model.materials[i].pbrMetallicRoughness.baseColorFactor;
-  if (!std::all_of(c.begin(), c.end(), [](double v) { return v >= 0.0 && v <= 1.0; })) {
-    std::string got;
-    for (double v : c) got += (got.empty() ? "" : ", ") + float_string(float(v));
-    f.fail(item("materials", i) + ".pbrMetallicRoughness.baseColorFactor", "must be 4 numbers in [0, 1], got [" + got + "]");
+// The file's textures that its materials use, each stored once however many
+// materials refer to it, in the order they are first used.
+struct Textures {
+  std::vector<Texture> list;
+  std::vector<int> index_of;  // glTF texture -> index in `list`; -1: not used yet
+};
+
+Wrap wrap_mode(const File& f, int mode, const std::string& at) {
+  switch (mode) {
+    case TINYGLTF_TEXTURE_WRAP_REPEAT: return Wrap::Repeat;
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return Wrap::ClampToEdge;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return Wrap::MirroredRepeat;
   }
+  f.fail(at, "unknown wrap mode " + std::to_string(mode) +
+                 " (expected 10497 REPEAT, 33071 CLAMP_TO_EDGE or 33648 MIRRORED_REPEAT)");
+}
+
+// The texture a textureInfo at `at` names: its image (decoded by
+// decode_image) and its sampler's wrap modes (3.8.4; without a sampler,
+// REPEAT). Filters are not read: textures are always sampled bilinearly.
+uint32_t read_texture(const File& f, Textures& textures, int index, const std::string& at) {
+  const tinygltf::Texture& t = f.get(f.model.textures, index, "textures", at + ".index");
+  int& stored = textures.index_of[size_t(index)];
+  if (stored >= 0) return uint32_t(stored);
+  const std::string self = item("textures", size_t(index));
+  if (t.source < 0) f.fail(self, "has no source image (octrace reads the images of the core spec, PNG and JPEG)");
+  const tinygltf::Image& image = f.get(f.model.images, t.source, "images", self + ".source");
+  const std::string image_at = item("images", size_t(t.source));
+  if (image.width <= 0 || image.height <= 0 || image.image.size() != size_t(image.width) * size_t(image.height) * 4)
+    f.fail(image_at, "has no image data");
+  Texture out;
+  out.width = uint32_t(image.width);
+  out.height = uint32_t(image.height);
+  out.texels.resize(size_t(out.width) * out.height);
+  // R, G, B, A bytes read as one little-endian uint: r | g << 8 | b << 16 | a << 24.
+  std::memcpy(out.texels.data(), image.image.data(), image.image.size());
+  if (t.sampler >= 0) {
+    const tinygltf::Sampler& sampler = f.get(f.model.samplers, t.sampler, "samplers", self + ".sampler");
+    const std::string sampler_at = item("samplers", size_t(t.sampler));
+    out.wrap_s = wrap_mode(f, sampler.wrapS, sampler_at + ".wrapS");
+    out.wrap_t = wrap_mode(f, sampler.wrapT, sampler_at + ".wrapT");
+  }
+  stored = int(textures.list.size());
+  textures.list.push_back(std::move(out));
+  return uint32_t(stored);
+}
+
+std::string numbers_string(const std::vector<double>& v) {
+  std::string out;
+  for (double x : v) out += (out.empty() ? "" : ", ") + float_string(float(x));
+  return "[" + out + "]";
+}
+
+bool in_unit_range(const std::vector<double>& v) {
+  return std::all_of(v.begin(), v.end(), [](double x) { return x >= 0.0 && x <= 1.0; });
+}
+
+// A glTF material as octrace renders it for now: lambertian, albedo =
+// baseColorFactor.rgb x baseColorTexture, emission = emissiveFactor x
+// KHR_materials_emissive_strength's emissiveStrength x emissiveTexture
+// (3.9.2, 3.9.3). Alpha is not read.
+Material read_material(const File& f, Textures& textures, size_t i) {
+  const tinygltf::Material& gm = f.model.materials[i];
+  const std::string at = item("materials", i);
+  const tinygltf::PbrMetallicRoughness& pbr = gm.pbrMetallicRoughness;
+  const std::vector<double>& c = pbr.baseColorFactor;
+  if (!in_unit_range(c))
+    f.fail(at + ".pbrMetallicRoughness.baseColorFactor", "must be 4 numbers in [0, 1], got " + numbers_string(c));
   Material m;
   m.albedo = {float(c[0]), float(c[1]), float(c[2])};
+  if (pbr.baseColorTexture.index >= 0)
+    m.base_color_texture =
+        read_texture(f, textures, pbr.baseColorTexture.index, at + ".pbrMetallicRoughness.baseColorTexture");
+
+  const std::vector<double>& e = gm.emissiveFactor;
+  if (!in_unit_range(e)) f.fail(at + ".emissiveFactor", "must be 3 numbers in [0, 1], got " + numbers_string(e));
+  double strength = 1.0;
+  if (const auto it = gm.extensions.find("KHR_materials_emissive_strength"); it != gm.extensions.end()) {
+    const tinygltf::Value& v = it->second.Get("emissiveStrength");
+    if (v.IsNumber()) strength = v.GetNumberAsDouble();  // the schema checked its type
+    if (!(strength >= 0.0 && std::isfinite(float(strength))))
+      f.fail(at + ".extensions.KHR_materials_emissive_strength.emissiveStrength",
+             "must be a finite number >= 0, got " + float_string(float(strength)));
+  }
+  if (e.size() == 3) m.emission = glm::vec3(float(e[0] * strength), float(e[1] * strength), float(e[2] * strength));
+  if (gm.emissiveTexture.index >= 0) {
+    const std::string texture_at = at + ".emissiveTexture";
+    f.get(f.model.textures, gm.emissiveTexture.index, "textures", texture_at + ".index");
+    // Times a zero emission it adds nothing: not stored.
+    if (m.emission != glm::vec3(0.0f))
+      m.emission_texture = read_texture(f, textures, gm.emissiveTexture.index, texture_at);
+  }
   return m;
 }
 
-bool has_textures_or_emission(const tinygltf::Model& model) {
-  if (!model.textures.empty()) return true;
-  return std::any_of(model.materials.begin(), model.materials.end(), [](const tinygltf::Material& m) {
-    return m.emissiveTexture.index >= 0 ||
-           std::any_of(m.emissiveFactor.begin(), m.emissiveFactor.end(), [](double v) { return v != 0.0; });
-  });
+// What of the file's materials is not rendered yet, named in one warning:
+// they render as lambertian with base colour and emission until the
+// materials issue. (Occlusion textures are not listed: a path tracer finds
+// occlusion itself.)
+std::vector<std::string> approximations(const tinygltf::Model& model) {
+  std::vector<std::string> out;
+  const auto note = [&](const std::string& what) {
+    if (std::find(out.begin(), out.end(), what) == out.end()) out.push_back(what);
+  };
+  for (const tinygltf::Material& m : model.materials) {
+    const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+    if (pbr.metallicFactor > 0.0 || pbr.metallicRoughnessTexture.index >= 0) note("metalness");
+    if (m.normalTexture.index >= 0) note("normal maps");
+    if (m.alphaMode == "BLEND" || m.alphaMode == "MASK") note("alpha " + m.alphaMode);
+    for (const tinygltf::TextureInfo* t : {&pbr.baseColorTexture, &m.emissiveTexture})
+      if (t->index >= 0 && t->texCoord != 0) note("texture coordinate sets other than 0");
+  }
+  for (const std::string& e : model.extensionsUsed)
+    if ((e.rfind("KHR_materials_", 0) == 0 && e != "KHR_materials_emissive_strength") || e == "KHR_texture_transform")
+      note(e);
+  return out;
 }
 
 // ---------------------------------------------------------------------------
@@ -812,6 +922,7 @@ struct PlacedCamera {
 struct Loaded {
   std::vector<Mesh> meshes;         // materials index `materials`
   std::vector<Material> materials;  // the file's, then glTF's default material if a primitive uses it
+  std::vector<Texture> textures;    // the materials' textures index these
   std::vector<Instance> instances;  // world transforms of the nodes
   std::vector<PlacedCamera> cameras;  // camera nodes in the order of the hierarchy
   size_t file_cameras = 0;
@@ -819,7 +930,9 @@ struct Loaded {
   std::vector<std::string> warnings;
 };
 
-Loaded read_gltf(const std::string& path, std::optional<uint32_t> scene_index) {
+// `own_materials`: read the file's materials and textures (not when the
+// scene replaces them).
+Loaded read_gltf(const std::string& path, std::optional<uint32_t> scene_index, bool own_materials) {
   File f = open_gltf(path);
   const tinygltf::Model& model = f.model;
   Loaded out;
@@ -832,9 +945,18 @@ Loaded read_gltf(const std::string& path, std::optional<uint32_t> scene_index) {
   out.scene = scene_index ? *scene_index : model.defaultScene >= 0 ? size_t(model.defaultScene) : 0;
   if (model.scenes.empty()) f.warnings.push_back(path + ": has no scenes: nothing to place");
 
-  for (size_t i = 0; i < model.materials.size(); ++i) out.materials.push_back(read_material(f, i));
-  if (has_textures_or_emission(model))
-    f.warnings.push_back(path + ": textures and emission are not rendered yet (base colour factors only)");
+  if (own_materials) {
+    Textures textures{{}, std::vector<int>(model.textures.size(), -1)};
+    for (size_t i = 0; i < model.materials.size(); ++i) out.materials.push_back(read_material(f, textures, i));
+    out.textures = std::move(textures.list);
+    const std::vector<std::string> missing = approximations(model);
+    if (!missing.empty()) {
+      std::string list;
+      for (const std::string& m : missing) list += (list.empty() ? "" : ", ") + m;
+      f.warnings.push_back(path + ": materials render as lambertian (base colour and emission) for now; not rendered: " +
+                           list);
+    }
+  }
 
   // Depth first with an explicit stack, so that a deep hierarchy cannot
   // overflow the call stack. glTF nodes form disjoint trees (3.5.3): a node
@@ -913,8 +1035,14 @@ void append(Scene& scene, const Loaded& file, std::optional<uint32_t> material_o
   const auto mesh_base = uint32_t(scene.meshes.size());
   const auto material_base = uint32_t(scene.materials.size());
   if (!material_override) {
-    scene.materials.insert(scene.materials.end(), file.materials.begin(), file.materials.end());
+    const auto texture_base = uint32_t(scene.textures.size());
+    for (Material m : file.materials) {
+      for (std::optional<uint32_t>* t : {&m.base_color_texture, &m.emission_texture})
+        if (*t) **t += texture_base;
+      scene.materials.push_back(m);
+    }
     scene.mesh_file_materials += file.materials.size();
+    scene.textures.insert(scene.textures.end(), file.textures.begin(), file.textures.end());
   }
   for (const Mesh& m : file.meshes) {
     scene.meshes.push_back(m);
@@ -990,13 +1118,13 @@ void append_gltf(Scene& scene, const std::string& path, std::optional<uint32_t> 
   if (material_override && *material_override >= scene.materials.size())
     throw InputError(path + ": material " + std::to_string(*material_override) + " out of range (" +
                      plural(scene.materials.size(), "material") + ")");
-  const Loaded file = read_gltf(path, opts.scene);
+  const Loaded file = read_gltf(path, opts.scene, !material_override);
   append(scene, file, material_override, transform);
   emit_warnings(opts, file.warnings);
 }
 
 Scene load_gltf_scene(const std::string& path, const GltfOptions& opts) {
-  const Loaded file = read_gltf(path, opts.scene);
+  const Loaded file = read_gltf(path, opts.scene, true);
   Scene scene;
   append(scene, file, std::nullopt, glm::mat4(1.0f));
   MeshRef ref;

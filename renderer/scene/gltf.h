@@ -6,8 +6,9 @@
 // 3.7.2.1); POINTS and LINES are skipped with one warning per mesh. Indexed or
 // not, 8/16/32-bit indices, byteStride, sparse accessors, normalized integer
 // attributes (and KHR_mesh_quantization). One glTF mesh is one Mesh, its
-// primitives concatenated with a material per triangle; NORMAL and TEXCOORD_0
-// are kept when every primitive of the mesh has them.
+// primitives concatenated with a material per triangle; NORMAL is kept when
+// every primitive of the mesh has it, TEXCOORD_0 when any has it (the other
+// primitives' vertices at uv (0, 0)).
 //
 // Placement: the node hierarchy of one scene (TRS or matrix, parent * child);
 // every node with a mesh is an Instance, and a mesh placed by several nodes is
@@ -15,15 +16,20 @@
 // with a negative determinant (a mirror): the renderer flips the front face of
 // such an instance, so that the file's triangles stay shared between instances.
 //
-// Materials, for now: lambertian with albedo = baseColorFactor.rgb (textures
-// and emission come with the materials step; a file that has them gets one
-// warning saying so). Primitives without a material take glTF's default
-// material (base colour 1).
+// Materials, for now: lambertian with albedo = baseColorFactor.rgb x
+// baseColorTexture and emission = emissiveFactor x emissiveStrength
+// (KHR_materials_emissive_strength) x emissiveTexture, the textures' rgb
+// sRGB-encoded (alpha is not read). A texture is its image decoded to RGBA8
+// (stb_image) with its sampler's wrap modes, stored once however many
+// materials use it. Whatever else the materials have (metalness, normal maps,
+// alpha modes, other material extensions, texture transforms) is named in one
+// warning. Primitives without a material take glTF's default material (base
+// colour 1).
 //
 // Errors: every problem with the file is an InputError of one line naming the
 // file and the glTF path ("model.glb: accessors[3]: count 900 exceeds
-// bufferView 2 (600 elements)"). Images are checked (found, and a format whose
-// header stb can read) but not decoded yet: nothing draws them.
+// bufferView 2 (600 elements)", "model.glb: images[2]: cannot be decoded
+// (...)"). Every image is decoded as the file loads, used or not.
 #pragma once
 
 #include <cstdint>

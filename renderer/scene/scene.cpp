@@ -181,11 +181,25 @@ void validate_sky(const Sky& sky, const std::string& source) {
   invalid(source, "sky.type", "unknown sky type " + std::to_string(static_cast<uint32_t>(sky.type)));
 }
 
-void validate_material(const Material& m, const std::string& source, size_t index) {
+// "index 9 out of range (3 materials)".
+std::string out_of_range(size_t index, size_t size, const char* one, const char* many) {
+  return "index " + std::to_string(index) + " out of range (" + std::to_string(size) + " " + (size == 1 ? one : many) +
+         ")";
+}
+
+void validate_material(const Material& m, const Scene& scene, const std::string& source, size_t index) {
   const std::string path = "materials[" + std::to_string(index) + "]";
+  const bool emits = m.emission != glm::vec3(0.0f) || m.emission_texture;
+  if (m.type != MaterialType::Lambertian && (m.base_color_texture || emits))
+    invalid(source, path, "only lambertian materials take textures and an emission (an emissive one has a radiance)");
+  for (const auto& [texture, field] : {std::pair{m.base_color_texture, ".base_color_texture"},
+                                       std::pair{m.emission_texture, ".emission_texture"}})
+    if (texture && *texture >= scene.textures.size())
+      invalid(source, path + field, out_of_range(*texture, scene.textures.size(), "texture", "textures"));
   switch (m.type) {
     case MaterialType::Lambertian:
       check_colour(m.albedo, source, path + ".albedo");
+      check_colour(m.emission, source, path + ".emission");
       return;
     case MaterialType::Metal:
       check_colour(m.albedo, source, path + ".albedo");
@@ -200,12 +214,6 @@ void validate_material(const Material& m, const std::string& source, size_t inde
       return;
   }
   invalid(source, path + ".type", "unknown material type " + std::to_string(static_cast<uint32_t>(m.type)));
-}
-
-// "index 9 out of range (3 materials)".
-std::string out_of_range(size_t index, size_t size, const char* one, const char* many) {
-  return "index " + std::to_string(index) + " out of range (" + std::to_string(size) + " " + (size == 1 ? one : many) +
-         ")";
 }
 
 void validate_mesh(const Mesh& m, const Scene& scene, const std::string& source, size_t index) {
@@ -237,6 +245,18 @@ void validate_mesh(const Mesh& m, const Scene& scene, const std::string& source,
   for (size_t i = 0; i < m.materials.size(); ++i)
     if (m.materials[i] >= scene.materials.size())
       invalid(source, element("materials", i), out_of_range(m.materials[i], scene.materials.size(), "material", "materials"));
+}
+
+void validate_texture(const Texture& t, const std::string& source, size_t index) {
+  const std::string path = "textures[" + std::to_string(index) + "]";
+  if (t.width == 0 || t.height == 0)
+    invalid(source, path, "must be at least 1x1 texels, got " + std::to_string(t.width) + "x" + std::to_string(t.height));
+  if (t.texels.size() != uint64_t(t.width) * t.height)
+    invalid(source, path + ".texels", std::to_string(t.texels.size()) + " texels for " + std::to_string(t.width) + "x" +
+                                          std::to_string(t.height));
+  for (const auto& [wrap, field] : {std::pair{t.wrap_s, ".wrap_s"}, std::pair{t.wrap_t, ".wrap_t"}})
+    if (wrap != Wrap::Repeat && wrap != Wrap::ClampToEdge && wrap != Wrap::MirroredRepeat)
+      invalid(source, path + field, "unknown wrap mode " + std::to_string(static_cast<uint32_t>(wrap)));
 }
 
 void validate_instance(const Instance& in, const Scene& scene, const std::string& source, size_t index) {
@@ -317,7 +337,8 @@ Scene make_rtiow_scene(const RtiowParams& params) {
 void validate_scene(const Scene& scene, const std::string& source) {
   validate_camera(scene.camera, source);
   validate_sky(scene.sky, source);
-  for (size_t i = 0; i < scene.materials.size(); ++i) validate_material(scene.materials[i], source, i);
+  for (size_t i = 0; i < scene.textures.size(); ++i) validate_texture(scene.textures[i], source, i);
+  for (size_t i = 0; i < scene.materials.size(); ++i) validate_material(scene.materials[i], scene, source, i);
   for (size_t i = 0; i < scene.spheres.size(); ++i) {
     const Sphere& s = scene.spheres[i];
     const auto path = [&](const char* field) { return "spheres[" + std::to_string(i) + "]." + field; };

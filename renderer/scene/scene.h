@@ -23,8 +23,36 @@ struct Material {
   float fuzz = 0.0f;         // metal
   float ior = 1.5f;          // dielectric
   glm::vec3 radiance{0.0f};  // emissive
+  // Lambertian only, from glTF files (JSON materials have none): the albedo
+  // is multiplied by this texture (its rgb decoded from sRGB) at the surface's
+  // uv (glTF's baseColorTexture) ...
+  std::optional<uint32_t> base_color_texture;  // index into Scene::textures
+  // ... and the surface emits `emission` (times this texture, sRGB) besides
+  // reflecting, as a glTF surface with an emissive factor does.
+  glm::vec3 emission{0.0f};
+  std::optional<uint32_t> emission_texture;    // index into Scene::textures
 
   bool operator==(const Material&) const = default;
+};
+
+// How texture coordinates outside [0, 1] map onto the image (glTF's sampler
+// wrapS / wrapT). Values match the WRAP_* constants in shaders/shared/shared.h
+// (static_assert in render/gpu_layout.h).
+enum class Wrap : uint32_t { Repeat = 0, ClampToEdge = 1, MirroredRepeat = 2 };
+
+// An image decoded to RGBA8, with its sampler's wrap modes. Texel (x, y) is
+// texels[y * width + x], y = 0 the top row: glTF's uv (0, 0) is the image's
+// top-left corner, u to the right, v down. The bytes are as the file stores
+// them (colour textures sRGB-encoded); the shader decodes them where they
+// are used, so that a slot that holds linear data can read the same texels.
+struct Texture {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<uint32_t> texels;  // r | g << 8 | b << 16 | a << 24
+  Wrap wrap_s = Wrap::Repeat;    // along u
+  Wrap wrap_t = Wrap::Repeat;    // along v
+
+  bool operator==(const Texture&) const = default;
 };
 
 struct Sphere {
@@ -97,6 +125,9 @@ struct Scene {
   Camera camera;
   Sky sky;
   std::vector<Material> materials;
+  // Textures come only from mesh files: JSON writes none, and loading the
+  // references adds them again.
+  std::vector<Texture> textures;
   std::vector<Sphere> spheres;
   std::vector<Mesh> meshes;
   std::vector<Instance> instances;

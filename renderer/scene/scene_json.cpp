@@ -532,6 +532,13 @@ std::string scene_to_json(const Scene& scene) {
   validate_scene(scene, "scene");
   if (!scene.meshes.empty() && scene.mesh_refs.empty())
     throw InputError("scene: meshes: only meshes loaded from files can be written (as references to the files)");
+  const size_t written = scene.materials.size() - scene.mesh_file_materials;
+  for (size_t i = 0; i < written; ++i) {
+    const Material& m = scene.materials[i];
+    if (m.base_color_texture || m.emission_texture || m.emission != glm::vec3(0.0f))
+      throw InputError("scene: materials[" + std::to_string(i) +
+                       "]: textures and emission come only from mesh files and cannot be written");
+  }
   std::string out;
   out.reserve(512 + 64 * scene.materials.size() + 72 * scene.spheres.size());
   const Camera& c = scene.camera;
@@ -546,7 +553,7 @@ std::string scene_to_json(const Scene& scene) {
   append(out, scene.sky);
   out += ",\n  \"materials\": ";
   // The mesh files' materials come back when the references load.
-  append(out, std::vector<Material>(scene.materials.begin(), scene.materials.end() - ptrdiff_t(scene.mesh_file_materials)));
+  append(out, std::vector<Material>(scene.materials.begin(), scene.materials.begin() + ptrdiff_t(written)));
   out += ",\n  \"spheres\": ";
   append(out, scene.spheres);
   if (!scene.mesh_refs.empty()) {

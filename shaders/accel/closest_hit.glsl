@@ -5,9 +5,10 @@
 // instances, and for each instance its mesh's own octree in object space,
 // which the ray enters through the instance's transform. The includer
 // declares `scene`, `spheres`, `sphere_materials`, `triangles`,
-// `triangle_normals`, `instances`, `meshes`, `octree_nodes` and
-// `octree_refs`, and the specialization constants HAS_SPHERES, HAS_TRIANGLES
-// and HAS_VERTEX_NORMALS (a kind the scene lacks compiles out). A new
+// `triangle_normals`, `triangle_uvs`, `instances`, `meshes`, `octree_nodes`
+// and `octree_refs`, and the specialization constants HAS_SPHERES,
+// HAS_TRIANGLES, HAS_VERTEX_NORMALS and HAS_TEXTURES (a kind the scene lacks
+// compiles out). A new
 // primitive kind adds its test to test_primitive and its surface to
 // surface_at; nothing else here or in the integrator changes.
 #ifndef OCTRACE_SCENE_HIT_GLSL

@@ -1,7 +1,7 @@
 // Triangles: watertight ray/triangle intersection and the surface at a hit,
-// in fp32. The includer declares `scene`, `triangles` and `triangle_normals`
-// (GpuInstance from shared.h)
-// and the specialization constant HAS_VERTEX_NORMALS.
+// in fp32. The includer declares `scene`, `triangles`, `triangle_normals`
+// and `triangle_uvs` (GpuInstance from shared.h) and the specialization
+// constants HAS_VERTEX_NORMALS and HAS_TEXTURES.
 #ifndef OCTRACE_TRIANGLE_GLSL
 #define OCTRACE_TRIANGLE_GLSL
 
@@ -88,24 +88,34 @@ vec3 normal_to_world(GpuInstance g, vec3 n) {
 // ray in the instance's object space. The geometric normal follows the
 // winding (counter-clockwise = front, outward for a closed mesh; the inverse
 // transpose keeps a mirrored instance's outside outside); with vertex normals
-// the shading normal interpolates them at the hit's barycentrics (worked out
-// again here, once per hit, rather than carried through the traversal).
+// the shading normal, and with textures the texture coordinates, interpolate
+// the vertices' at the hit's barycentrics (worked out again here, once per
+// hit, rather than carried through the traversal).
 Surface triangle_surface(Ray ray, Ray oray, float t, uint i, GpuInstance g) {
   GpuTriangle tri = triangles[i];
   vec3 p = ray.origin + t * ray.dir;
   vec3 ng = safe_normalize(normal_to_world(g, cross(tri.v1 - tri.v0, tri.v2 - tri.v0)), -ray.dir);
   vec3 ns = ng;
-  // The general pipeline reads normals only where the scene uploaded them.
-  if (HAS_VERTEX_NORMALS && scene.vertex_normals != 0u) {
+  vec2 uv = vec2(0.0);
+  // The general pipeline reads normals and uvs only where the scene uploaded them.
+  bool smooth_normals = HAS_VERTEX_NORMALS && scene.vertex_normals != 0u;
+  bool textured = HAS_TEXTURES && scene.triangle_uvs != 0u;
+  if (smooth_normals || textured) {
     vec3 uvw;
     float T, det;
     if (triangle_edges(oray.origin, ray_shear(oray.dir), tri.v0, tri.v1, tri.v2, uvw, T, det)) {
-      GpuTriangleNormals n = triangle_normals[i];
       vec3 b = uvw / det;
-      ns = safe_normalize(normal_to_world(g, b.x * n.n0 + b.y * n.n1 + b.z * n.n2), ng);
+      if (smooth_normals) {
+        GpuTriangleNormals n = triangle_normals[i];
+        ns = safe_normalize(normal_to_world(g, b.x * n.n0 + b.y * n.n1 + b.z * n.n2), ng);
+      }
+      if (textured) {
+        GpuTriangleUvs u = triangle_uvs[i];
+        uv = b.x * u.uv0 + b.y * u.uv1 + b.z * u.uv2;
+      }
     }
   }
-  return Surface(p, ng, ns, tri.material, vec2(0.0));
+  return Surface(p, ng, ns, tri.material, uv);
 }
 
 #endif

@@ -1,25 +1,51 @@
 // The materials of "Ray Tracing in One Weekend" v4, as the shading code reads
-// them in the variant's precision. The includer declares `materials`.
+// them in the variant's precision, and the textures and emission a glTF
+// material adds to a lambertian one. The includer declares `materials`,
+// `textures` and `texels`, and the specialization constants HAS_TEXTURES and
+// HAS_SURFACE_EMISSION.
 #ifndef OCTRACE_MATERIALS_GLSL
 #define OCTRACE_MATERIALS_GLSL
 
 #include "shading/precision.glsl"
+#include "shading/texture.glsl"
 
 struct Material {
   real3 color;  // albedo or radiance
   uint type;    // MAT_*
   real fuzz;
   real ior;
+  uint base_color_texture;  // NO_TEXTURE: none
+  uint emission_texture;
+  real3 emission;           // lambertian: emitted besides reflecting
 };
 
 Material load_material(uint i) {
 #if OCTRACE_PRECISION >= 1
   GpuMaterialHalf m = materials[i];
-  return Material(m.color_type.rgb, uint(m.color_type.a), m.params.x, m.params.y);
+  return Material(m.color_type.rgb, uint(m.color_type.a), m.params.x, m.params.y, m.base_color_texture,
+                  m.emission_texture, m.emission.rgb);
 #else
   GpuMaterial m = materials[i];
-  return Material(m.color, m.type, m.fuzz, m.ior);
+  return Material(m.color, m.type, m.fuzz, m.ior, m.base_color_texture, m.emission_texture, m.emission);
 #endif
+}
+
+// A lambertian material's albedo at texture coordinates uv: the colour times
+// its base colour texture (glTF 3.9.2), if it has one.
+real3 lambertian_albedo(Material m, vec2 uv) {
+  real3 albedo = m.color;
+  if (HAS_TEXTURES && m.base_color_texture != NO_TEXTURE)
+    albedo *= real3(sample_texture_srgb(m.base_color_texture, uv));
+  return albedo;
+}
+
+// What a lambertian surface emits at uv: the emission times its emission
+// texture (glTF 3.9.3), if it has one.
+real3 lambertian_emission(Material m, vec2 uv) {
+  real3 emission = m.emission;
+  if (HAS_TEXTURES && m.emission_texture != NO_TEXTURE)
+    emission *= real3(sample_texture_srgb(m.emission_texture, uv));
+  return emission;
 }
 
 // Schlick's approximation of the Fresnel reflectance.

@@ -14,11 +14,13 @@
 
 #ifdef __cplusplus
 #include <cstdint>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 #include <glm/gtc/type_precision.hpp>
 namespace octrace::gpu {
 using uint = uint32_t;
+using vec2 = glm::vec2;
 using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using f16vec4 = glm::u16vec4;  // half bit patterns (glm::packHalf)
@@ -35,6 +37,12 @@ OCT_CONST(uint, MAT_EMISSIVE, 3u);
 OCT_CONST(uint, SKY_GRADIENT, 0u);
 OCT_CONST(uint, SKY_UNIFORM, 1u);
 OCT_CONST(uint, SKY_NONE, 2u);
+
+// Texture wrap modes (glTF's sampler wrapS / wrapT) and "no texture".
+OCT_CONST(uint, WRAP_REPEAT, 0u);
+OCT_CONST(uint, WRAP_CLAMP_TO_EDGE, 1u);
+OCT_CONST(uint, WRAP_MIRRORED_REPEAT, 2u);
+OCT_CONST(uint, NO_TEXTURE, 0xffffffffu);
 
 OCT_CONST(uint, WORKGROUP_SIZE, 8u);  // 8x8 invocations per workgroup
 // At most this many invocations of a path-tracing workgroup share one pixel's
@@ -66,7 +74,10 @@ OCT_CONST(uint, BINDING_TRIANGLES, 10u);
 OCT_CONST(uint, BINDING_TRIANGLE_NORMALS, 11u);
 OCT_CONST(uint, BINDING_INSTANCES, 12u);
 OCT_CONST(uint, BINDING_MESHES, 13u);
-OCT_CONST(uint, BINDING_COUNT, 14u);
+OCT_CONST(uint, BINDING_TEXTURES, 14u);
+OCT_CONST(uint, BINDING_TEXELS, 15u);
+OCT_CONST(uint, BINDING_TRIANGLE_UVS, 16u);
+OCT_CONST(uint, BINDING_COUNT, 17u);
 
 // Descriptor bindings of the resolve pipeline (resolve.comp).
 OCT_CONST(uint, RESOLVE_BINDING_ACCUM_SUM, 0u);
@@ -90,6 +101,8 @@ OCT_CONST(uint, SPEC_ANY_LIGHT, 8u);
 OCT_CONST(uint, SPEC_SPHERES, 9u);
 OCT_CONST(uint, SPEC_TRIANGLES, 10u);
 OCT_CONST(uint, SPEC_VERTEX_NORMALS, 11u);
+OCT_CONST(uint, SPEC_TEXTURES, 12u);
+OCT_CONST(uint, SPEC_SURFACE_EMISSION, 13u);
 // Whether invocations may share a pixel's samples (PassParams.sample_lanes);
 // off, the workgroup barrier that sharing needs is compiled out.
 OCT_CONST(uint, SPEC_SAMPLE_LANES, 14u);
@@ -132,6 +145,18 @@ struct GpuTriangleNormals {
   uint pad2;
 };
 
+// 24 bytes. Triangle i's texture coordinates (glTF's TEXCOORD_0 at v0, v1,
+// v2; 0 for a mesh without them); uploaded only when some material has a
+// texture. 24 rather than a multiple of 16: it holds no vec3, and std430
+// aligns a vec2 (and so this struct) to 8 bytes, so that the array stride is
+// 24 in both views (checked by static_assert and the layout probe). fp32: a
+// texture repeated many times over a mesh needs the precision.
+struct GpuTriangleUvs {
+  vec2 uv0;
+  vec2 uv1;
+  vec2 uv2;
+};
+
 // 64 bytes. One placement of a mesh. A ray enters the instance through
 // to_object (the rows of the 3x4 world-to-object matrix: the ray's t stays
 // the world t, its direction is not renormalised); normals leave it through
@@ -161,14 +186,37 @@ struct GpuMesh {
   uint pad2;
 };
 
-// 32 bytes. `color` is the albedo (lambertian, metal) or the radiance (emissive).
+// 48 bytes. `color` is the albedo (lambertian, metal) or the radiance
+// (emissive). A lambertian material may also sample textures (indices into
+// the texture table, or NO_TEXTURE) and emit: albedo x base colour texture,
+// and emission x emission texture (glTF's materials; scene/scene.h). The
+// first 24 bytes are all that spheres' materials use; the texture indices
+// sit in what was padding, the emission in a row of its own.
 struct GpuMaterial {
   vec3 color;
   uint type;   // MAT_*
   float fuzz;  // metal
   float ior;   // dielectric
+  uint base_color_texture;
+  uint emission_texture;
+  vec3 emission;
   uint pad0;
-  uint pad1;
+};
+
+// 16 bytes. One texture of the texture table: its texels are
+// texels[first_texel + y * width + x], row y = 0 the top of the image (glTF's
+// v = 0), each texel one uint of RGBA8 as the file stores it (r in the low
+// byte: unpackUnorm4x8), so colour textures stay sRGB-encoded and are decoded
+// where they are sampled (shading/texture.glsl). One buffer of texels for all
+// textures keeps the pipeline's bindings fixed however many textures a scene
+// has (it must fit one storage buffer: lavapipe allows 128 MiB); the table
+// lets a material refer to a texture by index, and a future texture slot
+// (metallic-roughness, normal map) add an index to the material, not a buffer.
+struct GpuTexture {
+  uint first_texel;
+  uint width;
+  uint height;
+  uint wrap;  // WRAP_* along u (glTF's wrapS) | WRAP_* along v (wrapT) << 16
 };
 
 // The accumulation state is three arrays of one vec4 per pixel, in fp32 (three
@@ -182,13 +230,18 @@ struct GpuMaterial {
 //     uint, the ray segments the pixel's paths traced (camera rays and
 //     bounces; NaN/Inf samples' not counted), for rays per second.
 
-// 16 bytes: the material as the fp16 variants read it (16-bit storage).
+// 32 bytes: the material as the fp16 variants read it (16-bit storage).
 // color_type: albedo or radiance, and the MAT_* type as a half (exact);
-// params: fuzz, ior, unused, unused. The host writes half bit patterns.
+// params: fuzz, ior, unused, unused; emission: rgb, unused. The host writes
+// half bit patterns. The texture indices stay 32-bit (a half holds integers
+// exactly only up to 2048).
 #if defined(__cplusplus) || OCTRACE_PRECISION >= 1
 struct GpuMaterialHalf {
   f16vec4 color_type;
   f16vec4 params;
+  f16vec4 emission;
+  uint base_color_texture;
+  uint emission_texture;
 };
 #endif
 
@@ -217,7 +270,7 @@ struct RenderStats {
   uint pad2;
 };
 
-// 48 bytes. What the passes need of the scene besides its arrays; uploaded
+// 64 bytes. What the passes need of the scene besides its arrays; uploaded
 // once with the scene (a camera move or a new bounce limit does not touch it).
 struct SceneParams {
   vec3 sky_a;         // gradient: down; uniform: radiance
@@ -228,6 +281,10 @@ struct SceneParams {
   uint triangle_count;  // unique (object-space) triangles
   uint vertex_normals;  // 1: triangle_normals holds every triangle's normals; 0: it is empty
   uint instance_count;
+  uint triangle_uvs;    // 1: triangle_uvs holds every triangle's uvs; 0: it is empty
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 // 112 bytes, the push constants of one dispatch of passes: everything that may change from

@@ -158,14 +158,60 @@ TEST(Cli, GltfBadInput) {
   expect_bad_input("gltf_flag_rtiow", "--gltf-scene 0", "--gltf-scene requires --scene");
   expect_bad_input("scene_extension", "--scene " + tmp("model.obj"),
                    tmp("model.obj") + ": unknown scene format (expected .json, .gltf or .glb)");
-  // A file that loads with a warning, then one that does not load: still the one line.
-  octrace::test::GltfBuilder textured = octrace::test::quad_gltf();
-  textured.add("textures", nlohmann::json::object());
-  textured.write(tmp("gltf/textured.glb"));
+  // A file that loads with a warning (a metallic material), then one that
+  // does not load: still the one line.
+  octrace::test::GltfBuilder metallic = octrace::test::quad_gltf();
+  metallic.add("materials", nlohmann::json::object());
+  metallic.write(tmp("gltf/metallic.glb"));
   const std::string two = write_file("gltf/two.json", replaced(VALID_SCENE, "\"spheres\"",
-                                                               "\"meshes\": [{\"file\": \"textured.glb\"}, "
+                                                               "\"meshes\": [{\"file\": \"metallic.glb\"}, "
                                                                "{\"file\": \"corrupt.glb\"}],\n  \"spheres\""));
   expect_bad_input("gltf_second_file", "--scene " + two, two + ": meshes[1].file: " + tmp("gltf/corrupt.glb"));
+}
+
+// Textures: an image that cannot be decoded, a missing image file and a
+// texture index out of range are each one line naming the file and the glTF
+// path, exit 2, no image.
+TEST(Cli, GltfTextureBadInput) {
+  namespace test = octrace::test;
+  const std::string dir = tmp("gltf_textures");
+  const test::GltfBuilder textured = test::textured_quad_gltf(test::png(1, 1, {255, 255, 255, 255}));
+  test::GltfBuilder b = textured;
+  const std::string junk = "not an image";
+  b.doc["images"][0]["uri"] =
+      "data:image/png;base64," + test::base64(reinterpret_cast<const uint8_t*>(junk.data()), junk.size());
+  const std::string undecodable = b.write(dir + "/undecodable.gltf");
+  expect_bad_input("texture_undecodable", "--scene " + undecodable,
+                   "octrace: error: " + undecodable + ": images[0]: cannot be decoded (unknown image type)\n");
+  b = textured;
+  b.doc["images"][0]["uri"] = "missing.png";
+  fs::remove(dir + "/missing.png");
+  const std::string missing = b.write(dir + "/missing_image.gltf");
+  expect_bad_input("texture_missing", "--scene " + missing,
+                   "octrace: error: " + missing + ": images[0].uri: cannot open " + dir +
+                       "/missing.png: No such file or directory\n");
+  b = textured;
+  b.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["index"] = 5;
+  const std::string index = b.write(dir + "/texture_index.glb");
+  expect_bad_input("texture_index", "--scene " + index,
+                   "octrace: error: " + index +
+                       ": materials[0].pbrMetallicRoughness.baseColorTexture.index: index 5 out of range (1 texture)\n");
+}
+
+// A textured glTF renders with its textures: the summary counts them and the
+// pipeline is specialised to them.
+TEST(Cli, TexturedGltfRenders) {
+  const std::string path = octrace::test::textured_quad_gltf(octrace::test::png(1, 1, {200, 100, 50, 255}))
+                               .write(tmp("gltf/textured.glb"));
+  RunResult r = run_octrace("render --size 8x8 --spp 1 --scene " + path + " --out " + tmp("gltf_textured.png"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find(": 0 spheres, 1 meshes, 1 instances, 2 triangles (2 unique), 1 materials, 1 textures\n"),
+            std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+  r = run_octrace("render --size 8x8 --spp 1 --json --scene " + path + " --out " + tmp("gltf_textured.png"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* key : {"\"textures\": 1", "\"textures\",", "\"triangles\","})
+    EXPECT_NE(r.output.find(key), std::string::npos) << key << " missing in " << r.output;
 }
 
 // `render --scene model.glb` loads the file and reports what it holds.

@@ -92,6 +92,25 @@ const EffectsCase CASES[] = {
        return s;
      },
      {"lambertian", "triangles", "vertex_normals", "sky_gradient"}},
+    {"textured_emissive_mesh",
+     [] {
+       // A smooth icosphere, textured and emitting through a texture, over
+       // textured ground spheres (uv 0) under the gradient sky.
+       Scene s = family(lambertian({0.5f, 0.5f, 0.5f}));
+       s.textures = {{2, 2, {0xff2040c0u, 0xffc08020u, 0xff808080u, 0xff10f010u}, Wrap::Repeat, Wrap::MirroredRepeat}};
+       s.materials[0].base_color_texture = 0;
+       Material glow = lambertian({0.8f, 0.8f, 0.8f});
+       glow.base_color_texture = 0;
+       glow.emission = {2.0f, 1.5f, 1.0f};
+       glow.emission_texture = 0;
+       s.materials.push_back(glow);
+       Mesh ball = test::icosphere(2, 1, true);
+       for (glm::vec3 p : ball.positions) ball.uvs.push_back({2.0f * p.x, 1.5f * p.y - 0.5f});
+       test::place(s, ball, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0.6f, 1.2f)) *
+                                glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)));
+       return s;
+     },
+     {"lambertian", "triangles", "vertex_normals", "textures", "surface_emission", "sky_gradient"}},
 };
 
 class EffectsTest : public test::VulkanTest, public ::testing::WithParamInterface<EffectsCase> {};

@@ -110,5 +110,45 @@ TEST(GpuScene, MeshesPlacedOnceAreBakedIntoWorldSpace) {
   }
 }
 
+// Uvs follow their triangles into the baked mesh (mirrored ones too, whose
+// winding flips), and a mesh without uvs gets zeros beside one with them.
+TEST(GpuScene, UvsFollowTheirTrianglesIntoTheBakedMesh) {
+  Scene s;
+  s.materials = {test::lambertian(0.5f)};
+  Mesh with = test::grid(1, 0);
+  with.uvs = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+  test::place(s, with, glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f)));
+  test::place(s, test::grid(1, 0), glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 3)));
+  const Scene b = bake_single_use_meshes(s);
+  ASSERT_EQ(b.meshes.size(), 1u);
+  const Mesh& baked = b.meshes[0];
+  ASSERT_EQ(baked.uvs.size(), baked.positions.size());
+  for (size_t v = 0; v < baked.positions.size(); ++v) {
+    const glm::vec3 p = baked.positions[v];
+    // The first grid, mirrored in x: a vertex at (x, y) had uv (-x, y); the second has none.
+    const glm::vec2 want = p.z == 0.0f ? glm::vec2(-p.x, p.y) : glm::vec2(0.0f);
+    EXPECT_EQ(baked.uvs[v], want) << "vertex " << v;
+  }
+  const auto uvs = object_triangle_uvs(b);
+  ASSERT_EQ(uvs.size(), 4u);
+  EXPECT_EQ(uvs[0].uv1, baked.uvs[baked.indices[1]]);
+}
+
+// The texture table: each texture's first texel in the one texel buffer, its
+// size and both wrap modes.
+TEST(GpuScene, TexturesArePackedIntoOneTexelBuffer) {
+  Scene s;
+  s.textures = {{2, 1, {1, 2}, Wrap::ClampToEdge, Wrap::MirroredRepeat}, {1, 3, {3, 4, 5}, Wrap::Repeat, Wrap::ClampToEdge}};
+  const GpuTextures t = gpu_textures(s);
+  EXPECT_EQ(t.texels, (std::vector<uint32_t>{1, 2, 3, 4, 5}));
+  ASSERT_EQ(t.table.size(), 2u);
+  EXPECT_EQ(t.table[0].first_texel, 0u);
+  EXPECT_EQ(t.table[1].first_texel, 2u);
+  EXPECT_EQ(t.table[1].width, 1u);
+  EXPECT_EQ(t.table[1].height, 3u);
+  EXPECT_EQ(t.table[0].wrap, gpu::WRAP_CLAMP_TO_EDGE | gpu::WRAP_MIRRORED_REPEAT << 16);
+  EXPECT_EQ(t.table[1].wrap, gpu::WRAP_REPEAT | gpu::WRAP_CLAMP_TO_EDGE << 16);
+}
+
 }  // namespace
 }  // namespace octrace

@@ -20,7 +20,8 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   // The probe writes the half material too: it needs 16-bit storage, which
   // every device the suite runs on (lavapipe, the H100) has.
   ASSERT_TRUE(ctx.fp16_enabled) << ctx.info.name << " lacks 16-bit storage";
-  Buffer scene_buf, pass_buf, resolve_buf, sphere_buf, material_buf, half_buf, node_buf, stats_buf, tri_buf, normal_buf, inst_buf, mesh_buf;
+  Buffer scene_buf, pass_buf, resolve_buf, sphere_buf, material_buf, half_buf, node_buf, stats_buf, tri_buf, normal_buf,
+      inst_buf, mesh_buf, texture_buf, uv_buf;
   create_buffer(scene_buf, ctx, sizeof(gpu::SceneParams), false, "probe");
   create_buffer(pass_buf, ctx, sizeof(gpu::PassParams), false, "probe");
   create_buffer(resolve_buf, ctx, sizeof(gpu::ResolveParams), false, "probe");
@@ -33,11 +34,14 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   create_buffer(normal_buf, ctx, 2 * sizeof(gpu::GpuTriangleNormals), false, "probe");
   create_buffer(inst_buf, ctx, 2 * sizeof(gpu::GpuInstance), false, "probe");
   create_buffer(mesh_buf, ctx, 2 * sizeof(gpu::GpuMesh), false, "probe");
+  create_buffer(texture_buf, ctx, 2 * sizeof(gpu::GpuTexture), false, "probe");
+  create_buffer(uv_buf, ctx, 2 * sizeof(gpu::GpuTriangleUvs), false, "probe");
   ComputePipeline pipeline;
-  create_compute_pipeline(pipeline, ctx, layout_probe_spv, sizeof(layout_probe_spv), 12, 0);
+  create_compute_pipeline(pipeline, ctx, layout_probe_spv, sizeof(layout_probe_spv), 14, 0);
   bind_buffers(pipeline, {{0, &scene_buf}, {1, &pass_buf}, {2, &resolve_buf}, {3, &sphere_buf},
                           {4, &material_buf}, {5, &half_buf}, {6, &node_buf}, {7, &stats_buf},
-                          {8, &tri_buf},   {9, &normal_buf}, {10, &inst_buf}, {11, &mesh_buf}});
+                          {8, &tri_buf},   {9, &normal_buf}, {10, &inst_buf}, {11, &mesh_buf},
+                          {12, &texture_buf}, {13, &uv_buf}});
   submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout, 0, 1, &pipeline.set, 0, nullptr);
@@ -55,6 +59,10 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   EXPECT_EQ(sc.triangle_count, 10u);
   EXPECT_EQ(sc.vertex_normals, 11u);
   EXPECT_EQ(sc.instance_count, 12u);
+  EXPECT_EQ(sc.triangle_uvs, 13u);
+  EXPECT_EQ(sc.pad0, 14u);
+  EXPECT_EQ(sc.pad1, 15u);
+  EXPECT_EQ(sc.pad2, 16u);
 
   gpu::PassParams f{};
   download_buffer(ctx, pass_buf, &f, sizeof f);
@@ -93,8 +101,12 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   download_buffer(ctx, normal_buf, normals, sizeof normals);
   gpu::GpuInstance insts[2];
   gpu::GpuMesh meshes[2];
+  gpu::GpuTexture textures[2];
+  gpu::GpuTriangleUvs uvs[2];
   download_buffer(ctx, inst_buf, insts, sizeof insts);
   download_buffer(ctx, mesh_buf, meshes, sizeof meshes);
+  download_buffer(ctx, texture_buf, textures, sizeof textures);
+  download_buffer(ctx, uv_buf, uvs, sizeof uvs);
   download_buffer(ctx, sphere_buf, spheres, sizeof spheres);
   download_buffer(ctx, material_buf, materials, sizeof materials);
   download_buffer(ctx, half_buf, halves, sizeof halves);
@@ -110,8 +122,10 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(materials[i].type, u + 8) << "material " << i;
     EXPECT_EQ(materials[i].fuzz, o + 9) << "material " << i;
     EXPECT_EQ(materials[i].ior, o + 10) << "material " << i;
-    EXPECT_EQ(materials[i].pad0, u + 11) << "material " << i;
-    EXPECT_EQ(materials[i].pad1, u + 12) << "material " << i;
+    EXPECT_EQ(materials[i].base_color_texture, u + 11) << "material " << i;
+    EXPECT_EQ(materials[i].emission_texture, u + 12) << "material " << i;
+    EXPECT_EQ(materials[i].emission, glm::vec3(o + 81, o + 82, o + 83)) << "material " << i;
+    EXPECT_EQ(materials[i].pad0, u + 84) << "material " << i;
     EXPECT_EQ(stats[i].nonfinite_samples, u + 13) << "stats " << i;
     EXPECT_EQ(stats[i].pad0, u + 14) << "stats " << i;
     EXPECT_EQ(stats[i].pad1, u + 15) << "stats " << i;
@@ -119,7 +133,10 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     for (int c = 0; c < 4; ++c) {
       EXPECT_EQ(half(halves[i].color_type[c]), o + 17 + float(c)) << "half material " << i << " color_type " << c;
       EXPECT_EQ(half(halves[i].params[c]), o + 21 + float(c)) << "half material " << i << " params " << c;
+      EXPECT_EQ(half(halves[i].emission[c]), o + 85 + float(c)) << "half material " << i << " emission " << c;
     }
+    EXPECT_EQ(halves[i].base_color_texture, u + 89) << "half material " << i;
+    EXPECT_EQ(halves[i].emission_texture, u + 90) << "half material " << i;
     EXPECT_EQ(nodes[i].lo, glm::vec3(o + 25, o + 26, o + 27)) << "node " << i;
     EXPECT_EQ(nodes[i].first, u + 28) << "node " << i;
     EXPECT_EQ(nodes[i].hi, glm::vec3(o + 29, o + 30, o + 31)) << "node " << i;
@@ -151,6 +168,13 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(meshes[i].pad0, u + 78) << "mesh " << i;
     EXPECT_EQ(meshes[i].pad1, u + 79) << "mesh " << i;
     EXPECT_EQ(meshes[i].pad2, u + 80) << "mesh " << i;
+    EXPECT_EQ(textures[i].first_texel, u + 91) << "texture " << i;
+    EXPECT_EQ(textures[i].width, u + 92) << "texture " << i;
+    EXPECT_EQ(textures[i].height, u + 93) << "texture " << i;
+    EXPECT_EQ(textures[i].wrap, u + 94) << "texture " << i;
+    EXPECT_EQ(uvs[i].uv0, glm::vec2(o + 95, o + 96)) << "uvs " << i;
+    EXPECT_EQ(uvs[i].uv1, glm::vec2(o + 97, o + 98)) << "uvs " << i;
+    EXPECT_EQ(uvs[i].uv2, glm::vec2(o + 99, o + 100)) << "uvs " << i;
   }
 }
 

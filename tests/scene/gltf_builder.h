@@ -12,14 +12,17 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
+#include <stb_image_write.h>
 
 namespace octrace::test {
 
 constexpr int kByte = 5120, kUnsignedByte = 5121, kShort = 5122, kUnsignedShort = 5123, kUnsignedInt = 5125,
               kFloat = 5126;
 constexpr int kPoints = 0, kLines = 1, kTriangles = 4, kStrip = 5, kFan = 6;
+constexpr int kRepeat = 10497, kClampToEdge = 33071, kMirroredRepeat = 33648;
 
 inline std::string base64(const uint8_t* data, size_t size) {
   static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -32,6 +35,16 @@ inline std::string base64(const uint8_t* data, size_t size) {
     out += i + 1 < size ? digits[n >> 6 & 63] : '=';
     out += i + 2 < size ? digits[n & 63] : '=';
   }
+  return out;
+}
+
+// A PNG of width x height RGBA8 texels, rows from the top (stb_image_write).
+inline std::string png(int width, int height, const std::vector<uint8_t>& rgba) {
+  std::string out;
+  const auto append = [](void* to, void* data, int size) {
+    static_cast<std::string*>(to)->append(static_cast<const char*>(data), size_t(size));
+  };
+  stbi_write_png_to_func(append, &out, width, height, 4, rgba.data(), width * 4);
   return out;
 }
 
@@ -70,6 +83,7 @@ struct GltfBuilder {
   }
 
   int add_vec3(const std::vector<glm::vec3>& v) { return add_accessor(add_view(v), kFloat, v.size(), "VEC3"); }
+  int add_vec2(const std::vector<glm::vec2>& v) { return add_accessor(add_view(v), kFloat, v.size(), "VEC2"); }
   int add_indices(const std::vector<uint8_t>& v) { return add_accessor(add_view(v), kUnsignedByte, v.size(), "SCALAR"); }
   int add_indices(const std::vector<uint16_t>& v) {
     return add_accessor(add_view(v), kUnsignedShort, v.size(), "SCALAR");
@@ -80,6 +94,15 @@ struct GltfBuilder {
     doc[array].push_back(std::move(item));
     return int(doc[array].size()) - 1;
   }
+  // An image of `png_bytes` in a data URI, and a texture of it with a sampler
+  // of these wrap modes; returns the texture's index.
+  int add_texture(const std::string& png_bytes, int wrap_s = kRepeat, int wrap_t = kRepeat) {
+    const auto* bytes = reinterpret_cast<const uint8_t*>(png_bytes.data());
+    const int image = add("images", {{"uri", "data:image/png;base64," + base64(bytes, png_bytes.size())}});
+    const int sampler = add("samplers", {{"wrapS", wrap_s}, {"wrapT", wrap_t}});
+    return add("textures", {{"source", image}, {"sampler", sampler}});
+  }
+
   // A mesh of one primitive.
   int add_mesh(int positions, int indices = -1, int mode = kTriangles, int material = -1) {
     nlohmann::json p = {{"attributes", {{"POSITION", positions}}}, {"mode", mode}};
@@ -142,6 +165,24 @@ inline GltfBuilder quad_gltf() {
   const int positions = b.add_vec3({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
   const int indices = b.add_indices(std::vector<uint16_t>{0, 1, 2, 0, 2, 3});
   b.add_mesh(positions, indices);
+  b.add("nodes", {{"mesh", 0}});
+  b.set_scene({0});
+  return b;
+}
+
+// The unit square of quad_gltf() with TEXCOORD_0 as glTF maps an image onto
+// it seen from +z with y up: uv (0, 0), the image's top-left texel, at the
+// corner (0, 1, 0), u along +x and v along -y. Its material samples an image
+// of `png_bytes` as its base colour (metallicFactor 0: nothing to warn about).
+inline GltfBuilder textured_quad_gltf(const std::string& png_bytes, int wrap_s = kRepeat, int wrap_t = kRepeat) {
+  GltfBuilder b;
+  const int positions = b.add_vec3({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+  const int uvs = b.add_vec2({{0, 1}, {1, 1}, {1, 0}, {0, 0}});
+  const int indices = b.add_indices(std::vector<uint16_t>{0, 1, 2, 0, 2, 3});
+  const int texture = b.add_texture(png_bytes, wrap_s, wrap_t);
+  b.add("materials", {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", texture}}}, {"metallicFactor", 0}}}});
+  b.add("meshes", {{"primitives", {{{"attributes", {{"POSITION", positions}, {"TEXCOORD_0", uvs}}},
+                                    {"indices", indices}, {"material", 0}}}}});
   b.add("nodes", {{"mesh", 0}});
   b.set_scene({0});
   return b;

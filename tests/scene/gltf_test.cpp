@@ -287,7 +287,9 @@ TEST(Gltf, NormalizedAndQuantizedAttributes) {
   EXPECT_EQ(m.uvs, (std::vector<glm::vec2>{{0, 1}, {32768 / 65535.0f, 0}, {1, 1}}));
 }
 
-TEST(Gltf, NormalsAndUvsAreKeptOnlyWhenEveryPrimitiveHasThem) {
+// Normals are kept when every primitive has them; uvs when any has them, the
+// others' vertices at uv (0, 0).
+TEST(Gltf, NormalsAreKeptWhenEveryPrimitiveHasThemUvsWhenAnyHas) {
   GltfBuilder b;
   const int p = b.add_vec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
   const int n = b.add_vec3({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
@@ -296,10 +298,14 @@ TEST(Gltf, NormalsAndUvsAreKeptOnlyWhenEveryPrimitiveHasThem) {
                                    {{"attributes", {{"POSITION", p}, {"NORMAL", n}, {"TEXCOORD_0", t}}}}}}});
   b.add("nodes", {{"mesh", 0}});
   b.set_scene({0});
-  const Mesh m = load(b, "partial.gltf").meshes.at(0);
+  Mesh m = load(b, "partial.gltf").meshes.at(0);
   EXPECT_EQ(m.normals.size(), m.positions.size());
+  EXPECT_EQ(m.uvs, (std::vector<glm::vec2>{{0, 0}, {0, 0}, {0, 0}, {0, 0}, {1, 0}, {0, 1}}));
+  EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5}));
+  // Without uvs anywhere, primitives that share their vertex accessors share the vertices.
+  b.doc["meshes"][0]["primitives"][1]["attributes"].erase("TEXCOORD_0");
+  m = load(b, "shared.gltf").meshes.at(0);
   EXPECT_TRUE(m.uvs.empty());
-  // The two primitives share their vertex accessors, so they share the vertices.
   EXPECT_EQ(m.positions.size(), 3u);
   EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 0, 1, 2}));
 }
@@ -316,7 +322,11 @@ TEST(Gltf, PrimitivesConcatenateWithAMaterialPerTriangle) {
                                    {{"attributes", {{"POSITION", p0}}}, {"material", 0}}}}});
   b.add("nodes", {{"mesh", 0}});
   b.set_scene({0});
-  const Scene s = load(b, "materials.gltf");
+  std::vector<std::string> warnings;
+  const Scene s = load(b, "materials.gltf", {}, &warnings);
+  // glTF's default metallicFactor is 1: rendered as lambertian, with a warning.
+  EXPECT_EQ(warnings, std::vector<std::string>{tmp("materials.gltf") + ": materials render as lambertian (base colour "
+                                                                        "and emission) for now; not rendered: metalness"});
   ASSERT_EQ(s.materials.size(), 3u);  // the file's two, then glTF's default for the primitive without
   EXPECT_EQ(s.materials[0].albedo, glm::vec3(0.8f, 0.2f, 0.1f));
   EXPECT_EQ(s.materials[1].albedo, glm::vec3(1.0f));
@@ -507,6 +517,93 @@ TEST(Gltf, AFramingCameraWhenTheFileHasNone) {
 }
 
 // ---------------------------------------------------------------------------
+// textures and emission
+// ---------------------------------------------------------------------------
+
+// Two texels, rows from the top: opaque red, then a blue-green of alpha 7.
+const std::vector<uint8_t> kTwoTexels = {255, 0, 0, 255, 0, 128, 255, 7};
+
+// A texture is its image decoded to RGBA8 with its sampler's wrap modes, stored
+// once however many materials use it; textures no material uses are not stored.
+TEST(Gltf, TexturesAreDecodedWithTheirWrapModesAndStoredOnce) {
+  GltfBuilder b = test::textured_quad_gltf(test::png(2, 1, kTwoTexels), test::kClampToEdge, test::kMirroredRepeat);
+  b.add("textures", {{"source", 0}});  // no sampler: REPEAT both ways
+  b.add("textures", {{"source", 0}});  // used by no material
+  const auto pbr = [](int texture) {
+    return json{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", texture}}}, {"metallicFactor", 0}}}};
+  };
+  b.add("materials", pbr(0));  // shares texture 0 with material 0
+  json emissive = pbr(1);
+  emissive["emissiveFactor"] = {1, 1, 1};
+  emissive["emissiveTexture"] = {{"index", 0}};
+  b.add("materials", emissive);
+  const Scene s = load(b, "textures.gltf");
+  ASSERT_EQ(s.textures.size(), 2u);
+  EXPECT_EQ(s.textures[0], (Texture{2, 1, {0xff0000ffu, 0x07ff8000u}, Wrap::ClampToEdge, Wrap::MirroredRepeat}));
+  EXPECT_EQ(s.textures[1], (Texture{2, 1, {0xff0000ffu, 0x07ff8000u}, Wrap::Repeat, Wrap::Repeat}));
+  ASSERT_EQ(s.materials.size(), 3u);
+  EXPECT_EQ(s.materials[0].base_color_texture, 0u);
+  EXPECT_EQ(s.materials[1].base_color_texture, 0u);
+  EXPECT_EQ(s.materials[2].base_color_texture, 1u);
+  EXPECT_EQ(s.materials[2].emission_texture, 0u);
+  EXPECT_EQ(s.materials[0].emission_texture, std::nullopt);
+  EXPECT_EQ(s.meshes.at(0).uvs, (std::vector<glm::vec2>{{0, 1}, {1, 1}, {1, 0}, {0, 0}}));
+  // The .glb (the image in a data URI all the same) gives the same scene.
+  EXPECT_EQ(load(b, "textures.glb").textures, s.textures);
+}
+
+// Emission = emissiveFactor x KHR_materials_emissive_strength, an extension a
+// file may require; an emissive texture times a zero emission is not stored.
+TEST(Gltf, EmissionIsTheFactorTimesTheStrength) {
+  GltfBuilder b = test::quad_gltf();
+  b.doc["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+  b.doc["extensionsRequired"] = {"KHR_materials_emissive_strength"};
+  const int texture = b.add_texture(test::png(2, 1, kTwoTexels));
+  b.add("materials", {{"pbrMetallicRoughness", {{"metallicFactor", 0}}},
+                      {"emissiveFactor", {1, 0.5, 0.25}},
+                      {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}}}}});
+  b.add("materials", {{"pbrMetallicRoughness", {{"metallicFactor", 0}}}, {"emissiveTexture", {{"index", texture}}}});
+  const Scene s = load(b, "emission.gltf");
+  ASSERT_EQ(s.materials.size(), 3u);  // and glTF's default, which the quad takes
+  EXPECT_EQ(s.materials[0].emission, glm::vec3(4, 2, 1));
+  EXPECT_EQ(s.materials[0].type, MaterialType::Lambertian);
+  EXPECT_EQ(s.materials[1].emission, glm::vec3(0));
+  EXPECT_EQ(s.materials[1].emission_texture, std::nullopt);
+  EXPECT_TRUE(s.textures.empty());
+}
+
+// A scene's material that replaces the file's takes their textures with them,
+// and their warning.
+TEST(Gltf, AMaterialOverrideLeavesTheFilesTexturesOut) {
+  GltfBuilder b = test::textured_quad_gltf(test::png(2, 1, kTwoTexels));
+  b.doc["materials"][0]["pbrMetallicRoughness"].erase("metallicFactor");
+  Scene s;
+  s.materials = {test::lambertian(0.5f)};
+  GltfOptions opts;
+  opts.warn = [](const std::string& w) { ADD_FAILURE() << "unexpected warning: " << w; };
+  append_gltf(s, b.write(tmp("quad.glb")), 0u, glm::mat4(1.0f), opts);
+  EXPECT_TRUE(s.textures.empty());
+  EXPECT_EQ(s.materials.size(), 1u);
+  EXPECT_EQ(s.meshes.at(0).materials, (std::vector<uint32_t>{0, 0}));
+}
+
+// What is not rendered yet is named in one warning per file.
+TEST(Gltf, WhatMaterialsLackIsNamedInOneWarning) {
+  GltfBuilder b = test::textured_quad_gltf(test::png(2, 1, kTwoTexels));
+  b.doc["extensionsUsed"] = {"KHR_materials_transmission", "KHR_texture_transform", "KHR_materials_emissive_strength"};
+  b.add("materials", json::object());  // metallicFactor 1 by default
+  b.add("materials", {{"pbrMetallicRoughness", {{"metallicFactor", 0}}}, {"normalTexture", {{"index", 0}}},
+                      {"alphaMode", "BLEND"}});
+  b.add("materials", {{"pbrMetallicRoughness", {{"metallicFactor", 0}}}, {"alphaMode", "MASK"}});
+  std::vector<std::string> warnings;
+  load(b, "lacks.gltf", {}, &warnings);
+  EXPECT_EQ(warnings, std::vector<std::string>{tmp("lacks.gltf") +
+                                               ": materials render as lambertian (base colour and emission) for now; "
+                                               "not rendered: metalness, normal maps, alpha BLEND, alpha MASK, "
+                                               "KHR_materials_transmission, KHR_texture_transform"});
+}
+
+// ---------------------------------------------------------------------------
 // bad input: one line naming the file and the glTF path
 // ---------------------------------------------------------------------------
 
@@ -583,6 +680,46 @@ TEST(GltfErrors, AnImageThatCannotBeDecoded) {
   b.add("images", {{"uri", "data:image/png;base64," +
                                test::base64(reinterpret_cast<const uint8_t*>(junk.data()), junk.size())}});
   EXPECT_EQ(load_error(b, "junk.gltf"), "PATH: images[0]: cannot be decoded (unknown image type)");
+}
+
+TEST(GltfErrors, TexturesSamplersAndEmission) {
+  const GltfBuilder textured = test::textured_quad_gltf(test::png(2, 1, kTwoTexels));
+  GltfBuilder b = textured;
+  b.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["index"] = 3;
+  EXPECT_EQ(load_error(b, "index.gltf"),
+            "PATH: materials[0].pbrMetallicRoughness.baseColorTexture.index: index 3 out of range (1 texture)");
+  b = textured;
+  b.doc["materials"][0]["emissiveTexture"] = {{"index", 1}};
+  EXPECT_EQ(load_error(b, "emissive_index.gltf"), "PATH: materials[0].emissiveTexture.index: index 1 out of range (1 texture)");
+  b = textured;
+  b.doc["textures"][0]["source"] = 2;
+  EXPECT_EQ(load_error(b, "source.gltf"), "PATH: textures[0].source: index 2 out of range (1 image)");
+  b = textured;
+  b.doc["textures"][0].erase("source");
+  EXPECT_EQ(load_error(b, "no_source.gltf"),
+            "PATH: textures[0]: has no source image (octrace reads the images of the core spec, PNG and JPEG)");
+  b = textured;
+  b.doc["textures"][0]["sampler"] = 4;
+  EXPECT_EQ(load_error(b, "sampler.gltf"), "PATH: textures[0].sampler: index 4 out of range (1 sampler)");
+  b = textured;
+  b.doc["samplers"][0]["wrapT"] = 1234;
+  EXPECT_EQ(load_error(b, "wrap.gltf"), "PATH: samplers[0].wrapT: unknown wrap mode 1234 (expected 10497 REPEAT, "
+                                        "33071 CLAMP_TO_EDGE or 33648 MIRRORED_REPEAT)");
+  b = textured;
+  b.doc["materials"][0]["emissiveFactor"] = {2, 0, 0};
+  EXPECT_EQ(load_error(b, "factor.gltf"), "PATH: materials[0].emissiveFactor: must be 3 numbers in [0, 1], got [2, 0, 0]");
+  b = textured;
+  b.doc["materials"][0]["extensions"] = {{"KHR_materials_emissive_strength", {{"emissiveStrength", -1}}}};
+  EXPECT_EQ(load_error(b, "strength.gltf"), "PATH: materials[0].extensions.KHR_materials_emissive_strength."
+                                            "emissiveStrength: must be a finite number >= 0, got -1");
+  b.doc["materials"][0]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = "bright";
+  EXPECT_EQ(load_error(b, "strength_type.gltf"), "PATH: materials[0].extensions.KHR_materials_emissive_strength."
+                                                 "emissiveStrength: expected a number, got \"bright\"");
+  // An image cut short: its header reads, its pixels do not.
+  const std::string png = test::png(2, 1, kTwoTexels);
+  b = test::textured_quad_gltf(png.substr(0, png.size() - 20));
+  const std::string message = load_error(b, "cut.gltf");
+  EXPECT_EQ(message.rfind("PATH: images[0]: cannot be decoded (", 0), 0u) << message;
 }
 
 TEST(GltfErrors, BuffersViewsAccessorsAndIndicesOutOfRange) {
@@ -723,8 +860,26 @@ TEST(AssimpModels, BoxTexturedAsGltfAndGlb) {
   EXPECT_EQ(s.meshes[0].positions.size(), 24u);
   EXPECT_EQ(s.meshes[0].normals.size(), 24u);
   EXPECT_EQ(s.meshes[0].uvs.size(), 24u);
-  EXPECT_EQ(warnings, std::vector<std::string>{gltf + ": textures and emission are not rendered yet (base colour factors only)"});
-  EXPECT_EQ(load_gltf_scene(kModels + "BoxTextured-glTF-Binary/BoxTextured.glb", opts).meshes, s.meshes);
+  // CesiumLogoFlat.png, 211x211, mirrored along u and clamped along v; metallicFactor 0: no warning.
+  ASSERT_EQ(s.textures.size(), 1u);
+  EXPECT_EQ(s.textures[0].width, 211u);
+  EXPECT_EQ(s.textures[0].height, 211u);
+  EXPECT_EQ(s.textures[0].wrap_s, Wrap::MirroredRepeat);
+  EXPECT_EQ(s.textures[0].wrap_t, Wrap::ClampToEdge);
+  ASSERT_EQ(s.materials.size(), 1u);
+  EXPECT_EQ(s.materials[0].base_color_texture, 0u);
+  EXPECT_TRUE(warnings.empty()) << warnings.at(0);
+  // The .glb (image in the binary chunk) and the embedded .gltf (data URIs)
+  // decode to the same texels; their sampler repeats both ways.
+  for (const char* other : {"BoxTextured-glTF-Binary/BoxTextured.glb", "BoxTextured-glTF-Embedded/BoxTextured.gltf"}) {
+    const Scene o = load_gltf_scene(kModels + other, opts);
+    EXPECT_EQ(o.meshes, s.meshes) << other;
+    EXPECT_EQ(o.materials, s.materials) << other;
+    ASSERT_EQ(o.textures.size(), 1u) << other;
+    EXPECT_EQ(o.textures[0].texels, s.textures[0].texels) << other;
+    EXPECT_EQ(o.textures[0].wrap_s, Wrap::Repeat) << other;
+    EXPECT_EQ(o.textures[0].wrap_t, Wrap::Repeat) << other;
+  }
 }
 
 TEST(AssimpModels, BrokenFilesGiveOneLineNamingTheFile) {

@@ -532,6 +532,32 @@ TEST(JsonMeshes, RoundTripAsReferences) {
   EXPECT_EQ(scene_to_json(again), text);
 }
 
+// Textures come only from the files: the dump refers to the file again, and
+// loading it brings the same textures back (a reference with a material of
+// the scene's takes none).
+TEST(JsonMeshes, TexturesRoundTripThroughTheirFiles) {
+  const std::string dir = mesh_folder();
+  test::textured_quad_gltf(test::png(1, 2, {10, 20, 30, 255, 40, 50, 60, 255})).write(dir + "/tiles.glb");
+  const Scene s = parse_with_meshes(R"({"materials": [{"type": "lambertian", "albedo": [0.1, 0.2, 0.3]}],
+      "meshes": [{"file": "tiles.glb"}, {"file": "tiles.glb", "material": 0}, {"file": "tiles.glb"}]})");
+  ASSERT_EQ(s.textures.size(), 2u);  // once per reference that keeps the file's materials
+  EXPECT_EQ(s.textures[0].texels, (std::vector<uint32_t>{0xff1e140au, 0xff3c3228u}));
+  ASSERT_EQ(s.materials.size(), 3u);
+  EXPECT_EQ(s.materials[1].base_color_texture, 0u);
+  EXPECT_EQ(s.materials[2].base_color_texture, 1u);
+  const std::string text = scene_to_json(s);
+  EXPECT_EQ(text.find("texture"), std::string::npos) << text;
+  EXPECT_EQ(parse_with_meshes(text), s);
+}
+
+TEST(JsonMeshes, TexturesAndEmissionOfTheScenesOwnMaterialsCannotBeWritten) {
+  Scene s;
+  s.materials = {test::lambertian(0.5f)};
+  s.materials[0].emission = glm::vec3(1.0f);
+  EXPECT_EQ(input_error([&] { scene_to_json(s); }),
+            "scene: materials[0]: textures and emission come only from mesh files and cannot be written");
+}
+
 TEST(JsonMeshes, MeshesWithoutReferencesCannotBeWritten) {
   Scene s;
   s.materials.push_back({});
@@ -575,6 +601,28 @@ TEST(JsonMeshes, Errors) {
   broken.write(mesh_folder() + "/broken.glb");
   EXPECT_EQ(mesh_error(R"([{"file": "broken.glb"}])"),
             "DIR/scene.json: meshes[0].file: DIR/broken.glb: accessors[0]: count 900 exceeds bufferView 0 (4 elements)");
+}
+
+TEST(Validate, TexturesAndTheMaterialsThatUseThem) {
+  const auto error = [](auto change) {
+    Scene s;
+    s.materials.push_back({});
+    s.materials[0].base_color_texture = 0;
+    s.textures.push_back({2, 1, {0xffffffffu, 0xff000000u}, Wrap::Repeat, Wrap::ClampToEdge});
+    change(s);
+    return input_error([&] { validate_scene(s, "mine"); });
+  };
+  EXPECT_EQ(error([](Scene& s) { s.materials[0].base_color_texture = 1; }),
+            "mine: materials[0].base_color_texture: index 1 out of range (1 texture)");
+  EXPECT_EQ(error([](Scene& s) { s.materials[0].emission_texture = 3; }),
+            "mine: materials[0].emission_texture: index 3 out of range (1 texture)");
+  EXPECT_EQ(error([](Scene& s) { s.materials[0].emission = {1, -1, 0}; }),
+            "mine: materials[0].emission: must be 3 finite numbers >= 0, got [1, -1, 0]");
+  EXPECT_EQ(error([](Scene& s) { s.materials[0].type = MaterialType::Metal; }),
+            "mine: materials[0]: only lambertian materials take textures and an emission (an emissive one has a radiance)");
+  EXPECT_EQ(error([](Scene& s) { s.textures[0].texels.pop_back(); }), "mine: textures[0].texels: 1 texels for 2x1");
+  EXPECT_EQ(error([](Scene& s) { s.textures[0].height = 0; }), "mine: textures[0]: must be at least 1x1 texels, got 2x0");
+  EXPECT_EQ(error([](Scene& s) { s.textures[0].wrap_t = Wrap(7); }), "mine: textures[0].wrap_t: unknown wrap mode 7");
 }
 
 TEST(Validate, MeshesAndInstances) {

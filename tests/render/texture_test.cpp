@@ -1,0 +1,238 @@
+// Textures and emission as the renderer draws them: glTF's uv origin at the
+// image's top-left, sRGB decoded exactly, bilinear filtering in linear colour,
+// each wrap mode, emission = factor x texture x strength, and a lambertian
+// emitter that still reflects. The set-ups make every pixel exact rather than
+// noisy: quads facing a pinhole camera under a uniform sky (radiance 1) or a
+// black one, so that a path scatters once off the quad's plane and never meets
+// it again: a pixel is albedo x 1 (plus the emission), or the emission alone.
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "scene/gltf.h"
+#include "scene/gltf_builder.h"
+#include "test_util.h"
+
+namespace octrace {
+namespace {
+
+class TextureTest : public test::VulkanTest {};
+
+// The sRGB EOTF (IEC 61966-2-1) of an 8-bit value, in double.
+double srgb(int byte) {
+  const double c = byte / 255.0;
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+// Largest error allowed for a colour of about 1 in each precision: fp32
+// (rounding and the GPU's pow), half (2^-11 relative, twice).
+float tolerance(Precision p) { return p == Precision::FP32 ? 1e-5f : 2e-3f; }
+
+const Precision kPrecisions[] = {Precision::FP32, Precision::FP16, Precision::FP16All};
+
+// A pinhole camera looking down -z at the rectangle [0, w] x [0, h] of the
+// plane z = 0, which fills an image of 8 pixels per unit exactly.
+void frame(Scene& s, float w, float h) {
+  const float distance = 10.0f;
+  s.camera.lookfrom = {w / 2, h / 2, distance};
+  s.camera.lookat = {w / 2, h / 2, 0};
+  s.camera.vup = {0, 1, 0};
+  s.camera.vfov = float(glm::degrees(2.0 * std::atan(0.5 * h / distance)));
+  s.camera.aperture = 0;
+  s.camera.focus_dist = distance;
+}
+
+RenderResult render_framed(const Scene& s, float w, float h, Precision precision, uint32_t spp = 1) {
+  RenderSettings settings;
+  settings.width = int(8 * w);
+  settings.height = int(8 * h);
+  settings.spp = spp;
+  settings.precision = precision;
+  RenderResult r = render(test::shared_context(), s, settings);
+  EXPECT_EQ(r.nonfinite_samples, 0u);
+  return r;
+}
+
+// The pixel that shows the point (x, y) of the plane (see frame()).
+glm::vec3 at(const RenderResult& r, float x, float y) {
+  const int px = int(8 * x), py = r.mean.height - 1 - int(8 * y);
+  const float* p = &r.mean.rgb[3 * (size_t(py) * size_t(r.mean.width) + size_t(px))];
+  return {p[0], p[1], p[2]};
+}
+
+void expect_near(glm::vec3 got, glm::dvec3 want, float tol, const std::string& what) {
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], tol) << what << ", channel " << c;
+}
+
+Scene uniform_sky() {
+  Scene s;
+  s.sky.type = SkyType::Uniform;
+  s.sky.radiance = glm::vec3(1.0f);
+  return s;
+}
+
+// A quad (x, y) .. (x + 1, y + 1) on z = 0 facing +z, every vertex at the same
+// uv: each of its pixels samples the texture at exactly that point.
+void add_uv_quad(Mesh& m, float x, float y, glm::vec2 uv, uint32_t material) {
+  const auto base = uint32_t(m.positions.size());
+  m.positions.insert(m.positions.end(), {{x, y, 0}, {x + 1, y, 0}, {x + 1, y + 1, 0}, {x, y + 1, 0}});
+  m.uvs.insert(m.uvs.end(), 4, uv);
+  m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+  m.materials.insert(m.materials.end(), 2, material);
+}
+
+Material textured(uint32_t texture) {
+  Material m = test::lambertian(1.0f);
+  m.base_color_texture = texture;
+  return m;
+}
+
+// A 2x2 image of four colours on the glTF quad (uv (0, 0) at its top-left
+// corner as seen from +z): each corner of the render shows its texel, so the
+// image is neither flipped nor mirrored. Clamped, so that the corners are
+// the texels alone rather than blends with the opposite edge.
+TEST_F(TextureTest, UvOriginIsTheImagesTopLeft) {
+  const std::string png = test::png(2, 2, {255, 0, 0, 255, 0, 255, 0, 255,       // top: red, green
+                                           0, 0, 255, 255, 255, 255, 255, 255});  // bottom: blue, white
+  const std::string path = test::tmp_path("texture_orientation.glb");
+  test::textured_quad_gltf(png, test::kClampToEdge, test::kClampToEdge).write(path);
+  Scene s = load_gltf_scene(path);
+  s.sky = uniform_sky().sky;
+  frame(s, 1, 1);
+  for (Precision p : kPrecisions) {
+    const RenderResult r = render_framed(s, 1, 1, p);
+    const std::string name = precision_name(p);
+    expect_near(at(r, 0.1f, 0.9f), {1, 0, 0}, tolerance(p), name + " top left");
+    expect_near(at(r, 0.9f, 0.9f), {0, 1, 0}, tolerance(p), name + " top right");
+    expect_near(at(r, 0.1f, 0.1f), {0, 0, 1}, tolerance(p), name + " bottom left");
+    expect_near(at(r, 0.9f, 0.1f), {1, 1, 1}, tolerance(p), name + " bottom right");
+  }
+}
+
+// A texel of 128 is 0.2158605 in linear colour (the exact EOTF; the 2.2 power
+// gives 0.2176, a texel used as it is 0.502), here as the albedo under a sky
+// of radiance 1.
+TEST_F(TextureTest, SrgbTexelsAreDecodedWithTheExactCurve) {
+  Scene s = uniform_sky();
+  Mesh m;
+  add_uv_quad(m, 0, 0, {0.5f, 0.5f}, 0);
+  test::place(s, m);
+  s.textures = {{1, 1, {0xff0a8040u}, Wrap::Repeat, Wrap::Repeat}};  // r 64, g 128, b 10
+  s.materials = {textured(0)};
+  frame(s, 1, 1);
+  for (Precision p : kPrecisions)
+    expect_near(at(render_framed(s, 1, 1, p), 0.5f, 0.5f), {srgb(64), srgb(128), srgb(10)}, tolerance(p),
+                precision_name(p));
+}
+
+// Halfway between a black and a white texel is 0.5 in linear colour: texels
+// are decoded before they are blended (blending the sRGB values would give 0.214).
+TEST_F(TextureTest, BilinearFilteringBlendsInLinearColour) {
+  Scene s = uniform_sky();
+  Mesh m;
+  add_uv_quad(m, 0, 0, {0.5f, 0.5f}, 0);   // midway between the two texel centres
+  add_uv_quad(m, 1, 0, {0.375f, 0.5f}, 0);  // a quarter of the way
+  test::place(s, m);
+  s.textures = {{2, 1, {0xff000000u, 0xffffffffu}, Wrap::ClampToEdge, Wrap::ClampToEdge}};
+  s.materials = {textured(0)};
+  frame(s, 2, 1);
+  const RenderResult r = render_framed(s, 2, 1, Precision::FP32);
+  expect_near(at(r, 0.5f, 0.5f), glm::dvec3(0.5), 1e-5f, "midpoint");
+  expect_near(at(r, 1.5f, 0.5f), glm::dvec3(0.25), 1e-5f, "quarter");
+}
+
+// Each wrap mode at coordinates outside [0, 1], along u and v at once: a 4x4
+// texture whose red grows with x and green with y (bytes 0, 85, 170, 255),
+// sampled at uv = (c, c) on a row of quads per wrap mode, one quad per c.
+// A last row mirrors along u and clamps along v (as BoxTextured does), which
+// tells the two axes apart.
+TEST_F(TextureTest, WrapModesRepeatClampAndMirror) {
+  const int bytes[4] = {0, 85, 170, 255};
+  Texture t{4, 4, {}, Wrap::Repeat, Wrap::Repeat};
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) t.texels.push_back(0xff000000u | uint32_t(bytes[y]) << 8 | uint32_t(bytes[x]));
+  const double lin[4] = {srgb(0), srgb(85), srgb(170), srgb(255)};
+  // Texel centres lie at 0.125, 0.375, 0.625, 0.875.
+  const float coords[5] = {0.375f, 1.125f, -0.375f, 1.0f, 2.375f};
+  struct Row {
+    Wrap s, t;
+    double expected[5];  // linear value along an axis of that wrap, per coordinate
+  };
+  const double seam = 0.5 * (lin[3] + lin[0]);  // REPEAT at 1.0: halfway between the last texel and the first
+  const Row rows[] = {
+      {Wrap::Repeat, Wrap::Repeat, {lin[1], lin[0], lin[2], seam, lin[1]}},
+      {Wrap::ClampToEdge, Wrap::ClampToEdge, {lin[1], lin[3], lin[0], lin[3], lin[3]}},
+      {Wrap::MirroredRepeat, Wrap::MirroredRepeat, {lin[1], lin[3], lin[1], lin[3], lin[1]}},
+  };
+  Scene s = uniform_sky();
+  Mesh m;
+  for (size_t r = 0; r < 4; ++r) {
+    Texture tr = t;
+    tr.wrap_s = r < 3 ? rows[r].s : Wrap::MirroredRepeat;
+    tr.wrap_t = r < 3 ? rows[r].t : Wrap::ClampToEdge;
+    s.textures.push_back(tr);
+    s.materials.push_back(textured(uint32_t(r)));
+    for (int c = 0; c < 5; ++c) add_uv_quad(m, float(c), float(r), glm::vec2(coords[c]), uint32_t(r));
+  }
+  test::place(s, m);
+  frame(s, 5, 4);
+  const RenderResult r = render_framed(s, 5, 4, Precision::FP32);
+  const char* names[] = {"REPEAT", "CLAMP_TO_EDGE", "MIRRORED_REPEAT"};
+  for (int row = 0; row < 4; ++row)
+    for (int c = 0; c < 5; ++c) {
+      const double u = row < 3 ? rows[row].expected[c] : rows[2].expected[c];
+      const double v = row < 3 ? rows[row].expected[c] : rows[1].expected[c];
+      expect_near(at(r, c + 0.5f, row + 0.5f), {u, v, 0}, 1e-5f,
+                  std::string(row < 3 ? names[row] : "MIRRORED_REPEAT along u, CLAMP_TO_EDGE along v") + " at " +
+                      std::to_string(coords[c]));
+    }
+}
+
+// A glTF quad with emissiveFactor (1, 0.5, 0.25), emissiveStrength 4 and an
+// emissive texture seen under a black sky: every pixel is the emission; under
+// a sky of radiance 1 the surface also reflects it (albedo 0.5).
+TEST_F(TextureTest, EmissionIsFactorTimesTextureTimesStrengthAndTheSurfaceStillReflects) {
+  test::GltfBuilder b = test::textured_quad_gltf(test::png(1, 1, {255, 128, 64, 255}));
+  b.doc["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+  b.doc["extensionsRequired"] = {"KHR_materials_emissive_strength"};
+  nlohmann::json& m = b.doc["materials"][0];
+  m["pbrMetallicRoughness"] = {{"baseColorFactor", {0.5, 0.5, 0.5, 1}}, {"metallicFactor", 0}};
+  m["emissiveFactor"] = {1, 0.5, 0.25};
+  m["emissiveTexture"] = {{"index", 0}};
+  m["extensions"] = {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}}};
+  const std::string path = b.write(test::tmp_path("texture_emission.glb"));
+  Scene s = load_gltf_scene(path);
+  s.sky.type = SkyType::None;
+  frame(s, 1, 1);
+  EXPECT_EQ(feature_names(scene_features(s)),
+            (std::vector<std::string>{"lambertian", "triangles", "textures", "surface_emission", "sky_none", "sky_black"}));
+  const glm::dvec3 emission(4 * srgb(255), 2 * srgb(128), 1 * srgb(64));
+  for (Precision p : kPrecisions) {
+    const RenderResult r = render_framed(s, 1, 1, p);
+    expect_near(at(r, 0.5f, 0.5f), emission, 4 * tolerance(p), std::string(precision_name(p)) + " black sky");
+  }
+  s.sky = uniform_sky().sky;
+  const RenderResult lit = render_framed(s, 1, 1, Precision::FP32);
+  expect_near(at(lit, 0.5f, 0.5f), emission + glm::dvec3(0.5), 4e-5f, "under a sky of 1");
+}
+
+// The texels of a scene go into one storage buffer: more than the device
+// allows is refused in one line naming them (lavapipe allows 128 MiB).
+TEST_F(TextureTest, TexelsBeyondOneStorageBufferAreRefused) {
+  const uint64_t limit = test::shared_context().limits.maxStorageBufferRange;
+  if (limit > (uint64_t(1) << 28)) GTEST_SKIP() << "the device allows " << limit << " bytes per buffer";
+  const uint32_t side = uint32_t(std::sqrt(double(limit / 4))) + 1;
+  Scene s = uniform_sky();
+  Mesh m;
+  add_uv_quad(m, 0, 0, {0.5f, 0.5f}, 0);
+  test::place(s, m);
+  s.textures = {{side, side, std::vector<uint32_t>(size_t(side) * side), Wrap::Repeat, Wrap::Repeat}};
+  s.materials = {textured(0)};
+  frame(s, 1, 1);
+  const std::string message = test::input_error([&] { render_framed(s, 1, 1, Precision::FP32); });
+  EXPECT_EQ(message.rfind("the texels of 1 texture need ", 0), 0u) << message;
+  EXPECT_NE(message.find(" per buffer"), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace octrace
