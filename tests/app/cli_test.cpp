@@ -95,6 +95,8 @@ const BadInput BAD_INPUTS[] = {
     {"precision_unknown", "--precision fp8", "--precision: expected fp32, fp16 or fp16-all"},
     {"effects_unknown", "--effects some", "--effects: expected auto or all"},
     {"first_sample_overflow", "--first-sample 4294967295 --spp 2", "--first-sample"},
+    {"sample_lanes_three", "--sample-lanes 3", "--sample-lanes: must be 0 (auto), 1, 2, 4 or 8, got 3"},
+    {"sample_lanes_sixteen", "--sample-lanes 16", "--sample-lanes: must be 0 (auto), 1, 2, 4 or 8, got 16"},
     {"fp16_radiance_overflow", "--precision fp16", "materials[0]: radiance above 65504",
      replaced(VALID_SCENE, "{\"type\": \"lambertian\", \"albedo\": [0.5,0.5,0.5]}",
               "{\"type\": \"emissive\", \"radiance\": [1e5,1,1]}")},
@@ -128,6 +130,20 @@ TEST(Cli, ValidSceneRendersAndDumpRoundTrips) {
   r = run_octrace("compare " + a + " " + b + " --json");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("\"rmse\": 0.0"), std::string::npos) << r.output;
+}
+
+// --pipeline-stats on a device without VK_KHR_pipeline_executable_properties
+// (lavapipe 22.3) renders anyway with one warning; where the device has it,
+// the statistics are in the summary and --json.
+TEST(Cli, PipelineStatsWarnOrReport) {
+  RunResult r = run_octrace("render --size 8x8 --spp 1 --spheres 5 --pipeline-stats --json --out " + tmp("stats.png"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  const bool warned = r.output.find("has no VK_KHR_pipeline_executable_properties: no pipeline statistics") != std::string::npos;
+  const auto brace = r.output.find('{');
+  ASSERT_NE(brace, std::string::npos) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(r.output.substr(brace));
+  ASSERT_TRUE(j.contains("pipeline_statistics"));
+  EXPECT_NE(warned, !j["pipeline_statistics"].empty()) << r.output;
 }
 
 TEST(Cli, JsonSummaryHasTimingsAndDevice) {
