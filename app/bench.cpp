@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "io/file.h"
+#include "scene/gltf.h"
 #include "render/gpu_scene.h"
 #include "vk/context.h"
 
@@ -192,6 +193,7 @@ int run_scene_bench(const VulkanContext& ctx, const BenchOptions& o, const Rende
         RenderSettings s = settings;
         s.accel = accel;
         s.precision = precision;
+        if (std::string w = software_loop_limit_warning(ctx.info, scene, s); !w.empty()) print_warning(w);
         PathTracer tracer(ctx, scene, s);
         const std::vector<double> times = timed_runs(tracer, scene, s, o.repeat);
         SceneRow row{name, scene.spheres.size(), instanced_triangle_count(scene), accel, precision};
@@ -286,6 +288,7 @@ int run_bench(const BenchOptions& o) {
           RenderSettings s = settings;
           s.accel = accel;
           s.precision = precision;
+          if (std::string w = software_loop_limit_warning(ctx.info, scene, s); !w.empty()) print_warning(w);
           PathTracer tracer(ctx, scene, s);
           const std::vector<double> times = timed_runs(tracer, scene, s, o.repeat);
           row.median_ms = median(times);

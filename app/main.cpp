@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cctype>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -225,6 +226,43 @@ json device_json(const DeviceInfo& d) {
 
 // A progress line on stderr, rewritten in place on a terminal and printed at
 // most every few seconds otherwise; silent for renders under about a second.
+// Ctrl-C (SIGINT) and SIGTERM during a render or the preview: the first
+// asks the work to stop after the batch in flight (the outputs are written
+// with the samples reached); a second ends the process at once, removing a
+// file half written, with the exit code of the signal.
+std::atomic<bool> g_stop{false};
+std::atomic<int> g_signal{0};
+
+extern "C" void on_stop_signal(int sig) {
+  if (g_stop.load()) {
+    remove_file_being_written();
+    _exit(128 + sig);
+  }
+  g_signal = sig;
+  g_stop = true;
+}
+
+// Installs on_stop_signal for SIGINT and SIGTERM while it lives.
+class SignalGuard {
+ public:
+  SignalGuard() {
+    struct sigaction sa {};
+    sa.sa_handler = on_stop_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, &old_int_);
+    sigaction(SIGTERM, &sa, &old_term_);
+  }
+  ~SignalGuard() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  SignalGuard(const SignalGuard&) = delete;
+  SignalGuard& operator=(const SignalGuard&) = delete;
+
+ private:
+  struct sigaction old_int_ {}, old_term_ {};
+};
+
 class Progress {
  public:
   explicit Progress(bool enabled) : enabled_(enabled), tty_(isatty(STDERR_FILENO)) {}
@@ -251,13 +289,44 @@ class Progress {
   Clock::time_point start_ = Clock::now();
 };
 
+// The settings a checkpoint must match (render_state.h); the scene's hash
+// is known once it is on the device.
+CheckpointInfo checkpoint_info(const RenderSettings& s) {
+  CheckpointInfo info;
+  info.width = s.width;
+  info.height = s.height;
+  info.sample_seed = s.sample_seed;
+  info.first_sample = s.first_sample;
+  info.bounce_limit = s.bounce_limit;
+  info.rr_depth = s.rr_depth;
+  info.precision = precision_name(s.precision);
+  info.accel = accel_name(s.accel);
+  return info;
+}
+
 int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts, std::vector<std::string> outputs,
-               const std::string& state, bool as_json, bool quiet) {
+               const std::string& state, double checkpoint_seconds, const std::string& resume_prefix, bool as_json,
+               bool quiet) {
   // Everything the user typed is checked before the (possibly long) render.
   RenderSettings settings = render_opts.parsed();
   if (outputs.empty() && scene_opts.dump_scene.empty() && state.empty()) outputs.push_back("out.png");
   for (const auto& o : outputs) check_image_path(o);
   if (!state.empty()) check_image_path(state + ".mean.pfm");
+  if (checkpoint_seconds < 0 || std::isnan(checkpoint_seconds))
+    throw InputError("--checkpoint: must be a number of seconds >= 0");
+  if (checkpoint_seconds > 0 && state.empty())
+    throw InputError("--checkpoint: needs --state PREFIX (where the checkpoints go)");
+  // A state to resume is read and checked against the settings now; against
+  // the scene once it is on the device.
+  CheckpointInfo resumed;
+  Accumulation resumed_acc;
+  if (!resume_prefix.empty()) {
+    resumed_acc = read_checkpoint(resume_prefix, resumed);
+    CheckpointInfo current = checkpoint_info(settings);
+    current.scene_hash = resumed.scene_hash;  // compared after the upload
+    if (std::string why = checkpoint_mismatch(resumed, current); !why.empty())
+      throw InputError(resume_prefix + ".accum: cannot resume: " + why);
+  }
 
   auto start = Clock::now();
   Scene scene = scene_opts.load();
@@ -273,17 +342,57 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
     print_warning(ctx.info.name + " has no VK_KHR_pipeline_executable_properties: no pipeline statistics");
   double device_ms = ms_since(start);
   if (ctx.info.software && !quiet && !as_json) std::fprintf(stderr, "octrace: %s\n", software_device_note(ctx.info).c_str());
+  if (std::string w = software_loop_limit_warning(ctx.info, scene, settings); !w.empty()) print_warning(w);
 
   Progress progress(!quiet);
-  RenderResult result = render(ctx, scene, settings, [&](uint32_t d, uint32_t t) { progress.update(d, t); });
+  RenderControl control;
+  control.progress = [&](uint32_t d, uint32_t t) { progress.update(d, t); };
+  control.stop = &g_stop;
+  const CheckpointInfo now = checkpoint_info(settings);
+  Accumulation resume;
+  if (!resume_prefix.empty()) {
+    control.resume = &resume;
+    control.resume_samples = resumed.samples;
+    control.check_resume = [&](uint64_t hash) {
+      CheckpointInfo current = now;
+      current.scene_hash = hash;
+      if (std::string why = checkpoint_mismatch(resumed, current); !why.empty())
+        throw InputError(resume_prefix + ".accum: cannot resume: " + why);
+    };
+    resume = std::move(resumed_acc);
+  }
+  std::string last_checkpoint;  // named in the message if the device fails later
+  if (!state.empty()) {
+    control.checkpoint_seconds = checkpoint_seconds > 0 ? checkpoint_seconds : HUGE_VAL;
+    control.checkpoint = [&](const Accumulation& acc, uint32_t samples, uint64_t hash) {
+      CheckpointInfo info = now;
+      info.scene_hash = hash;
+      info.samples = samples;
+      write_checkpoint(state, acc, info, state_of(acc));
+      last_checkpoint = state + " (" + std::to_string(samples) + " spp)";
+    };
+  }
+  SignalGuard signals;
+  RenderResult result;
+  try {
+    result = render(ctx, scene, settings, control);
+  } catch (const RuntimeError& e) {
+    if (last_checkpoint.empty()) throw;
+    throw RuntimeError(std::string(e.what()) + "; the last checkpoint is " + last_checkpoint + ": resume with --resume " +
+                       state);
+  }
 
   start = Clock::now();
   for (const auto& o : outputs) write_image(result.mean, o);
-  if (!state.empty()) write_state({result.mean, result.count}, state);
   double write_ms = ms_since(start);
+  const int exit_code = result.interrupted ? 128 + g_signal.load() : 0;
+  if (result.interrupted && !as_json)
+    std::fprintf(stderr, "octrace: interrupted (%s) at %u of %u spp; the outputs hold the samples reached%s\n",
+                 g_signal.load() == SIGTERM ? "SIGTERM" : "SIGINT", result.samples, settings.spp,
+                 state.empty() ? "" : (", and the state " + state + " resumes it (--resume)").c_str());
 
   const RenderTimings& t = result.timings;
-  double paths = double(settings.width) * settings.height * settings.spp;
+  double paths = double(settings.width) * settings.height * (result.samples - std::min(result.samples, control.resume_samples));
   double paths_per_s = t.render_device_ms > 0 ? paths / (t.render_device_ms / 1000.0) : 0.0;
   double rays_per_s = t.render_device_ms > 0 ? double(result.rays) / (t.render_device_ms / 1000.0) : 0.0;
   if (as_json) {
@@ -299,6 +408,9 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
               {"width", settings.width},
               {"height", settings.height},
               {"spp", settings.spp},
+              {"samples", result.samples},
+              {"interrupted", result.interrupted},
+              {"resumed_from", control.resume_samples},
               {"depth", settings.bounce_limit},
               {"sample_seed", settings.sample_seed},
               {"accel", accel_name(settings.accel)},
@@ -357,8 +469,9 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
     if (result.nonfinite_samples)
       std::printf("warning   %llu NaN/Inf samples were rejected\n", (unsigned long long)result.nonfinite_samples);
     for (const auto& o : outputs) std::printf("wrote     %s\n", o.c_str());
+    if (!state.empty()) std::printf("state     %s (.accum, .mean.pfm, .count.pfm)\n", state.c_str());
   }
-  return 0;
+  return exit_code;
 }
 
 // Merges accumulation states (render --state) weighted by their sample counts.
@@ -462,7 +575,15 @@ int main(int argc, char** argv) {
   render_cmd->add_flag("--json", as_json, "Print a machine-readable summary on stdout");
   std::string state_out;
   render_cmd->add_option("--state", state_out,
-                         "Also save the accumulation state as PREFIX.mean.pfm + PREFIX.count.pfm (octrace merge)");
+                         "Also save the accumulation state as PREFIX.accum (--resume) + PREFIX.mean.pfm + "
+                         "PREFIX.count.pfm (octrace merge)");
+  double checkpoint_seconds = 0;
+  render_cmd->add_option("--checkpoint", checkpoint_seconds,
+                         "Write the --state files at most every SECONDS during the render (0: only at the end)")
+      ->capture_default_str();
+  std::string resume_prefix;
+  render_cmd->add_option("--resume", resume_prefix,
+                         "Continue the render saved as PREFIX (--state) up to --spp, with the same sample indices");
   render_cmd->add_flag("--quiet,-q", quiet, "No progress or summary");
 
   ViewOptions view_opts;
@@ -540,7 +661,8 @@ int main(int argc, char** argv) {
 
   int code = 0;
   try {
-    if (*render_cmd) code = cmd_render(scene_opts, render_opts, outputs, state_out, as_json, quiet);
+    if (*render_cmd)
+      code = cmd_render(scene_opts, render_opts, outputs, state_out, checkpoint_seconds, resume_prefix, as_json, quiet);
     else if (*merge_cmd) code = cmd_merge(merge_inputs, merge_outputs, merge_state, quiet);
     else if (*view_cmd) {
 #ifdef OCTRACE_WINDOW
@@ -548,6 +670,8 @@ int main(int argc, char** argv) {
       view_opts.device = render_opts.device;
       view_opts.validation = render_opts.validation;
       RenderSettings settings = render_opts.parsed();
+      view_opts.stop = &g_stop;
+      SignalGuard signals;
       code = run_view(scene_opts.load(), settings, view_opts);
 #else
       throw RuntimeError("this build has no window support (configure with -DOCTRACE_WINDOW=ON and libglfw3-dev)");

@@ -178,20 +178,21 @@ void Viewer::open() {
 void Viewer::run() {
   std::printf("octrace view: H lists the keys\n");
   std::fflush(stdout);
-  while (!quit_ && !glfwWindowShouldClose(window_.get())) {
+  const auto stopped = [&] { return options_.stop && options_.stop->load(); };
+  while (!quit_ && !stopped() && !glfwWindowShouldClose(window_.get())) {
     const bool idle = spp_ >= target_spp() && !restart_ && !reconfigure_;
     // Nothing to add: re-present now and then (an uncovered window needs
     // its pixels again) rather than spin.
     if (idle) glfwWaitEventsTimeout(0.1);
     else glfwPollEvents();
-    if (quit_ || glfwWindowShouldClose(window_.get())) break;
+    if (quit_ || stopped() || glfwWindowShouldClose(window_.get())) break;
 
     int width = 0, height = 0;
     glfwGetFramebufferSize(window_.get(), &width, &height);
     // Minimised (a zero-size framebuffer on some systems, iconified on
     // others): nothing to show, and nothing to acquire, until restored.
     if (width == 0 || height == 0 || glfwGetWindowAttrib(window_.get(), GLFW_ICONIFIED)) {
-      glfwWaitEvents();
+      glfwWaitEventsTimeout(0.1);  // not forever: a Ctrl-C must be seen
       continue;
     }
     if (swapchain_dirty_ || uint32_t(width) != preview_.swapchain.extent.width ||

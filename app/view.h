@@ -3,6 +3,7 @@
 // documents them; view.cpp, the window itself, is built only with it.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <string>
 
@@ -34,6 +35,9 @@ struct ViewOptions {
   std::string screenshot;   // written when max_spp is reached: the window's pixels
   bool exit_after_spp = false;
   uint32_t orbit_test = 0;  // scripted camera moves, for timing; 0: none
+  // Set (by Ctrl-C or SIGTERM): the window closes as if asked to; nothing is
+  // saved that was not asked for.
+  const std::atomic<bool>* stop = nullptr;
 
   void add_to(CLI::App& cmd) {
     cmd.add_option("--max-spp", max_spp, "Stop accumulating at this many samples per pixel (0: never)")

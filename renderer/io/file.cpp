@@ -14,16 +14,36 @@
 
 namespace octrace {
 
+namespace {
+// The temporary being written (one at a time: writes happen on the main
+// thread), for remove_file_being_written.
+char g_writing[4096];
+std::atomic<bool> g_is_writing{false};
+}  // namespace
+
+void remove_file_being_written() noexcept {
+  if (g_is_writing.load()) ::unlink(g_writing);
+}
+
 void write_file_atomically(const std::string& path, const void* data, size_t size, const std::string& what) {
   // A name of our own with O_EXCL rather than mkstemp: mkstemp creates the
   // file 0600, and the renamed result should get the usual permissions.
   static std::atomic<uint64_t> counter{0};
   const std::string tmp = path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  const bool tracked = tmp.size() < sizeof g_writing;
+  if (tracked) {
+    std::memcpy(g_writing, tmp.c_str(), tmp.size() + 1);
+    g_is_writing = true;
+  }
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-  if (fd < 0) throw RuntimeError(path + ": " + what + ": " + std::strerror(errno));
+  if (fd < 0) {
+    g_is_writing = false;
+    throw RuntimeError(path + ": " + what + ": " + std::strerror(errno));
+  }
   const auto fail = [&](int err, bool open) {
     if (open) ::close(fd);
     ::unlink(tmp.c_str());
+    g_is_writing = false;
     throw RuntimeError(path + ": " + what + ": " + std::strerror(err));
   };
   const char* bytes = static_cast<const char*>(data);
@@ -37,6 +57,7 @@ void write_file_atomically(const std::string& path, const void* data, size_t siz
   if (::fsync(fd) != 0) fail(errno, true);
   if (::close(fd) != 0) fail(errno, false);
   if (std::rename(tmp.c_str(), path.c_str()) != 0) fail(errno, false);
+  g_is_writing = false;
 }
 
 std::string read_file(const std::string& path) {

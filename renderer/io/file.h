@@ -16,6 +16,11 @@ namespace octrace {
 void write_file_atomically(const std::string& path, const void* data, size_t size,
                            const std::string& what = "cannot write");
 
+// Removes the temporary file that write_file_atomically is writing at this
+// moment, if any: async-signal-safe, for a handler that ends the process at
+// once (a second Ctrl-C), so that no partial file is left behind.
+void remove_file_being_written() noexcept;
+
 // The whole file. Throws InputError "PATH: cannot open file: reason" (or
 // "cannot read file").
 std::string read_file(const std::string& path);

@@ -10,6 +10,7 @@
 #include <glm/matrix.hpp>
 
 #include "core/clock.h"
+#include "core/hash.h"
 #include "core/errors.h"
 #include "core/text.h"
 #include "render/gpu_layout.h"
@@ -294,6 +295,20 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   p.instance_count = uint32_t(instances.size());
   p.triangle_uvs = uvs.empty() ? 0u : 1u;
 
+  g.content_hash = Hash64()
+                      .add(&p, sizeof p)
+                      .add_vector(triangles)
+                      .add_vector(normals)
+                      .add_vector(uvs)
+                      .add_vector(instances)
+                      .add_vector(meshes)
+                      .add_vector(textures.table)
+                      .add_vector(textures.texels)
+                      .add_vector(spheres)
+                      .add_vector(sphere_materials)
+                      .add_vector(materials)
+                      .add_vector(materials_half)
+                      .value();
   create_buffer(g.params, ctx, sizeof p, false, "scene parameters");
   create_buffer(g.triangles, ctx, triangle_bytes, false, "triangle buffer");
   create_buffer(g.triangle_normals, ctx, normals.size() * sizeof(gpu::GpuTriangleNormals), false,

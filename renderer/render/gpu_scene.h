@@ -29,6 +29,10 @@ struct GpuScene {
   Buffer texels;            // every texture's texels, one uint (RGBA8) each
   Buffer triangle_uvs;      // GpuTriangleUvs per triangle (placeholder without textures)
   Buffer nodes, refs;       // the octree (16-byte placeholders without one)
+  // A hash of every array above but the octree, as uploaded (spheres,
+  // materials, triangles, instances, textures, sky): the scene a checkpoint
+  // belongs to.
+  uint64_t content_hash = 0;
   bool has_octree = false;
   OctreeStats octree;
   double accel_build_ms = 0;  // octree build on the CPU (wall)

@@ -235,7 +235,13 @@ void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, ui
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.pipeline);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.layout, 0, 1, &s.pipeline.set, 0,
                           nullptr);
-  const uint32_t per_dispatch = s.settings.samples_per_dispatch ? s.settings.samples_per_dispatch : count;
+  // Auto: the whole batch in one dispatch on a GPU; one sample per dispatch
+  // on a software device, whose compiler (llvmpipe 22.3) ends a loop after
+  // 65535 iterations counted over the whole invocation: several samples in
+  // one invocation would cut their paths short (optimisation log 16).
+  const uint32_t per_dispatch = s.settings.samples_per_dispatch ? s.settings.samples_per_dispatch
+                                : s.ctx.info.software             ? 1u
+                                                                  : count;
   for (uint32_t done = 0; done < count; done += pc.sample_count) {
     if (done > 0) compute_barrier(cmd);
     pc.sample_index = first_sample + done;
@@ -261,15 +267,41 @@ double PathTracer::run_passes(const PassSettings& pass, uint32_t first_sample, u
   return timer_ms(s.timer);
 }
 
+Accumulation PathTracer::read_accumulation() {
+  State& s = *state_;
+  const uint64_t pixels = s.pixels();
+  Accumulation a{s.settings.width, s.settings.height, std::vector<glm::vec4>(pixels), std::vector<glm::vec4>(pixels),
+                 std::vector<glm::vec4>(pixels)};
+  download_buffer(s.ctx, s.accum_sum, a.sum.data(), pixels * sizeof(glm::vec4));
+  download_buffer(s.ctx, s.accum_comp, a.comp.data(), pixels * sizeof(glm::vec4));
+  download_buffer(s.ctx, s.accum_sq, a.sq.data(), pixels * sizeof(glm::vec4));
+  return a;
+}
+
+void PathTracer::write_accumulation(const Accumulation& a) {
+  State& s = *state_;
+  const uint64_t pixels = s.pixels();
+  if (a.width != s.settings.width || a.height != s.settings.height || a.sum.size() != pixels ||
+      a.comp.size() != pixels || a.sq.size() != pixels)
+    throw InputError("accumulation state of " + std::to_string(a.width) + "x" + std::to_string(a.height) +
+                     " for a render of " + std::to_string(s.settings.width) + "x" + std::to_string(s.settings.height));
+  VK_CHECK(vkDeviceWaitIdle(s.ctx.device));
+  upload_buffer(s.ctx, s.accum_sum, a.sum.data(), pixels * sizeof(glm::vec4));
+  upload_buffer(s.ctx, s.accum_comp, a.comp.data(), pixels * sizeof(glm::vec4));
+  upload_buffer(s.ctx, s.accum_sq, a.sq.data(), pixels * sizeof(glm::vec4));
+}
+
+uint64_t PathTracer::scene_hash() const { return state_->scene.content_hash; }
+
 RenderResult PathTracer::read_result() {
   State& s = *state_;
   auto start = Clock::now();
   const uint64_t pixels = s.pixels();
-  std::vector<glm::vec4> sum(pixels), comp(pixels), sq(pixels);
+  Accumulation a = read_accumulation();
+  const std::vector<glm::vec4>& sum = a.sum;
+  const std::vector<glm::vec4>& comp = a.comp;
+  const std::vector<glm::vec4>& sq = a.sq;
   gpu::RenderStats stats{};
-  download_buffer(s.ctx, s.accum_sum, sum.data(), pixels * sizeof(glm::vec4));
-  download_buffer(s.ctx, s.accum_comp, comp.data(), pixels * sizeof(glm::vec4));
-  download_buffer(s.ctx, s.accum_sq, sq.data(), pixels * sizeof(glm::vec4));
   download_buffer(s.ctx, s.stats, &stats, sizeof(stats));
 
   RenderResult r;
@@ -303,30 +335,67 @@ RenderResult PathTracer::read_result() {
   return r;
 }
 
+std::string software_loop_limit_warning(const DeviceInfo& device, const Scene& scene, const RenderSettings& settings) {
+  constexpr uint64_t kLoopLimit = 65535;
+  if (!device.software || settings.accel != Accel::Brute) return {};
+  const uint64_t per_bounce = std::max<uint64_t>(scene.spheres.size(), instanced_triangle_count(scene));
+  if (per_bounce * settings.bounce_limit <= kLoopLimit) return {};
+  return device.name + " ends a shader loop after 65535 iterations per invocation: brute force over " +
+         std::to_string(per_bounce) + " primitives cuts paths longer than " +
+         std::to_string(kLoopLimit / per_bounce) + " bounces short (the image is wrong where paths are long; the "
+         "octree is not affected)";
+}
+
 RenderResult render(const VulkanContext& ctx, const Scene& scene, const RenderSettings& settings,
-                    const ProgressFn& progress) {
+                    const RenderControl& control) {
   PathTracer tracer(ctx, scene, settings);
   const PassSettings pass = pass_settings(scene, settings);
+  uint32_t done = 0;
+  if (control.resume) {
+    if (control.check_resume) control.check_resume(tracer.scene_hash());
+    tracer.write_accumulation(*control.resume);
+    done = std::min(control.resume_samples, settings.spp);
+  }
   double device_ms = 0;
-  auto start = Clock::now();
+  auto start = Clock::now(), last_checkpoint = start;
+  bool interrupted = false;
   // Batches grow until one takes about a quarter second: few submissions for
-  // fast passes, regular progress and no driver watchdog for slow ones.
-  uint32_t done = 0, batch = 1;
+  // fast passes, regular progress, a prompt stop and no driver watchdog for
+  // slow ones.
+  uint32_t batch = 1;
   while (done < settings.spp) {
+    if (control.stop && control.stop->load()) {
+      interrupted = true;
+      break;
+    }
     uint32_t n = std::min(batch, settings.spp - done);
     auto batch_start = Clock::now();
     device_ms += tracer.run_passes(pass, settings.first_sample + done, n);
     double batch_ms = ms_since(batch_start);
     done += n;
-    if (progress) progress(done, settings.spp);
+    if (control.progress) control.progress(done, settings.spp);
     double per_pass = batch_ms / n;
     batch = uint32_t(std::clamp(250.0 / std::max(per_pass, 1e-3), 1.0, 1024.0));
+    if (control.checkpoint && done < settings.spp && ms_since(last_checkpoint) >= 1000.0 * control.checkpoint_seconds) {
+      control.checkpoint(tracer.read_accumulation(), done, tracer.scene_hash());
+      last_checkpoint = Clock::now();
+    }
   }
   double wall_ms = ms_since(start);
+  if (control.checkpoint) control.checkpoint(tracer.read_accumulation(), done, tracer.scene_hash());  // the final state
   RenderResult r = tracer.read_result();
   r.timings.render_device_ms = device_ms;
   r.timings.render_wall_ms = wall_ms;
+  r.samples = done;
+  r.interrupted = interrupted;
   return r;
+}
+
+RenderResult render(const VulkanContext& ctx, const Scene& scene, const RenderSettings& settings,
+                    const ProgressFn& progress) {
+  RenderControl control;
+  control.progress = progress;
+  return render(ctx, scene, settings, control);
 }
 
 }  // namespace octrace

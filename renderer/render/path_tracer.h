@@ -4,12 +4,14 @@
 // adds one sample per pixel to fp32 accumulation buffers; the mean is read back.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
 
 #include "accel/octree.h"
 #include "io/image.h"
+#include "render/render_state.h"
 #include "render/settings.h"
 #include "scene/features.h"
 #include "scene/scene.h"
@@ -52,6 +54,8 @@ struct RenderResult {
   SceneFeatures features;         // what the pipeline was specialised to
   // The driver's statistics of the path-tracing pipeline (ComputePipeline::statistics).
   std::vector<std::pair<std::string, std::string>> pipeline_statistics;
+  uint32_t samples = 0;      // samples per pixel the state holds (settings.spp unless interrupted)
+  bool interrupted = false;  // render(): RenderControl::stop ended it early
 };
 
 // Called after each batch of passes: passes done, total passes.
@@ -95,6 +99,12 @@ class PathTracer {
   // resize and reconfigure).
   const RenderSettings& settings() const;
   RenderResult read_result();
+  // The raw accumulation buffers, and a state to continue from (a
+  // checkpoint; InputError if its size is not the tracer's).
+  Accumulation read_accumulation();
+  void write_accumulation(const Accumulation& acc);
+  // GpuScene::content_hash of the scene on the device.
+  uint64_t scene_hash() const;
   const RenderTimings& setup_timings() const;
   const OctreeStats& octree_stats() const;
   const SceneFeatures& features() const;
@@ -104,8 +114,35 @@ class PathTracer {
   std::unique_ptr<State> state_;
 };
 
+// llvmpipe (Mesa 22.3) ends a shader loop after 65535 iterations, counted
+// over the whole invocation. Brute force runs its loop over every primitive
+// at every bounce: with N primitives, paths longer than 65535 / N bounces
+// are cut short and the image is wrong where they are. Returns a one-line
+// warning for such a render on a software device, or an empty string.
+std::string software_loop_limit_warning(const DeviceInfo& device, const Scene& scene, const RenderSettings& settings);
+
+// What a caller may do to a render while it runs.
+struct RenderControl {
+  ProgressFn progress;                      // after each batch of passes
+  const std::atomic<bool>* stop = nullptr;  // set (a signal): stop after the batch in flight
+  // Called after a batch when at least `checkpoint_seconds` have passed since
+  // the last call (or the start), and once at the end (finished or stopped),
+  // with the state, its samples per pixel and the scene's hash.
+  double checkpoint_seconds = 0;
+  std::function<void(const Accumulation&, uint32_t samples, uint64_t scene_hash)> checkpoint;
+  // Continue from this state, which holds `resume_samples` samples per pixel
+  // (indices first_sample .. + resume_samples - 1); the render adds the rest
+  // up to settings.spp. `check_resume` is called with the scene's hash
+  // before any pass, to refuse a state of another scene (by throwing).
+  const Accumulation* resume = nullptr;
+  uint32_t resume_samples = 0;
+  std::function<void(uint64_t scene_hash)> check_resume;
+};
+
 // The whole render: set-up, settings.spp passes in batches sized to about a
 // quarter second each (progress after each), read-back.
+RenderResult render(const VulkanContext& ctx, const Scene& scene, const RenderSettings& settings,
+                    const RenderControl& control);
 RenderResult render(const VulkanContext& ctx, const Scene& scene, const RenderSettings& settings,
                     const ProgressFn& progress = {});
 

@@ -1,8 +1,12 @@
 #include "render/render_state.h"
 
 #include <cmath>
+#include <cstring>
+
+#include <nlohmann/json.hpp>
 
 #include "core/errors.h"
+#include "io/file.h"
 
 namespace octrace {
 
@@ -10,6 +14,17 @@ namespace {
 
 std::string mean_path(const std::string& prefix) { return prefix + ".mean.pfm"; }
 std::string count_path(const std::string& prefix) { return prefix + ".count.pfm"; }
+std::string accum_path(const std::string& prefix) { return prefix + ".accum"; }
+
+// PREFIX.accum: this line, one line of JSON (the CheckpointInfo), then the
+// sum, comp and sq arrays (width * height vec4 each, little-endian float32).
+constexpr char kAccumMagic[] = "octrace accumulation 1\n";
+
+std::string hex(uint64_t v) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+  return buf;
+}
 
 }  // namespace
 
@@ -58,6 +73,106 @@ RenderState merge_states(const std::vector<RenderState>& states) {
     for (int c = 0; c < 3; ++c) merged.mean.rgb[3 * i + c] = n > 0 ? float(sum[c] / n) : 0.0f;
   }
   return merged;
+}
+
+RenderState state_of(const Accumulation& acc) {
+  RenderState st{Image{acc.width, acc.height, std::vector<float>(acc.sum.size() * 3)}, std::vector<float>(acc.sum.size())};
+  for (size_t i = 0; i < acc.sum.size(); ++i) {
+    const double n = acc.sum[i].w;
+    st.count[i] = float(n);
+    for (int c = 0; c < 3; ++c) {
+      // The Kahan sum is sum - comp (comp holds what the float sum overshot).
+      const double total = double(acc.sum[i][c]) - double(acc.comp[i][c]);
+      st.mean.rgb[3 * i + c] = float(n > 0 ? total / n : 0.0);
+    }
+  }
+  return st;
+}
+
+std::string checkpoint_mismatch(const CheckpointInfo& saved, const CheckpointInfo& now) {
+  const auto differ = [](const std::string& what, const std::string& a, const std::string& b) {
+    return what + " " + a + ", this render " + b;
+  };
+  if (saved.scene_hash != now.scene_hash)
+    return differ("another scene: hash", hex(saved.scene_hash), hex(now.scene_hash));
+  if (saved.width != now.width || saved.height != now.height)
+    return differ("size", std::to_string(saved.width) + "x" + std::to_string(saved.height),
+                  std::to_string(now.width) + "x" + std::to_string(now.height));
+  if (saved.sample_seed != now.sample_seed)
+    return differ("sample seed", std::to_string(saved.sample_seed), std::to_string(now.sample_seed));
+  if (saved.first_sample != now.first_sample)
+    return differ("first sample", std::to_string(saved.first_sample), std::to_string(now.first_sample));
+  if (saved.bounce_limit != now.bounce_limit)
+    return differ("bounce limit", std::to_string(saved.bounce_limit), std::to_string(now.bounce_limit));
+  if (saved.rr_depth != now.rr_depth)
+    return differ("roulette depth", std::to_string(saved.rr_depth), std::to_string(now.rr_depth));
+  if (saved.precision != now.precision) return differ("precision", saved.precision, now.precision);
+  if (saved.accel != now.accel) return differ("accel", saved.accel, now.accel);
+  return {};
+}
+
+void write_checkpoint(const std::string& prefix, const Accumulation& acc, const CheckpointInfo& info,
+                      const RenderState& state) {
+  const nlohmann::json j = {{"scene_hash", hex(info.scene_hash)}, {"width", info.width},
+                            {"height", info.height},              {"sample_seed", info.sample_seed},
+                            {"first_sample", info.first_sample},  {"bounce_limit", info.bounce_limit},
+                            {"rr_depth", info.rr_depth},          {"precision", info.precision},
+                            {"accel", info.accel},                {"samples", info.samples}};
+  std::string bytes = kAccumMagic + j.dump() + "\n";
+  const size_t header = bytes.size(), plane = acc.sum.size() * sizeof(glm::vec4);
+  bytes.resize(header + 3 * plane);
+  std::memcpy(bytes.data() + header, acc.sum.data(), plane);
+  std::memcpy(bytes.data() + header + plane, acc.comp.data(), plane);
+  std::memcpy(bytes.data() + header + 2 * plane, acc.sq.data(), plane);
+  write_state(state, prefix);
+  write_file_atomically(accum_path(prefix), bytes.data(), bytes.size(), "cannot write checkpoint");
+}
+
+Accumulation read_checkpoint(const std::string& prefix, CheckpointInfo& info) {
+  const std::string path = accum_path(prefix);
+  const std::string bytes = read_file(path);
+  const size_t magic = sizeof kAccumMagic - 1;
+  if (bytes.compare(0, magic, kAccumMagic) != 0) throw InputError(path + ": not an octrace checkpoint");
+  const size_t eol = bytes.find('\n', magic);
+  if (eol == std::string::npos) throw InputError(path + ": truncated header");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(bytes.substr(magic, eol - magic));
+    info.scene_hash = std::stoull(j.at("scene_hash").get<std::string>(), nullptr, 16);
+    info.width = j.at("width").get<int>();
+    info.height = j.at("height").get<int>();
+    info.sample_seed = j.at("sample_seed").get<uint32_t>();
+    info.first_sample = j.at("first_sample").get<uint32_t>();
+    info.bounce_limit = j.at("bounce_limit").get<uint32_t>();
+    info.rr_depth = j.at("rr_depth").get<uint32_t>();
+    info.precision = j.at("precision").get<std::string>();
+    info.accel = j.at("accel").get<std::string>();
+    info.samples = j.at("samples").get<uint32_t>();
+  } catch (const std::exception& e) {
+    throw InputError(path + ": bad header: " + e.what());
+  }
+  if (info.width < 1 || info.height < 1 || info.width > 1 << 20 || info.height > 1 << 20)
+    throw InputError(path + ": bad size " + std::to_string(info.width) + "x" + std::to_string(info.height));
+  Accumulation acc;
+  acc.width = info.width;
+  acc.height = info.height;
+  const size_t pixels = size_t(info.width) * size_t(info.height), plane = pixels * sizeof(glm::vec4);
+  if (bytes.size() - (eol + 1) != 3 * plane)
+    throw InputError(path + ": " + std::to_string(bytes.size() - (eol + 1)) + " bytes of data, expected " +
+                     std::to_string(3 * plane) + " for " + std::to_string(info.width) + "x" +
+                     std::to_string(info.height));
+  acc.sum.resize(pixels);
+  acc.comp.resize(pixels);
+  acc.sq.resize(pixels);
+  const char* data = bytes.data() + eol + 1;
+  std::memcpy(acc.sum.data(), data, plane);
+  std::memcpy(acc.comp.data(), data + plane, plane);
+  std::memcpy(acc.sq.data(), data + 2 * plane, plane);
+  for (size_t i = 0; i < pixels; ++i)
+    if (acc.sum[i].w != float(info.samples) && !(acc.sum[i].w < float(info.samples)))
+      throw InputError(path + ": pixel " + std::to_string(i) + " holds more samples than the header's " +
+                       std::to_string(info.samples));
+  return acc;
 }
 
 }  // namespace octrace

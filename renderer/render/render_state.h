@@ -6,8 +6,11 @@
 // machines) merge into one image weighted by their counts.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
+
+#include <glm/vec4.hpp>
 
 #include "io/image.h"
 
@@ -27,5 +30,46 @@ RenderState read_state(const std::string& prefix);
 // Per pixel: the count-weighted mean (in double) and the summed counts.
 // Throws InputError if the sizes differ or the list is empty.
 RenderState merge_states(const std::vector<RenderState>& states);
+
+// The raw accumulation buffers of a render (shaders/shared/shared.h: Kahan
+// sum with the sample count in .w, compensation, M2 with the ray segments in
+// .w), as the device holds them: what a checkpoint keeps, so that a resumed
+// render continues bit for bit.
+struct Accumulation {
+  int width = 0;
+  int height = 0;
+  std::vector<glm::vec4> sum, comp, sq;
+};
+
+// What a checkpoint must match to be resumed: the scene as uploaded (a hash
+// of its device arrays and camera), and every setting that changes a sample.
+struct CheckpointInfo {
+  uint64_t scene_hash = 0;
+  int width = 0;
+  int height = 0;
+  uint32_t sample_seed = 0;
+  uint32_t first_sample = 0;
+  uint32_t bounce_limit = 0;
+  uint32_t rr_depth = 0;
+  std::string precision;
+  std::string accel;
+  uint32_t samples = 0;  // samples per pixel the state holds (not compared)
+};
+
+// The mean and count of an accumulation, as PathTracer::read_result has them.
+RenderState state_of(const Accumulation& acc);
+
+// The first difference between a saved checkpoint and a render that would
+// resume it, in words ("sample seed 3, this render 1"); empty if none.
+std::string checkpoint_mismatch(const CheckpointInfo& saved, const CheckpointInfo& now);
+
+// PREFIX.accum: the raw buffers and the info (one file, written atomically,
+// so the two always agree), and PREFIX.mean.pfm + PREFIX.count.pfm as
+// write_state writes them (for octrace merge).
+void write_checkpoint(const std::string& prefix, const Accumulation& acc, const CheckpointInfo& info,
+                      const RenderState& state);
+// Reads PREFIX.accum. Throws InputError naming the file when it is missing,
+// not a checkpoint, truncated or inconsistent.
+Accumulation read_checkpoint(const std::string& prefix, CheckpointInfo& info);
 
 }  // namespace octrace
