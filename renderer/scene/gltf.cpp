@@ -1113,14 +1113,26 @@ Camera framing_camera(const Scene& scene) {
 
 void print_warning(const std::string& message) { std::fprintf(stderr, "octrace: warning: %s\n", message.c_str()); }
 
-void append_gltf(Scene& scene, const std::string& path, std::optional<uint32_t> material_override,
-                 const glm::mat4& transform, const GltfOptions& opts) {
+GltfPlacement append_gltf(Scene& scene, const std::string& path, std::optional<uint32_t> material_override,
+                          const glm::mat4& transform, const GltfOptions& opts) {
   if (material_override && *material_override >= scene.materials.size())
     throw InputError(path + ": material " + std::to_string(*material_override) + " out of range (" +
                      plural(scene.materials.size(), "material") + ")");
   const Loaded file = read_gltf(path, opts.scene, !material_override);
+  GltfPlacement placement;
+  placement.mesh_base = uint32_t(scene.meshes.size());
+  for (const Instance& i : file.instances) placement.nodes.emplace_back(i.mesh, glm::dmat4(i.transform));
   append(scene, file, material_override, transform);
   emit_warnings(opts, file.warnings);
+  return placement;
+}
+
+void place_again(Scene& scene, const GltfPlacement& placement, const glm::mat4& transform) {
+  // The same arithmetic as append(): a file placed twice this way gives the
+  // instances of loading it twice.
+  const glm::dmat4 t(transform);
+  for (const auto& [mesh, node] : placement.nodes)
+    scene.instances.push_back({placement.mesh_base + mesh, glm::mat4(t * node)});
 }
 
 Scene load_gltf_scene(const std::string& path, const GltfOptions& opts) {

@@ -36,6 +36,8 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <glm/mat4x4.hpp>
 
@@ -72,7 +74,16 @@ Scene load_gltf_scene(const std::string& path, const GltfOptions& opts = {});
 // `transform` * (node transform). The file's materials are appended to
 // scene.materials unless `material_override` (an index into scene.materials)
 // is given, which then colours every triangle. opts.camera is ignored.
-void append_gltf(Scene& scene, const std::string& path, std::optional<uint32_t> material_override,
-                 const glm::mat4& transform, const GltfOptions& opts = {});
+// Returns what it placed, so that another reference to the same file (same
+// scene, same material override) can be placed again by place_again without
+// loading the file twice: its meshes, materials and textures are shared.
+struct GltfPlacement {
+  uint32_t mesh_base = 0;                             // the file's meshes start here in Scene::meshes
+  std::vector<std::pair<uint32_t, glm::dmat4>> nodes;  // mesh (file index) and node transform, per instance
+};
+GltfPlacement append_gltf(Scene& scene, const std::string& path, std::optional<uint32_t> material_override,
+                          const glm::mat4& transform, const GltfOptions& opts = {});
+// Adds the instances of `placement` again, at `transform` * (node transform).
+void place_again(Scene& scene, const GltfPlacement& placement, const glm::mat4& transform);
 
 }  // namespace octrace

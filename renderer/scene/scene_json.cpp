@@ -292,13 +292,26 @@ MeshRef read_mesh_ref(const Node& n, size_t scene_materials) {
 
 // Loads the file a reference names, relative to the scene file's folder; its
 // errors are prefixed with where the scene file names it.
-void append_mesh_ref(Scene& scene, const MeshRef& ref, const Node& n, std::vector<std::string>& warnings) {
+// A file that several references name with the same scene and material
+// override is loaded once: the later references place its meshes again.
+using LoadedRefs = std::map<std::tuple<std::string, std::optional<uint32_t>, std::optional<uint32_t>>, GltfPlacement>;
+
+void append_mesh_ref(Scene& scene, const MeshRef& ref, const Node& n, std::vector<std::string>& warnings,
+                     LoadedRefs& loaded) {
   const std::string path = (std::filesystem::path(*n.source).parent_path() / ref.file).string();
+  std::error_code ec;
+  const std::filesystem::path canonical = std::filesystem::weakly_canonical(path, ec);
+  const auto key = std::make_tuple(ec ? path : canonical.string(), ref.scene, ref.material);
+  if (const auto it = loaded.find(key); it != loaded.end()) {
+    place_again(scene, it->second, ref.transform);
+    scene.mesh_refs.push_back(ref);
+    return;
+  }
   GltfOptions opts;
   opts.scene = ref.scene;
   opts.warn = [&](const std::string& w) { warnings.push_back(w); };
   try {
-    append_gltf(scene, path, ref.material, ref.transform, opts);
+    loaded[key] = append_gltf(scene, path, ref.material, ref.transform, opts);
   } catch (const SettingError& e) {
     // The scene index: "gltf.scene: index 3 out of range (bunny.glb has 1 scene)".
     n.member("scene", nullptr).fail(std::string(e.what()).substr(e.setting.size() + 2));
@@ -517,7 +530,8 @@ Scene parse_scene_json(const std::string& text, const std::string& source) {
     std::vector<MeshRef> refs;
     for (size_t i = 0; i < meshes->value->size(); ++i)
       refs.push_back(read_mesh_ref(meshes->element(i), scene.materials.size()));
-    for (size_t i = 0; i < refs.size(); ++i) append_mesh_ref(scene, refs[i], meshes->element(i), warnings);
+    LoadedRefs loaded;
+    for (size_t i = 0; i < refs.size(); ++i) append_mesh_ref(scene, refs[i], meshes->element(i), warnings, loaded);
   }
   validate_scene(scene, source);
   // Only once the whole scene has loaded, so that an error stays the one line printed.

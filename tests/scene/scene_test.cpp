@@ -489,6 +489,29 @@ TEST(JsonMeshes, FilesAreFoundBesideTheSceneFile) {
   EXPECT_TRUE(s.spheres.empty());
 }
 
+// References to the same file with the same scene and material override
+// load it once: its meshes and materials are shared and the later references
+// add instances only, with the transforms two loads would give, bit for bit.
+TEST(JsonMeshes, TheSameFileReferencedTwiceIsLoadedOnce) {
+  const Scene twice = parse_with_meshes(R"({"materials": [],
+      "meshes": [{"file": "quad.glb"}, {"file": "./quad.glb", "transform": {"translate": [0, 0, 5], "scale": 3}}]})");
+  const Scene once = parse_with_meshes(R"({"materials": [], "meshes": [{"file": "quad.glb"}]})");
+  const Scene moved = parse_with_meshes(
+      R"({"materials": [], "meshes": [{"file": "quad.glb", "transform": {"translate": [0, 0, 5], "scale": 3}}]})");
+  ASSERT_EQ(twice.meshes.size(), once.meshes.size());
+  EXPECT_EQ(twice.materials.size(), once.materials.size());
+  EXPECT_EQ(twice.mesh_file_materials, once.mesh_file_materials);
+  ASSERT_EQ(twice.instances.size(), 2 * once.instances.size());
+  EXPECT_EQ(twice.instances[0], once.instances[0]);
+  EXPECT_EQ(std::memcmp(&twice.instances[1].transform, &moved.instances[0].transform, sizeof(glm::mat4)), 0);
+  EXPECT_EQ(twice.instances[1].mesh, twice.instances[0].mesh);
+  EXPECT_EQ(twice.mesh_refs.size(), 2u);
+  // Another material override is another load (its triangles carry other materials).
+  const Scene other = parse_with_meshes(R"({"materials": [{"type": "metal", "albedo": [1, 1, 1]}],
+      "meshes": [{"file": "quad.glb"}, {"file": "quad.glb", "material": 0}]})");
+  EXPECT_EQ(other.meshes.size(), 2 * once.meshes.size());
+}
+
 TEST(JsonMeshes, AScenePlacesSpheresAndMeshesOrNeither) {
   EXPECT_EQ(parse_scene_json(R"({"materials": []})", "scene.json"), Scene{});
   const Scene s = parse_with_meshes(R"({"materials": [], "meshes": [{"file": "quad.glb"}]})");
@@ -540,11 +563,13 @@ TEST(JsonMeshes, TexturesRoundTripThroughTheirFiles) {
   test::textured_quad_gltf(test::png(1, 2, {10, 20, 30, 255, 40, 50, 60, 255})).write(dir + "/tiles.glb");
   const Scene s = parse_with_meshes(R"({"materials": [{"type": "lambertian", "albedo": [0.1, 0.2, 0.3]}],
       "meshes": [{"file": "tiles.glb"}, {"file": "tiles.glb", "material": 0}, {"file": "tiles.glb"}]})");
-  ASSERT_EQ(s.textures.size(), 2u);  // once per reference that keeps the file's materials
+  // The first and third references share one load: one texture, one material of the file's.
+  ASSERT_EQ(s.textures.size(), 1u);
   EXPECT_EQ(s.textures[0].texels, (std::vector<uint32_t>{0xff1e140au, 0xff3c3228u}));
-  ASSERT_EQ(s.materials.size(), 3u);
+  ASSERT_EQ(s.materials.size(), 2u);
   EXPECT_EQ(s.materials[1].base_color_texture, 0u);
-  EXPECT_EQ(s.materials[2].base_color_texture, 1u);
+  EXPECT_EQ(s.instances.size(), 3u);
+  EXPECT_EQ(s.instances[2].mesh, s.instances[0].mesh);
   const std::string text = scene_to_json(s);
   EXPECT_EQ(text.find("texture"), std::string::npos) << text;
   EXPECT_EQ(parse_with_meshes(text), s);
