@@ -402,7 +402,7 @@ TEST(JsonErrors, ValuesOutOfRange) {
 TEST(JsonErrors, UnknownTypes) {
   EXPECT_EQ(parse_error(R"({"materials": [{"type": "lambertian", "albedo": [1, 1, 1]}, {"type": "glas", "ior": 1.5}],
                              "spheres": []})"),
-            "scene.json: materials[1].type: unknown material type \"glas\" (expected lambertian, metal, dielectric, emissive)");
+            "scene.json: materials[1].type: unknown material type \"glas\" (expected lambertian, metal, dielectric, emissive, pbr)");
   EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "sky": {"type": "sunset"}})"),
             "scene.json: sky.type: unknown sky type \"sunset\" (expected gradient, uniform, none)");
   EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "sky": {"type": 1}})"),
@@ -477,7 +477,7 @@ TEST(JsonMeshes, FilesAreFoundBesideTheSceneFile) {
   ASSERT_EQ(s.meshes.size(), 2u);
   ASSERT_EQ(s.instances.size(), 2u);
   ASSERT_EQ(s.materials.size(), 2u);
-  EXPECT_EQ(s.materials[1], (Material{MaterialType::Lambertian, glm::vec3(1.0f)}));
+  EXPECT_EQ(s.materials[1], (Material{MaterialType::Pbr, glm::vec3(1.0f)}));
   EXPECT_EQ(s.mesh_file_materials, 1u);
   EXPECT_EQ(s.meshes[0].materials, (std::vector<uint32_t>{1, 1}));
   EXPECT_EQ(s.meshes[1].materials, (std::vector<uint32_t>{0, 0}));
@@ -555,7 +555,7 @@ TEST(JsonMeshes, TexturesAndEmissionOfTheScenesOwnMaterialsCannotBeWritten) {
   s.materials = {test::lambertian(0.5f)};
   s.materials[0].emission = glm::vec3(1.0f);
   EXPECT_EQ(input_error([&] { scene_to_json(s); }),
-            "scene: materials[0]: textures and emission come only from mesh files and cannot be written");
+            "scene: materials[0]: textures (and a lambertian material's emission) come only from mesh files and cannot be written");
 }
 
 TEST(JsonMeshes, MeshesWithoutReferencesCannotBeWritten) {
@@ -619,7 +619,7 @@ TEST(Validate, TexturesAndTheMaterialsThatUseThem) {
   EXPECT_EQ(error([](Scene& s) { s.materials[0].emission = {1, -1, 0}; }),
             "mine: materials[0].emission: must be 3 finite numbers >= 0, got [1, -1, 0]");
   EXPECT_EQ(error([](Scene& s) { s.materials[0].type = MaterialType::Metal; }),
-            "mine: materials[0]: only lambertian materials take textures and an emission (an emissive one has a radiance)");
+            "mine: materials[0]: only lambertian and pbr materials take textures and an emission (an emissive one has a radiance)");
   EXPECT_EQ(error([](Scene& s) { s.textures[0].texels.pop_back(); }), "mine: textures[0].texels: 1 texels for 2x1");
   EXPECT_EQ(error([](Scene& s) { s.textures[0].height = 0; }), "mine: textures[0]: must be at least 1x1 texels, got 2x0");
   EXPECT_EQ(error([](Scene& s) { s.textures[0].wrap_t = Wrap(7); }), "mine: textures[0].wrap_t: unknown wrap mode 7");
