@@ -588,6 +588,41 @@ TEST(Gltf, AMaterialOverrideLeavesTheFilesTexturesOut) {
   EXPECT_EQ(s.meshes.at(0).materials, (std::vector<uint32_t>{0, 0}));
 }
 
+// metallicFactor, roughnessFactor, the metallic-roughness texture (stored
+// once, shared with the base colour slot when the file shares it) and
+// KHR_materials_ior's ior.
+TEST(Gltf, MetallicRoughnessFactorsTextureAndIor) {
+  GltfBuilder b = test::textured_quad_gltf(test::png(2, 1, kTwoTexels));
+  b.doc["extensionsUsed"] = {"KHR_materials_ior"};
+  const int mr = b.add_texture(test::png(1, 1, {0, 255, 128, 255}));
+  nlohmann::json& m = b.doc["materials"][0];
+  m["pbrMetallicRoughness"]["metallicFactor"] = 0.5;
+  m["pbrMetallicRoughness"]["roughnessFactor"] = 0.25;
+  m["pbrMetallicRoughness"]["metallicRoughnessTexture"] = {{"index", mr}};
+  m["extensions"] = {{"KHR_materials_ior", {{"ior", 1.33}}}};
+  const Scene s = load(b, "metal_rough.gltf");
+  const Material& got = s.materials.at(0);
+  EXPECT_EQ(got.type, MaterialType::Pbr);
+  EXPECT_EQ(got.metallic, 0.5f);
+  EXPECT_EQ(got.roughness, 0.25f);
+  EXPECT_EQ(got.ior, 1.33f);
+  EXPECT_EQ(got.base_color_texture, 0u);
+  ASSERT_EQ(got.metallic_roughness_texture, 1u);
+  // Linear data, stored as the file has it: r | g << 8 | b << 16 | a << 24.
+  EXPECT_EQ(s.textures.at(1).texels, std::vector<uint32_t>{0xff80ff00u});
+}
+
+TEST(GltfErrors, MetallicRoughnessAndIorOutOfRange) {
+  GltfBuilder b = test::quad_gltf();
+  b.add("materials", {{"pbrMetallicRoughness", {{"roughnessFactor", 1.5}}}});
+  b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  EXPECT_EQ(load_error(b, "rough.gltf"),
+            "PATH: materials[0].pbrMetallicRoughness.roughnessFactor: must be a number in [0, 1], got 1.5");
+  b.doc["materials"][0] = {{"extensions", {{"KHR_materials_ior", {{"ior", 0.5}}}}}};
+  EXPECT_EQ(load_error(b, "ior.gltf"),
+            "PATH: materials[0].extensions.KHR_materials_ior.ior: must be a finite number >= 1, got 0.5");
+}
+
 // What is not rendered yet is named in one warning per file.
 TEST(Gltf, WhatMaterialsLackIsNamedInOneWarning) {
   GltfBuilder b = test::textured_quad_gltf(test::png(2, 1, kTwoTexels));
