@@ -967,7 +967,7 @@ struct AlbedoTable {
 //   samples (~4% of pixels at roughness 0.5) shows a tiny sample variance
 //   about a value 0.07 too high (1536 x 3 pixel-channels, P(|z| > 6) = 2e-9
 //   each under the normal approximation);
-// in the fp16 variants, each bound plus 1.5e-3 x the expectation: the
+// "half rounding": 0 in fp32; in the fp16 variants 1.5e-3 x the expectation: the
 // weight, the throughput and the sky term are each rounded to half once,
 // 2^-11 relative, which need not average out.
 // Returns the table.
@@ -1005,13 +1005,11 @@ AlbedoTable pbr_furnace(CaseRun& run, const Material& m, uint32_t spp) {
   expected /= n;
   measured /= n;
   const double sigma = std::sqrt(var) / n;
-  run.at_most("expected mean " + CaseRun::fmt(expected) + ": |image mean - expected| / (5 sigma + 2e-4 + quadrature" +
-                  (half > 0 ? " + 1.5e-3 expected)" : ")"),
+  run.at_most("expected mean " + CaseRun::fmt(expected) +
+                  ": |image mean - expected| / (5 sigma + 2e-4 + quadrature + half rounding)",
               std::abs(measured - expected) / (5 * sigma + 2e-4 + table.error + half * expected), 1.0);
   if (m.metallic == 1.0f)
-    run.at_most("interior pixels: max |pixel - expected| / (6 sigma_pixel + quadrature" +
-                    std::string(half > 0 ? " + 1.5e-3 expected)" : ")"),
-                worst_z, 1.0);
+    run.at_most("interior pixels: max |pixel - expected| / (6 sigma_pixel + quadrature + half rounding)", worst_z, 1.0);
   return table;
 }
 
