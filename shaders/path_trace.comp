@@ -1,5 +1,6 @@
 // One path-tracing pass: one sample per pixel, added to the accumulation
-// buffers. Materials follow "Ray Tracing in One Weekend" v4 (docs/design.md).
+// buffers. Materials follow "Ray Tracing in One Weekend" v4, and glTF 2.0's
+// metallic-roughness material (shading/pbr.glsl; docs/design.md).
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -44,6 +45,7 @@ layout(constant_id = SPEC_METAL) const bool HAS_METAL = true;
 layout(constant_id = SPEC_FUZZ) const bool HAS_FUZZ = true;
 layout(constant_id = SPEC_DIELECTRIC) const bool HAS_DIELECTRIC = true;
 layout(constant_id = SPEC_EMISSIVE) const bool HAS_EMISSIVE = true;
+layout(constant_id = SPEC_PBR) const bool HAS_PBR = true;
 layout(constant_id = SPEC_DEFOCUS) const bool HAS_DEFOCUS = true;
 layout(constant_id = SPEC_SKY) const uint SKY = SKY_RUNTIME;
 layout(constant_id = SPEC_ANY_LIGHT) const bool ANY_LIGHT = true;
@@ -59,6 +61,7 @@ layout(constant_id = SPEC_SAMPLE_LANES) const bool SAMPLE_LANES = true;
 #include "geometry/camera.glsl"
 #include "accel/closest_hit.glsl"
 #include "shading/materials.glsl"
+#include "shading/pbr.glsl"
 #include "shading/sky.glsl"
 
 // `segments`: how many rays the path traced (camera ray and bounces).
@@ -102,11 +105,11 @@ vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments)
     if (HAS_LAMBERTIAN && m.type == MAT_LAMBERTIAN) {
       // A glTF surface emits and reflects: its emission is added here and
       // the path goes on.
-      if (HAS_SURFACE_EMISSION) radiance += throughput * lambertian_emission(m, surf.uv);
+      if (HAS_SURFACE_EMISSION) radiance += throughput * surface_emission(m, surf.uv);
       // Cosine-weighted: normal + uniform unit vector (book v4); the rare sum
       // that cancels to zero falls back to the normal.
       dir = safe_normalize(vec3(dn + dreal3(random_unit_vector(rng))), n);
-      throughput *= lambertian_albedo(m, surf.uv);
+      throughput *= base_color(m, surf.uv);
     } else if (HAS_METAL && m.type == MAT_METAL) {
       dreal3 d = reflect(d_in, dn);
       if (HAS_FUZZ) d += dreal(m.fuzz) * dreal3(random_unit_vector(rng));
@@ -128,6 +131,13 @@ vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments)
         refracted = true;
       }
       dir = safe_normalize(vec3(d), reflect(ray.dir, n));
+    } else if (HAS_PBR && m.type == MAT_PBR) {
+      if (HAS_SURFACE_EMISSION) radiance += throughput * surface_emission(m, surf.uv);
+      real3 weight;
+      // No direction: the view is exactly grazing, or the sample went below
+      // the surface, where the BRDF is 0.
+      if (!sample_pbr(m, surf.uv, n, -ray.dir, rng, dir, weight)) break;
+      throughput *= weight;
     } else {
       break;  // not reached: the pipeline is specialised to the scene's materials
     }

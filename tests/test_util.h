@@ -109,6 +109,15 @@ inline Material glass(float ior) {
   m.ior = ior;
   return m;
 }
+// glTF's metallic-roughness material (ior 1.5).
+inline Material pbr(float base_color, float metallic, float roughness) {
+  Material m;
+  m.type = MaterialType::Pbr;
+  m.albedo = glm::vec3(base_color);
+  m.metallic = metallic;
+  m.roughness = roughness;
+  return m;
+}
 inline Material emitter(glm::vec3 radiance) {
   Material m;
   m.type = MaterialType::Emissive;

@@ -30,20 +30,27 @@ static_assert(sizeof(GpuTriangleUvs) == 24);
 static_assert(offsetof(GpuTriangleUvs, uv1) == 8);
 static_assert(offsetof(GpuTriangleUvs, uv2) == 16);
 
-static_assert(sizeof(GpuMaterial) == 48);
+static_assert(sizeof(GpuMaterial) == 64);
 static_assert(offsetof(GpuMaterial, type) == 12);
 static_assert(offsetof(GpuMaterial, fuzz) == 16);
 static_assert(offsetof(GpuMaterial, ior) == 20);
 static_assert(offsetof(GpuMaterial, base_color_texture) == 24);
 static_assert(offsetof(GpuMaterial, emission_texture) == 28);
 static_assert(offsetof(GpuMaterial, emission) == 32);
-static_assert(offsetof(GpuMaterial, pad0) == 44);
+static_assert(offsetof(GpuMaterial, metallic_roughness_texture) == 44);
+static_assert(offsetof(GpuMaterial, metallic) == 48);
+static_assert(offsetof(GpuMaterial, roughness) == 52);
+static_assert(offsetof(GpuMaterial, pad0) == 56);
+static_assert(offsetof(GpuMaterial, pad1) == 60);
 
-static_assert(sizeof(GpuMaterialHalf) == 32);
+static_assert(sizeof(GpuMaterialHalf) == 48);
 static_assert(offsetof(GpuMaterialHalf, params) == 8);
 static_assert(offsetof(GpuMaterialHalf, emission) == 16);
 static_assert(offsetof(GpuMaterialHalf, base_color_texture) == 24);
 static_assert(offsetof(GpuMaterialHalf, emission_texture) == 28);
+static_assert(offsetof(GpuMaterialHalf, metallic_roughness_texture) == 32);
+static_assert(offsetof(GpuMaterialHalf, pad0) == 36);
+static_assert(offsetof(GpuMaterialHalf, pad2) == 44);
 
 static_assert(sizeof(GpuTexture) == 16);
 static_assert(offsetof(GpuTexture, width) == 4);
@@ -115,6 +122,7 @@ static_assert(uint32_t(MaterialType::Lambertian) == MAT_LAMBERTIAN);
 static_assert(uint32_t(MaterialType::Metal) == MAT_METAL);
 static_assert(uint32_t(MaterialType::Dielectric) == MAT_DIELECTRIC);
 static_assert(uint32_t(MaterialType::Emissive) == MAT_EMISSIVE);
+static_assert(uint32_t(MaterialType::Pbr) == MAT_PBR);
 static_assert(uint32_t(SkyType::Gradient) == SKY_GRADIENT);
 static_assert(uint32_t(SkyType::Uniform) == SKY_UNIFORM);
 static_assert(uint32_t(SkyType::None) == SKY_NONE);

@@ -256,13 +256,18 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
     f.base_color_texture = m.base_color_texture.value_or(gpu::NO_TEXTURE);
     f.emission_texture = m.emission_texture.value_or(gpu::NO_TEXTURE);
     f.emission = m.emission;
+    f.metallic_roughness_texture = m.metallic_roughness_texture.value_or(gpu::NO_TEXTURE);
+    f.metallic = m.metallic;
+    f.roughness = m.roughness;
     gpu::GpuMaterialHalf& h = materials_half[i];
     h.color_type = {glm::packHalf1x16(f.color.r), glm::packHalf1x16(f.color.g), glm::packHalf1x16(f.color.b),
                     glm::packHalf1x16(float(f.type))};
-    h.params = {glm::packHalf1x16(f.fuzz), glm::packHalf1x16(f.ior), 0, 0};
+    h.params = {glm::packHalf1x16(f.fuzz), glm::packHalf1x16(f.ior), glm::packHalf1x16(f.metallic),
+                glm::packHalf1x16(f.roughness)};
     h.emission = {glm::packHalf1x16(f.emission.r), glm::packHalf1x16(f.emission.g), glm::packHalf1x16(f.emission.b), 0};
     h.base_color_texture = f.base_color_texture;
     h.emission_texture = f.emission_texture;
+    h.metallic_roughness_texture = f.metallic_roughness_texture;
   }
   const size_t texture_count = scene.textures.size();
   check_fits(ctx, texel_count(scene) * sizeof(uint32_t),

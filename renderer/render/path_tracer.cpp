@@ -102,6 +102,7 @@ void PathTracer::State::create_pipeline() {
                            {gpu::SPEC_FUZZ, f.fuzzy_metal},
                            {gpu::SPEC_DIELECTRIC, f.dielectric},
                            {gpu::SPEC_EMISSIVE, f.emissive},
+                           {gpu::SPEC_PBR, f.pbr},
                            {gpu::SPEC_DEFOCUS, f.defocus},
                            {gpu::SPEC_SAMPLE_LANES, s.sample_lanes_enabled()},
                            {gpu::SPEC_SKY, sky},

@@ -39,6 +39,12 @@ SceneFeatures scene_features(const Scene& scene) {
         break;
       case MaterialType::Dielectric: f.dielectric = true; break;
       case MaterialType::Emissive: f.emissive |= !is_black(m.radiance); break;
+      case MaterialType::Pbr:
+        f.pbr = true;
+        f.textures |= m.base_color_texture.has_value() || m.emission_texture.has_value() ||
+                      m.metallic_roughness_texture.has_value();
+        f.surface_emission |= !is_black(m.emission);
+        break;
     }
   }
   f.defocus = scene.camera.aperture > 0.0f;
@@ -56,7 +62,7 @@ SceneFeatures scene_features(const Scene& scene) {
 
 SceneFeatures all_features(const Scene& scene) {
   SceneFeatures f;
-  f.lambertian = f.metal = f.fuzzy_metal = f.dielectric = f.emissive = f.defocus = true;
+  f.lambertian = f.metal = f.fuzzy_metal = f.dielectric = f.emissive = f.pbr = f.defocus = true;
   f.sky = scene.sky.type;
   f.sky_black = false;
   f.any_light = true;
@@ -72,6 +78,7 @@ std::vector<std::string> feature_names(const SceneFeatures& f) {
   if (f.fuzzy_metal) names.push_back("fuzzy_metal");
   if (f.dielectric) names.push_back("dielectric");
   if (f.emissive) names.push_back("emissive");
+  if (f.pbr) names.push_back("pbr");
   if (f.defocus) names.push_back("defocus");
   if (f.triangles) names.push_back("triangles");
   if (f.vertex_normals) names.push_back("vertex_normals");

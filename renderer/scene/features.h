@@ -17,6 +17,7 @@ struct SceneFeatures {
   bool fuzzy_metal = false;  // ... with fuzz > 0
   bool dielectric = false;   // some primitive is glass
   bool emissive = false;     // some primitive emits
+  bool pbr = false;          // some primitive has glTF's metallic-roughness material (microfacet lobes)
   bool defocus = false;      // camera aperture > 0
   SkyType sky = SkyType::Gradient;
   bool sky_black = false;    // the sky adds nothing (type none, or a black colour)
@@ -28,7 +29,7 @@ struct SceneFeatures {
   bool triangles = false;    // some instanced mesh triangle
   bool vertex_normals = false;  // some instanced mesh has vertex normals (smooth shading)
   bool textures = false;          // some material samples a texture
-  bool surface_emission = false;  // some lambertian material emits (glTF emission)
+  bool surface_emission = false;  // some lambertian or pbr material emits (glTF emission)
 
   bool operator==(const SceneFeatures&) const = default;
 };

@@ -24,6 +24,7 @@
 #include <cstring>
 #include <filesystem>
 #include <string_view>
+#include <tuple>
 
 #include <stb_image.h>
 #include <glm/geometric.hpp>
@@ -94,7 +95,9 @@ constexpr Field kPbr[] = {{"baseColorFactor", Kind::Numbers, nullptr, 4}, {"base
                           {"metallicFactor", Kind::Number}, {"roughnessFactor", Kind::Number},
                           {"metallicRoughnessTexture", Kind::Object, kTextureInfo}, {}};
 constexpr Field kEmissiveStrength[] = {{"emissiveStrength", Kind::Number}, {}};
-constexpr Field kMaterialExtensions[] = {{"KHR_materials_emissive_strength", Kind::Object, kEmissiveStrength}, {}};
+constexpr Field kIor[] = {{"ior", Kind::Number}, {}};
+constexpr Field kMaterialExtensions[] = {{"KHR_materials_emissive_strength", Kind::Object, kEmissiveStrength},
+                                         {"KHR_materials_ior", Kind::Object, kIor}, {}};
 constexpr Field kMaterial[] = {{"pbrMetallicRoughness", Kind::Object, kPbr}, {"normalTexture", Kind::Object, kTextureInfo},
                                {"occlusionTexture", Kind::Object, kTextureInfo},
                                {"emissiveTexture", Kind::Object, kTextureInfo},
@@ -250,7 +253,8 @@ struct SchemaCheck {
 };
 
 // Extensions a file may require (extensionsRequired) that octrace reads.
-constexpr std::string_view kSupportedExtensions[] = {"KHR_mesh_quantization", "KHR_materials_emissive_strength"};
+constexpr std::string_view kSupportedExtensions[] = {"KHR_mesh_quantization", "KHR_materials_emissive_strength",
+                                                     "KHR_materials_ior"};
 
 void check_schema(const Json& doc, const std::string& file) {
   const Where root;
@@ -819,33 +823,54 @@ bool in_unit_range(const std::vector<double>& v) {
   return std::all_of(v.begin(), v.end(), [](double x) { return x >= 0.0 && x <= 1.0; });
 }
 
-// A glTF material as octrace renders it for now: lambertian, albedo =
-// baseColorFactor.rgb x baseColorTexture, emission = emissiveFactor x
-// KHR_materials_emissive_strength's emissiveStrength x emissiveTexture
-// (3.9.2, 3.9.3). Alpha is not read.
+// A number of the material's extension `name`, or `fallback` without one
+// (the schema checked its type).
+double extension_number(const tinygltf::Material& gm, const char* name, const char* field, double fallback) {
+  const auto it = gm.extensions.find(name);
+  if (it == gm.extensions.end()) return fallback;
+  const tinygltf::Value& v = it->second.Get(field);
+  return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+}
+
+// A glTF material as octrace renders it: glTF's metallic-roughness material
+// (3.9.2, Appendix B) with base colour = baseColorFactor.rgb x
+// baseColorTexture, metallic and roughness = their factors x the blue and
+// green channels of metallicRoughnessTexture, the ior of KHR_materials_ior,
+// and emission = emissiveFactor x KHR_materials_emissive_strength's
+// emissiveStrength x emissiveTexture (3.9.3). Alpha is not read.
 Material read_material(const File& f, Textures& textures, size_t i) {
   const tinygltf::Material& gm = f.model.materials[i];
   const std::string at = item("materials", i);
   const tinygltf::PbrMetallicRoughness& pbr = gm.pbrMetallicRoughness;
+  const std::string pbr_at = at + ".pbrMetallicRoughness";
   const std::vector<double>& c = pbr.baseColorFactor;
-  if (!in_unit_range(c))
-    f.fail(at + ".pbrMetallicRoughness.baseColorFactor", "must be 4 numbers in [0, 1], got " + numbers_string(c));
+  if (!in_unit_range(c)) f.fail(pbr_at + ".baseColorFactor", "must be 4 numbers in [0, 1], got " + numbers_string(c));
   Material m;
+  m.type = MaterialType::Pbr;
   m.albedo = {float(c[0]), float(c[1]), float(c[2])};
   if (pbr.baseColorTexture.index >= 0)
-    m.base_color_texture =
-        read_texture(f, textures, pbr.baseColorTexture.index, at + ".pbrMetallicRoughness.baseColorTexture");
+    m.base_color_texture = read_texture(f, textures, pbr.baseColorTexture.index, pbr_at + ".baseColorTexture");
+  for (const auto& [factor, out, name] : {std::tuple{pbr.metallicFactor, &m.metallic, ".metallicFactor"},
+                                          std::tuple{pbr.roughnessFactor, &m.roughness, ".roughnessFactor"}}) {
+    if (!(factor >= 0.0 && factor <= 1.0))
+      f.fail(pbr_at + name, "must be a number in [0, 1], got " + float_string(float(factor)));
+    *out = float(factor);
+  }
+  if (pbr.metallicRoughnessTexture.index >= 0)
+    m.metallic_roughness_texture =
+        read_texture(f, textures, pbr.metallicRoughnessTexture.index, pbr_at + ".metallicRoughnessTexture");
+  const double ior = extension_number(gm, "KHR_materials_ior", "ior", 1.5);
+  // The extension's schema: 1 or more (its 0, "infinitely reflective", is not supported).
+  if (!(ior >= 1.0 && std::isfinite(float(ior))))
+    f.fail(at + ".extensions.KHR_materials_ior.ior", "must be a finite number >= 1, got " + float_string(float(ior)));
+  m.ior = float(ior);
 
   const std::vector<double>& e = gm.emissiveFactor;
   if (!in_unit_range(e)) f.fail(at + ".emissiveFactor", "must be 3 numbers in [0, 1], got " + numbers_string(e));
-  double strength = 1.0;
-  if (const auto it = gm.extensions.find("KHR_materials_emissive_strength"); it != gm.extensions.end()) {
-    const tinygltf::Value& v = it->second.Get("emissiveStrength");
-    if (v.IsNumber()) strength = v.GetNumberAsDouble();  // the schema checked its type
-    if (!(strength >= 0.0 && std::isfinite(float(strength))))
-      f.fail(at + ".extensions.KHR_materials_emissive_strength.emissiveStrength",
-             "must be a finite number >= 0, got " + float_string(float(strength)));
-  }
+  const double strength = extension_number(gm, "KHR_materials_emissive_strength", "emissiveStrength", 1.0);
+  if (!(strength >= 0.0 && std::isfinite(float(strength))))
+    f.fail(at + ".extensions.KHR_materials_emissive_strength.emissiveStrength",
+           "must be a finite number >= 0, got " + float_string(float(strength)));
   if (e.size() == 3) m.emission = glm::vec3(float(e[0] * strength), float(e[1] * strength), float(e[2] * strength));
   if (gm.emissiveTexture.index >= 0) {
     const std::string texture_at = at + ".emissiveTexture";
@@ -857,10 +882,8 @@ Material read_material(const File& f, Textures& textures, size_t i) {
   return m;
 }
 
-// What of the file's materials is not rendered yet, named in one warning:
-// they render as lambertian with base colour and emission until the
-// materials issue. (Occlusion textures are not listed: a path tracer finds
-// occlusion itself.)
+// What of the file's materials is not rendered yet, named in one warning.
+// (Occlusion textures are not listed: a path tracer finds occlusion itself.)
 std::vector<std::string> approximations(const tinygltf::Model& model) {
   std::vector<std::string> out;
   const auto note = [&](const std::string& what) {
@@ -868,14 +891,14 @@ std::vector<std::string> approximations(const tinygltf::Model& model) {
   };
   for (const tinygltf::Material& m : model.materials) {
     const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
-    if (pbr.metallicFactor > 0.0 || pbr.metallicRoughnessTexture.index >= 0) note("metalness");
     if (m.normalTexture.index >= 0) note("normal maps");
     if (m.alphaMode == "BLEND" || m.alphaMode == "MASK") note("alpha " + m.alphaMode);
-    for (const tinygltf::TextureInfo* t : {&pbr.baseColorTexture, &m.emissiveTexture})
+    for (const tinygltf::TextureInfo* t : {&pbr.baseColorTexture, &pbr.metallicRoughnessTexture, &m.emissiveTexture})
       if (t->index >= 0 && t->texCoord != 0) note("texture coordinate sets other than 0");
   }
   for (const std::string& e : model.extensionsUsed)
-    if ((e.rfind("KHR_materials_", 0) == 0 && e != "KHR_materials_emissive_strength") || e == "KHR_texture_transform")
+    if ((e.rfind("KHR_materials_", 0) == 0 && e != "KHR_materials_emissive_strength" && e != "KHR_materials_ior") ||
+        e == "KHR_texture_transform")
       note(e);
   return out;
 }
@@ -953,8 +976,7 @@ Loaded read_gltf(const std::string& path, std::optional<uint32_t> scene_index, b
     if (!missing.empty()) {
       std::string list;
       for (const std::string& m : missing) list += (list.empty() ? "" : ", ") + m;
-      f.warnings.push_back(path + ": materials render as lambertian (base colour and emission) for now; not rendered: " +
-                           list);
+      f.warnings.push_back(path + ": materials render without what octrace does not support yet: " + list);
     }
   }
 
@@ -1021,7 +1043,7 @@ Loaded read_gltf(const std::string& path, std::optional<uint32_t> scene_index, b
   const bool default_used = std::any_of(out.meshes.begin(), out.meshes.end(), [&](const Mesh& m) {
     return std::find(m.materials.begin(), m.materials.end(), uint32_t(model.materials.size())) != m.materials.end();
   });
-  if (default_used) out.materials.push_back(Material{MaterialType::Lambertian, glm::vec3(1.0f)});
+  if (default_used) out.materials.push_back(Material{MaterialType::Pbr, glm::vec3(1.0f)});
   out.warnings = std::move(f.warnings);
   return out;
 }
@@ -1037,7 +1059,7 @@ void append(Scene& scene, const Loaded& file, std::optional<uint32_t> material_o
   if (!material_override) {
     const auto texture_base = uint32_t(scene.textures.size());
     for (Material m : file.materials) {
-      for (std::optional<uint32_t>* t : {&m.base_color_texture, &m.emission_texture})
+      for (std::optional<uint32_t>* t : {&m.base_color_texture, &m.emission_texture, &m.metallic_roughness_texture})
         if (*t) **t += texture_base;
       scene.materials.push_back(m);
     }

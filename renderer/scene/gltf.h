@@ -16,15 +16,17 @@
 // with a negative determinant (a mirror): the renderer flips the front face of
 // such an instance, so that the file's triangles stay shared between instances.
 //
-// Materials, for now: lambertian with albedo = baseColorFactor.rgb x
-// baseColorTexture and emission = emissiveFactor x emissiveStrength
-// (KHR_materials_emissive_strength) x emissiveTexture, the textures' rgb
-// sRGB-encoded (alpha is not read). A texture is its image decoded to RGBA8
-// (stb_image) with its sampler's wrap modes, stored once however many
-// materials use it. Whatever else the materials have (metalness, normal maps,
-// alpha modes, other material extensions, texture transforms) is named in one
-// warning. Primitives without a material take glTF's default material (base
-// colour 1).
+// Materials: glTF's metallic-roughness material (MaterialType::Pbr), base
+// colour = baseColorFactor.rgb x baseColorTexture (sRGB), metallic and
+// roughness = metallicFactor and roughnessFactor x metallicRoughnessTexture's
+// blue and green channels (linear), ior from KHR_materials_ior, emission =
+// emissiveFactor x emissiveStrength (KHR_materials_emissive_strength) x
+// emissiveTexture (sRGB); alpha is not read. A texture is its image decoded
+// to RGBA8 (stb_image) with its sampler's wrap modes, stored once however many
+// materials use it. Whatever else the materials have (normal maps, alpha
+// modes, transmission and other material extensions, texture transforms) is
+// named in one warning. Primitives without a material take glTF's default
+// material (base colour 1, metallic 1, roughness 1).
 //
 // Errors: every problem with the file is an InputError of one line naming the
 // file and the glTF path ("model.glb: accessors[3]: count 900 exceeds

@@ -146,6 +146,11 @@ void check_positive(float v, const std::string& source, const std::string& path)
   if (!(std::isfinite(v) && v > 0.0f)) invalid(source, path, "must be a finite number > 0, got " + format(v));
 }
 
+// NaN fails both comparisons.
+void check_unit(float v, const std::string& source, const std::string& path) {
+  if (!(v >= 0.0f && v <= 1.0f)) invalid(source, path, "must be a number in [0, 1], got " + format(v));
+}
+
 void validate_camera(const Camera& c, const std::string& source) {
   check_finite(c.lookfrom, source, "camera.lookfrom");
   check_finite(c.lookat, source, "camera.lookat");
@@ -190,10 +195,15 @@ std::string out_of_range(size_t index, size_t size, const char* one, const char*
 void validate_material(const Material& m, const Scene& scene, const std::string& source, size_t index) {
   const std::string path = "materials[" + std::to_string(index) + "]";
   const bool emits = m.emission != glm::vec3(0.0f) || m.emission_texture;
-  if (m.type != MaterialType::Lambertian && (m.base_color_texture || emits))
-    invalid(source, path, "only lambertian materials take textures and an emission (an emissive one has a radiance)");
+  const bool surface = m.type == MaterialType::Lambertian || m.type == MaterialType::Pbr;
+  if (!surface && (m.base_color_texture || emits))
+    invalid(source, path,
+            "only lambertian and pbr materials take textures and an emission (an emissive one has a radiance)");
+  if (m.type != MaterialType::Pbr && m.metallic_roughness_texture)
+    invalid(source, path, "only pbr materials take a metallic-roughness texture");
   for (const auto& [texture, field] : {std::pair{m.base_color_texture, ".base_color_texture"},
-                                       std::pair{m.emission_texture, ".emission_texture"}})
+                                       std::pair{m.emission_texture, ".emission_texture"},
+                                       std::pair{m.metallic_roughness_texture, ".metallic_roughness_texture"}})
     if (texture && *texture >= scene.textures.size())
       invalid(source, path + field, out_of_range(*texture, scene.textures.size(), "texture", "textures"));
   switch (m.type) {
@@ -203,14 +213,24 @@ void validate_material(const Material& m, const Scene& scene, const std::string&
       return;
     case MaterialType::Metal:
       check_colour(m.albedo, source, path + ".albedo");
-      if (!(m.fuzz >= 0.0f && m.fuzz <= 1.0f))
-        invalid(source, path + ".fuzz", "must be a number in [0, 1], got " + format(m.fuzz));
+      check_unit(m.fuzz, source, path + ".fuzz");
       return;
     case MaterialType::Dielectric:
       check_positive(m.ior, source, path + ".ior");
       return;
     case MaterialType::Emissive:
       check_colour(m.radiance, source, path + ".radiance");
+      return;
+    case MaterialType::Pbr:
+      // glTF's baseColorFactor is in [0, 1]; above 1 the surface would make light.
+      if (!(m.albedo.x >= 0.0f && m.albedo.x <= 1.0f && m.albedo.y >= 0.0f && m.albedo.y <= 1.0f &&
+            m.albedo.z >= 0.0f && m.albedo.z <= 1.0f))
+        invalid(source, path + ".base_color", "must be 3 numbers in [0, 1], got " + format(m.albedo));
+      check_unit(m.metallic, source, path + ".metallic");
+      check_unit(m.roughness, source, path + ".roughness");
+      check_colour(m.emission, source, path + ".emission");
+      check_unit(m.transmission, source, path + ".transmission");
+      check_positive(m.ior, source, path + ".ior");
       return;
   }
   invalid(source, path + ".type", "unknown material type " + std::to_string(static_cast<uint32_t>(m.type)));

@@ -15,22 +15,35 @@
 namespace octrace {
 
 // Values match the MAT_* constants in shaders/shared/shared.h (static_assert in render/gpu_layout.h).
-enum class MaterialType : uint32_t { Lambertian = 0, Metal = 1, Dielectric = 2, Emissive = 3 };
+// Lambertian, Metal, Dielectric and Emissive are the materials of "Ray
+// Tracing in One Weekend"; Pbr is glTF 2.0's metallic-roughness material
+// (Appendix B; shaders/shading/pbr.glsl).
+enum class MaterialType : uint32_t { Lambertian = 0, Metal = 1, Dielectric = 2, Emissive = 3, Pbr = 4 };
 
 struct Material {
   MaterialType type = MaterialType::Lambertian;
-  glm::vec3 albedo{0.5f};    // lambertian, metal
+  glm::vec3 albedo{0.5f};    // lambertian, metal; pbr: the base colour
   float fuzz = 0.0f;         // metal
-  float ior = 1.5f;          // dielectric
+  float ior = 1.5f;          // dielectric; pbr: of the dielectric layer (F0 = ((ior - 1) / (ior + 1))^2)
   glm::vec3 radiance{0.0f};  // emissive
-  // Lambertian only, from glTF files (JSON materials have none): the albedo
-  // is multiplied by this texture (its rgb decoded from sRGB) at the surface's
-  // uv (glTF's baseColorTexture) ...
+  // Lambertian and pbr only. From glTF files (JSON materials have none): the
+  // albedo is multiplied by this texture (its rgb decoded from sRGB) at the
+  // surface's uv (glTF's baseColorTexture) ...
   std::optional<uint32_t> base_color_texture;  // index into Scene::textures
   // ... and the surface emits `emission` (times this texture, sRGB) besides
-  // reflecting, as a glTF surface with an emissive factor does.
+  // reflecting, as a glTF surface with an emissive factor does (a JSON pbr
+  // material may have an emission, never a texture).
   glm::vec3 emission{0.0f};
   std::optional<uint32_t> emission_texture;    // index into Scene::textures
+  // Pbr only, glTF's defaults. metallic and roughness in [0, 1] (alpha =
+  // roughness^2); transmission in [0, 1] is read and checked but not rendered
+  // yet (such a material renders opaque, with a warning).
+  float metallic = 1.0f;
+  float roughness = 1.0f;
+  float transmission = 0.0f;
+  // Multiplies them: metallic x its blue, roughness x its green channel
+  // (linear, not sRGB; glTF's metallicRoughnessTexture).
+  std::optional<uint32_t> metallic_roughness_texture;  // index into Scene::textures
 
   bool operator==(const Material&) const = default;
 };

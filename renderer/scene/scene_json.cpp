@@ -10,7 +10,11 @@
 //                 book's white and blue); uniform "radiance" is required.
 //   materials[i]  "type" is required; lambertian/metal "albedo" and emissive
 //                 "radiance" are required; metal "fuzz" is optional (0: a mirror),
-//                 dielectric "ior" is optional (1.5: glass).
+//                 dielectric "ior" is optional (1.5: glass); every pbr field
+//                 is optional, with glTF's defaults: "base_color" [1, 1, 1],
+//                 "metallic" 1, "roughness" 1, "emission" [0, 0, 0],
+//                 "transmission" 0 (read, not rendered yet: a warning) and
+//                 "ior" 1.5.
 //   spheres[i]    "center", "radius" and "material" are all required.
 //   meshes[i]     a glTF file: "file" (relative to the scene file) is required;
 //                 "material" (overrides the file's materials), "scene" (which
@@ -58,7 +62,7 @@ namespace {
 using Json = nlohmann::basic_json<std::map, std::vector, std::string, bool, std::int64_t, std::uint64_t, float>;
 
 // Indexed by the enum values.
-constexpr std::string_view kMaterialNames[] = {"lambertian", "metal", "dielectric", "emissive"};
+constexpr std::string_view kMaterialNames[] = {"lambertian", "metal", "dielectric", "emissive", "pbr"};
 constexpr std::string_view kSkyNames[] = {"gradient", "uniform", "none"};
 
 // ---------------------------------------------------------------------------
@@ -216,6 +220,16 @@ Material read_material(const Node& n) {
     case MaterialType::Emissive:
       check_keys(n, {"type", "radiance"});
       m.radiance = read_vec3(n.require("radiance"));
+      break;
+    case MaterialType::Pbr:
+      check_keys(n, {"type", "base_color", "metallic", "roughness", "emission", "transmission", "ior"});
+      m.albedo = glm::vec3(1.0f);
+      read_optional(n, "base_color", m.albedo);
+      read_optional(n, "metallic", m.metallic);
+      read_optional(n, "roughness", m.roughness);
+      read_optional(n, "emission", m.emission);
+      read_optional(n, "transmission", m.transmission);
+      read_optional(n, "ior", m.ior);
       break;
   }
   return m;
@@ -392,6 +406,14 @@ void append(std::string& out, const Material& m) {
     case MaterialType::Emissive:
       append_field(out, "radiance", m.radiance);
       break;
+    case MaterialType::Pbr:
+      append_field(out, "base_color", m.albedo);
+      append_field(out, "metallic", m.metallic);
+      append_field(out, "roughness", m.roughness);
+      append_field(out, "emission", m.emission);
+      append_field(out, "transmission", m.transmission);
+      append_field(out, "ior", m.ior);
+      break;
   }
   out += '}';
 }
@@ -534,6 +556,12 @@ Scene parse_scene_json(const std::string& text, const std::string& source) {
     for (size_t i = 0; i < refs.size(); ++i) append_mesh_ref(scene, refs[i], meshes->element(i), warnings, loaded);
   }
   validate_scene(scene, source);
+  std::string transmissive;
+  for (size_t i = 0; i < scene.materials.size() - scene.mesh_file_materials; ++i)
+    if (scene.materials[i].type == MaterialType::Pbr && scene.materials[i].transmission > 0.0f)
+      transmissive += (transmissive.empty() ? "" : ", ") + ("materials[" + std::to_string(i) + "]");
+  if (!transmissive.empty())
+    warnings.insert(warnings.begin(), source + ": transmission is not rendered yet: " + transmissive + " render opaque");
   // Only once the whole scene has loaded, so that an error stays the one line printed.
   for (const std::string& w : warnings) print_warning(w);
   return scene;
@@ -549,9 +577,10 @@ std::string scene_to_json(const Scene& scene) {
   const size_t written = scene.materials.size() - scene.mesh_file_materials;
   for (size_t i = 0; i < written; ++i) {
     const Material& m = scene.materials[i];
-    if (m.base_color_texture || m.emission_texture || m.emission != glm::vec3(0.0f))
+    if (m.base_color_texture || m.emission_texture || m.metallic_roughness_texture ||
+        (m.type != MaterialType::Pbr && m.emission != glm::vec3(0.0f)))
       throw InputError("scene: materials[" + std::to_string(i) +
-                       "]: textures and emission come only from mesh files and cannot be written");
+                       "]: textures (and a lambertian material's emission) come only from mesh files and cannot be written");
   }
   std::string out;
   out.reserve(512 + 64 * scene.materials.size() + 72 * scene.spheres.size());

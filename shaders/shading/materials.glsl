@@ -1,6 +1,7 @@
-// The materials of "Ray Tracing in One Weekend" v4, as the shading code reads
-// them in the variant's precision, and the textures and emission a glTF
-// material adds to a lambertian one. The includer declares `materials`,
+// The materials of "Ray Tracing in One Weekend" v4 and glTF's
+// metallic-roughness material (shading/pbr.glsl), as the shading code reads
+// them in the variant's precision, and the textures and emission of glTF's
+// materials (lambertian and pbr). The includer declares `materials`,
 // `textures` and `texels`, and the specialization constants HAS_TEXTURES and
 // HAS_SURFACE_EMISSION.
 #ifndef OCTRACE_MATERIALS_GLSL
@@ -10,41 +11,46 @@
 #include "shading/texture.glsl"
 
 struct Material {
-  real3 color;  // albedo or radiance
+  real3 color;  // albedo, base colour or radiance
   uint type;    // MAT_*
   real fuzz;
   real ior;
   uint base_color_texture;  // NO_TEXTURE: none
   uint emission_texture;
-  real3 emission;           // lambertian: emitted besides reflecting
+  real3 emission;           // lambertian, pbr: emitted besides reflecting
+  uint metallic_roughness_texture;
+  real metallic;
+  real roughness;
 };
 
 Material load_material(uint i) {
 #if OCTRACE_PRECISION >= 1
   GpuMaterialHalf m = materials[i];
   return Material(m.color_type.rgb, uint(m.color_type.a), m.params.x, m.params.y, m.base_color_texture,
-                  m.emission_texture, m.emission.rgb);
+                  m.emission_texture, m.emission.rgb, m.metallic_roughness_texture, m.params.z, m.params.w);
 #else
   GpuMaterial m = materials[i];
-  return Material(m.color, m.type, m.fuzz, m.ior, m.base_color_texture, m.emission_texture, m.emission);
+  return Material(m.color, m.type, m.fuzz, m.ior, m.base_color_texture, m.emission_texture, m.emission,
+                  m.metallic_roughness_texture, m.metallic, m.roughness);
 #endif
 }
 
-// A lambertian material's albedo at texture coordinates uv: the colour times
-// its base colour texture (glTF 3.9.2), if it has one.
-real3 lambertian_albedo(Material m, vec2 uv) {
+// A lambertian material's albedo, or a pbr material's base colour, at
+// texture coordinates uv: the colour times its base colour texture (glTF
+// 3.9.2), if it has one.
+real3 base_color(Material m, vec2 uv) {
   real3 albedo = m.color;
   if (HAS_TEXTURES && m.base_color_texture != NO_TEXTURE)
-    albedo *= real3(sample_texture_srgb(m.base_color_texture, uv));
+    albedo *= real3(sample_texture(m.base_color_texture, uv, true));
   return albedo;
 }
 
-// What a lambertian surface emits at uv: the emission times its emission
-// texture (glTF 3.9.3), if it has one.
-real3 lambertian_emission(Material m, vec2 uv) {
+// What a lambertian or pbr surface emits at uv: the emission times its
+// emission texture (glTF 3.9.3), if it has one.
+real3 surface_emission(Material m, vec2 uv) {
   real3 emission = m.emission;
   if (HAS_TEXTURES && m.emission_texture != NO_TEXTURE)
-    emission *= real3(sample_texture_srgb(m.emission_texture, uv));
+    emission *= real3(sample_texture(m.emission_texture, uv, true));
   return emission;
 }
 

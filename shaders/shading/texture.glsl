@@ -1,4 +1,4 @@
-// Texture sampling: bilinear, in linear colour, with glTF's wrap modes, in
+// Texture sampling: bilinear, in linear values, with glTF's wrap modes, in
 // fp32 in every precision variant (the result is a colour the caller turns
 // into `real3`). The includer declares `textures` (GpuTexture) and `texels`
 // (uint, RGBA8; shared/shared.h says how they are laid out).
@@ -52,19 +52,22 @@ void wrap_axis(float x, uint n, uint wrap, out uint i0, out uint i1, out float f
   i1 = uint(clamp(b, 0, size - 1));
 }
 
-vec3 texel_linear(GpuTexture t, uint x, uint y) {
-  return srgb_to_linear(unpackUnorm4x8(texels[t.first_texel + y * t.width + x]).rgb);
+// Texel (x, y)'s rgb: decoded from sRGB for a colour texture (base colour,
+// emission), as stored for a data texture (metallic-roughness).
+vec3 texel_rgb(GpuTexture t, uint x, uint y, bool srgb) {
+  vec3 c = unpackUnorm4x8(texels[t.first_texel + y * t.width + x]).rgb;
+  return srgb ? srgb_to_linear(c) : c;
 }
 
-// Texture `index` at uv, its rgb decoded from sRGB and filtered bilinearly.
-vec3 sample_texture_srgb(uint index, vec2 uv) {
+// Texture `index` at uv, its rgb (decoded from sRGB if `srgb`) filtered bilinearly.
+vec3 sample_texture(uint index, vec2 uv, bool srgb) {
   GpuTexture t = textures[index];
   uint x0, x1, y0, y1;
   float fx, fy;
   wrap_axis(uv.x, t.width, t.wrap & 0xffffu, x0, x1, fx);
   wrap_axis(uv.y, t.height, t.wrap >> 16, y0, y1, fy);
-  vec3 top = mix(texel_linear(t, x0, y0), texel_linear(t, x1, y0), fx);
-  vec3 bottom = mix(texel_linear(t, x0, y1), texel_linear(t, x1, y1), fx);
+  vec3 top = mix(texel_rgb(t, x0, y0, srgb), texel_rgb(t, x1, y0, srgb), fx);
+  vec3 bottom = mix(texel_rgb(t, x0, y1, srgb), texel_rgb(t, x1, y1, srgb), fx);
   return mix(top, bottom, fy);
 }
 

@@ -33,6 +33,7 @@ OCT_CONST(uint, MAT_LAMBERTIAN, 0u);
 OCT_CONST(uint, MAT_METAL, 1u);
 OCT_CONST(uint, MAT_DIELECTRIC, 2u);
 OCT_CONST(uint, MAT_EMISSIVE, 3u);
+OCT_CONST(uint, MAT_PBR, 4u);  // glTF's metallic-roughness material (shading/pbr.glsl)
 
 OCT_CONST(uint, SKY_GRADIENT, 0u);
 OCT_CONST(uint, SKY_UNIFORM, 1u);
@@ -106,6 +107,7 @@ OCT_CONST(uint, SPEC_SURFACE_EMISSION, 13u);
 // Whether invocations may share a pixel's samples (PassParams.sample_lanes);
 // off, the workgroup barrier that sharing needs is compiled out.
 OCT_CONST(uint, SPEC_SAMPLE_LANES, 14u);
+OCT_CONST(uint, SPEC_PBR, 15u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 3u);
 
@@ -186,21 +188,28 @@ struct GpuMesh {
   uint pad2;
 };
 
-// 48 bytes. `color` is the albedo (lambertian, metal) or the radiance
-// (emissive). A lambertian material may also sample textures (indices into
-// the texture table, or NO_TEXTURE) and emit: albedo x base colour texture,
-// and emission x emission texture (glTF's materials; scene/scene.h). The
-// first 24 bytes are all that spheres' materials use; the texture indices
-// sit in what was padding, the emission in a row of its own.
+// 64 bytes. `color` is the albedo (lambertian, metal), the base colour
+// (pbr) or the radiance (emissive). A lambertian or pbr material may also
+// sample textures (indices into the texture table, or NO_TEXTURE) and emit:
+// albedo x base colour texture, and emission x emission texture (glTF's
+// materials; scene/scene.h). A pbr material's metallic and roughness are
+// multiplied by the blue and green channels of its metallic-roughness
+// texture; its ior sets the dielectric layer's F0. The first 24 bytes are all
+// that the RTIOW materials use; the texture indices sit in what was padding,
+// the emission and the pbr parameters in rows of their own.
 struct GpuMaterial {
   vec3 color;
   uint type;   // MAT_*
   float fuzz;  // metal
-  float ior;   // dielectric
+  float ior;   // dielectric, pbr
   uint base_color_texture;
   uint emission_texture;
   vec3 emission;
+  uint metallic_roughness_texture;
+  float metallic;   // pbr
+  float roughness;  // pbr (perceptual: alpha = roughness^2)
   uint pad0;
+  uint pad1;
 };
 
 // 16 bytes. One texture of the texture table: its texels are
@@ -230,11 +239,13 @@ struct GpuTexture {
 //     uint, the ray segments the pixel's paths traced (camera rays and
 //     bounces; NaN/Inf samples' not counted), for rays per second.
 
-// 32 bytes: the material as the fp16 variants read it (16-bit storage).
-// color_type: albedo or radiance, and the MAT_* type as a half (exact);
-// params: fuzz, ior, unused, unused; emission: rgb, unused. The host writes
-// half bit patterns. The texture indices stay 32-bit (a half holds integers
-// exactly only up to 2048).
+// 48 bytes: the material as the fp16 variants read it (16-bit storage).
+// color_type: albedo, base colour or radiance, and the MAT_* type as a half
+// (exact); params: fuzz, ior, metallic, roughness; emission: rgb, unused. The
+// host writes half bit patterns. The texture indices stay 32-bit (a half
+// holds integers exactly only up to 2048). Half is enough for roughness (its
+// smallest non-zero value used, alpha = roughness^2, is clamped far above
+// half's resolution near 0; shading/pbr.glsl).
 #if defined(__cplusplus) || OCTRACE_PRECISION >= 1
 struct GpuMaterialHalf {
   f16vec4 color_type;
@@ -242,6 +253,10 @@ struct GpuMaterialHalf {
   f16vec4 emission;
   uint base_color_texture;
   uint emission_texture;
+  uint metallic_roughness_texture;
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 #endif
 

@@ -111,6 +111,29 @@ const EffectsCase CASES[] = {
        return s;
      },
      {"lambertian", "triangles", "vertex_normals", "textures", "surface_emission", "sky_gradient"}},
+    {"pbr_spheres_and_textured_mesh",
+     [] {
+       // glTF's material on spheres (metal, dielectric, in between, rough and
+       // smooth, emitting) and on a smooth icosphere with base colour and
+       // metallic-roughness textures.
+       Scene s = family(test::pbr(0.8f, 1.0f, 0.3f));
+       s.materials.push_back(test::pbr(0.6f, 0.0f, 0.0f));
+       s.materials.push_back(test::pbr(0.9f, 0.5f, 1.0f));
+       s.materials[2].emission = {0.5f, 0.25f, 0.0f};
+       s.spheres[2].material = 1;
+       s.spheres[3].material = 2;
+       s.textures = {{2, 2, {0xff2040c0u, 0xffc08020u, 0xff808080u, 0xff10f010u}, Wrap::Repeat, Wrap::Repeat}};
+       Material textured = test::pbr(1.0f, 1.0f, 1.0f);
+       textured.base_color_texture = 0;
+       textured.metallic_roughness_texture = 0;
+       s.materials.push_back(textured);
+       Mesh ball = test::icosphere(2, 3, true);
+       for (glm::vec3 p : ball.positions) ball.uvs.push_back({2.0f * p.x, 1.5f * p.y - 0.5f});
+       test::place(s, ball, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0.6f, 1.2f)) *
+                                glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)));
+       return s;
+     },
+     {"pbr", "triangles", "vertex_normals", "textures", "surface_emission", "sky_gradient"}},
 };
 
 class EffectsTest : public test::VulkanTest, public ::testing::WithParamInterface<EffectsCase> {};

@@ -81,6 +81,14 @@ void add_uv_quad(Mesh& m, float x, float y, glm::vec2 uv, uint32_t material) {
   m.materials.insert(m.materials.end(), 2, material);
 }
 
+// glTF files load as pbr materials, whose specular layer makes a pixel
+// noisy; these tests check the textures, which shade a lambertian material
+// the same way, exactly.
+Scene as_lambertian(Scene s) {
+  for (Material& m : s.materials) m.type = MaterialType::Lambertian;
+  return s;
+}
+
 Material textured(uint32_t texture) {
   Material m = test::lambertian(1.0f);
   m.base_color_texture = texture;
@@ -96,7 +104,7 @@ TEST_F(TextureTest, UvOriginIsTheImagesTopLeft) {
                                            0, 0, 255, 255, 255, 255, 255, 255});  // bottom: blue, white
   const std::string path = test::tmp_path("texture_orientation.glb");
   test::textured_quad_gltf(png, test::kClampToEdge, test::kClampToEdge).write(path);
-  Scene s = load_gltf_scene(path);
+  Scene s = as_lambertian(load_gltf_scene(path));
   s.sky = uniform_sky().sky;
   frame(s, 1, 1);
   for (Precision p : kPrecisions) {
@@ -189,8 +197,9 @@ TEST_F(TextureTest, WrapModesRepeatClampAndMirror) {
 }
 
 // A glTF quad with emissiveFactor (1, 0.5, 0.25), emissiveStrength 4 and an
-// emissive texture seen under a black sky: every pixel is the emission; under
-// a sky of radiance 1 the surface also reflects it (albedo 0.5).
+// emissive texture seen under a black sky: every pixel is the emission (the
+// pbr material as loaded); under a sky of radiance 1 the surface also
+// reflects it (shaded lambertian, albedo 0.5, for an exact pixel).
 TEST_F(TextureTest, EmissionIsFactorTimesTextureTimesStrengthAndTheSurfaceStillReflects) {
   test::GltfBuilder b = test::textured_quad_gltf(test::png(1, 1, {255, 128, 64, 255}));
   b.doc["extensionsUsed"] = {"KHR_materials_emissive_strength"};
@@ -205,15 +214,53 @@ TEST_F(TextureTest, EmissionIsFactorTimesTextureTimesStrengthAndTheSurfaceStillR
   s.sky.type = SkyType::None;
   frame(s, 1, 1);
   EXPECT_EQ(feature_names(scene_features(s)),
-            (std::vector<std::string>{"lambertian", "triangles", "textures", "surface_emission", "sky_none", "sky_black"}));
+            (std::vector<std::string>{"pbr", "triangles", "textures", "surface_emission", "sky_none", "sky_black"}));
   const glm::dvec3 emission(4 * srgb(255), 2 * srgb(128), 1 * srgb(64));
   for (Precision p : kPrecisions) {
     const RenderResult r = render_framed(s, 1, 1, p);
     expect_near(at(r, 0.5f, 0.5f), emission, 4 * tolerance(p), std::string(precision_name(p)) + " black sky");
   }
+  s = as_lambertian(s);
   s.sky = uniform_sky().sky;
   const RenderResult lit = render_framed(s, 1, 1, Precision::FP32);
   expect_near(at(lit, 0.5f, 0.5f), emission + glm::dvec3(0.5), 4e-5f, "under a sky of 1");
+}
+
+// The metallic-roughness texture is linear data, blue = metallic, green =
+// roughness, times the factors (1 here). Quads facing a pinhole camera under
+// a sky of radiance 1, each sampling one texel (alpha clamped to 1e-3 for
+// roughness 0: a mirror to 1e-3):
+//   black base, texel (0, 0, 255): a black mirror metal, F0 = 0: black;
+//   black base, texel (0, 0, 0):   a dielectric mirror: F0 = 0.04 (ior 1.5),
+//                                  and the red channel is not read either;
+//   white base, texel (0, 0, 255): a white mirror metal: 1;
+//   white base, texel (0, 255, 255): a white metal of roughness 1, whose
+//                                  albedo at normal view is 0.31: < 0.5.
+TEST_F(TextureTest, MetallicRoughnessTextureIsBlueMetalGreenRoughness) {
+  Scene s = uniform_sky();
+  s.textures = {{4, 1, {0xffff0000u, 0xff000000u, 0xff0000ffu, 0xffffff00u}, Wrap::ClampToEdge, Wrap::ClampToEdge}};
+  for (float base : {0.0f, 1.0f}) {
+    Material m = test::pbr(base, 1.0f, 1.0f);
+    m.metallic_roughness_texture = 0;
+    s.materials.push_back(m);
+  }
+  Mesh quads;
+  add_uv_quad(quads, 0, 0, {0.125f, 0.5f}, 0);  // black, (0, 0, 255)
+  add_uv_quad(quads, 1, 0, {0.375f, 0.5f}, 0);  // black, (0, 0, 0)
+  add_uv_quad(quads, 2, 0, {0.625f, 0.5f}, 0);  // black, (255, 0, 0)
+  add_uv_quad(quads, 3, 0, {0.125f, 0.5f}, 1);  // white, (0, 0, 255)
+  add_uv_quad(quads, 4, 0, {0.875f, 0.5f}, 1);  // white, (0, 255, 255)
+  test::place(s, quads);
+  frame(s, 5, 1);
+  for (Precision p : kPrecisions) {
+    const RenderResult r = render_framed(s, 5, 1, p, 16);
+    const std::string name = precision_name(p);
+    expect_near(at(r, 0.5f, 0.5f), glm::dvec3(0.0), 1e-3f, name + " black mirror metal");
+    expect_near(at(r, 1.5f, 0.5f), glm::dvec3(0.04), 1e-3f, name + " dielectric mirror");
+    expect_near(at(r, 2.5f, 0.5f), glm::dvec3(0.04), 1e-3f, name + " dielectric mirror, red texel");
+    expect_near(at(r, 3.5f, 0.5f), glm::dvec3(1.0), 2e-3f, name + " white mirror metal");
+    EXPECT_LT(at(r, 4.5f, 0.5f).g, 0.5f) << name << " white rough metal";
+  }
 }
 
 // The texels of a scene go into one storage buffer: more than the device

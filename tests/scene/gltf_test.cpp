@@ -116,9 +116,11 @@ TEST(Gltf, QuadLoadsAsOneMeshPlacedOnce) {
   EXPECT_TRUE(m.uvs.empty());
   EXPECT_EQ(s.instances[0].mesh, 0u);
   EXPECT_EQ(s.instances[0].transform, glm::mat4(1.0f));
-  // No material in the file: glTF's default, base colour 1.
+  // No material in the file: glTF's default, base colour 1, metallic 1, roughness 1.
   ASSERT_EQ(s.materials.size(), 1u);
-  EXPECT_EQ(s.materials[0], (Material{MaterialType::Lambertian, glm::vec3(1.0f)}));
+  EXPECT_EQ(s.materials[0], (Material{MaterialType::Pbr, glm::vec3(1.0f)}));
+  EXPECT_EQ(s.materials[0].metallic, 1.0f);
+  EXPECT_EQ(s.materials[0].roughness, 1.0f);
   EXPECT_EQ(m.materials, (std::vector<uint32_t>{0, 0}));
   EXPECT_EQ(s.sky, Sky{});
   EXPECT_TRUE(s.spheres.empty());
@@ -324,13 +326,12 @@ TEST(Gltf, PrimitivesConcatenateWithAMaterialPerTriangle) {
   b.set_scene({0});
   std::vector<std::string> warnings;
   const Scene s = load(b, "materials.gltf", {}, &warnings);
-  // glTF's default metallicFactor is 1: rendered as lambertian, with a warning.
-  EXPECT_EQ(warnings, std::vector<std::string>{tmp("materials.gltf") + ": materials render as lambertian (base colour "
-                                                                        "and emission) for now; not rendered: metalness"});
+  // Nothing the materials have goes unrendered: no warning.
+  EXPECT_TRUE(warnings.empty());
   ASSERT_EQ(s.materials.size(), 3u);  // the file's two, then glTF's default for the primitive without
   EXPECT_EQ(s.materials[0].albedo, glm::vec3(0.8f, 0.2f, 0.1f));
   EXPECT_EQ(s.materials[1].albedo, glm::vec3(1.0f));
-  EXPECT_EQ(s.materials[2], (Material{MaterialType::Lambertian, glm::vec3(1.0f)}));
+  EXPECT_EQ(s.materials[2], (Material{MaterialType::Pbr, glm::vec3(1.0f)}));
   const Mesh& m = s.meshes.at(0);
   EXPECT_EQ(m.positions.size(), 7u);
   EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5, 4, 6, 5, 0, 1, 2}));
@@ -566,7 +567,7 @@ TEST(Gltf, EmissionIsTheFactorTimesTheStrength) {
   const Scene s = load(b, "emission.gltf");
   ASSERT_EQ(s.materials.size(), 3u);  // and glTF's default, which the quad takes
   EXPECT_EQ(s.materials[0].emission, glm::vec3(4, 2, 1));
-  EXPECT_EQ(s.materials[0].type, MaterialType::Lambertian);
+  EXPECT_EQ(s.materials[0].type, MaterialType::Pbr);
   EXPECT_EQ(s.materials[1].emission, glm::vec3(0));
   EXPECT_EQ(s.materials[1].emission_texture, std::nullopt);
   EXPECT_TRUE(s.textures.empty());
@@ -587,6 +588,41 @@ TEST(Gltf, AMaterialOverrideLeavesTheFilesTexturesOut) {
   EXPECT_EQ(s.meshes.at(0).materials, (std::vector<uint32_t>{0, 0}));
 }
 
+// metallicFactor, roughnessFactor, the metallic-roughness texture (stored
+// once, shared with the base colour slot when the file shares it) and
+// KHR_materials_ior's ior.
+TEST(Gltf, MetallicRoughnessFactorsTextureAndIor) {
+  GltfBuilder b = test::textured_quad_gltf(test::png(2, 1, kTwoTexels));
+  b.doc["extensionsUsed"] = {"KHR_materials_ior"};
+  const int mr = b.add_texture(test::png(1, 1, {0, 255, 128, 255}));
+  nlohmann::json& m = b.doc["materials"][0];
+  m["pbrMetallicRoughness"]["metallicFactor"] = 0.5;
+  m["pbrMetallicRoughness"]["roughnessFactor"] = 0.25;
+  m["pbrMetallicRoughness"]["metallicRoughnessTexture"] = {{"index", mr}};
+  m["extensions"] = {{"KHR_materials_ior", {{"ior", 1.33}}}};
+  const Scene s = load(b, "metal_rough.gltf");
+  const Material& got = s.materials.at(0);
+  EXPECT_EQ(got.type, MaterialType::Pbr);
+  EXPECT_EQ(got.metallic, 0.5f);
+  EXPECT_EQ(got.roughness, 0.25f);
+  EXPECT_EQ(got.ior, 1.33f);
+  EXPECT_EQ(got.base_color_texture, 0u);
+  ASSERT_EQ(got.metallic_roughness_texture, 1u);
+  // Linear data, stored as the file has it: r | g << 8 | b << 16 | a << 24.
+  EXPECT_EQ(s.textures.at(1).texels, std::vector<uint32_t>{0xff80ff00u});
+}
+
+TEST(GltfErrors, MetallicRoughnessAndIorOutOfRange) {
+  GltfBuilder b = test::quad_gltf();
+  b.add("materials", {{"pbrMetallicRoughness", {{"roughnessFactor", 1.5}}}});
+  b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  EXPECT_EQ(load_error(b, "rough.gltf"),
+            "PATH: materials[0].pbrMetallicRoughness.roughnessFactor: must be a number in [0, 1], got 1.5");
+  b.doc["materials"][0] = {{"extensions", {{"KHR_materials_ior", {{"ior", 0.5}}}}}};
+  EXPECT_EQ(load_error(b, "ior.gltf"),
+            "PATH: materials[0].extensions.KHR_materials_ior.ior: must be a finite number >= 1, got 0.5");
+}
+
 // What is not rendered yet is named in one warning per file.
 TEST(Gltf, WhatMaterialsLackIsNamedInOneWarning) {
   GltfBuilder b = test::textured_quad_gltf(test::png(2, 1, kTwoTexels));
@@ -598,8 +634,8 @@ TEST(Gltf, WhatMaterialsLackIsNamedInOneWarning) {
   std::vector<std::string> warnings;
   load(b, "lacks.gltf", {}, &warnings);
   EXPECT_EQ(warnings, std::vector<std::string>{tmp("lacks.gltf") +
-                                               ": materials render as lambertian (base colour and emission) for now; "
-                                               "not rendered: metalness, normal maps, alpha BLEND, alpha MASK, "
+                                               ": materials render without what octrace does not support yet: "
+                                               "normal maps, alpha BLEND, alpha MASK, "
                                                "KHR_materials_transmission, KHR_texture_transform"});
 }
 

@@ -298,6 +298,70 @@ TEST(Json, EveryMaterialAndSkyRoundTripsBitExactly) {
   expect_bit_identical(parse_scene_json(scene_to_json(s), "rt.json"), s);
 }
 
+// glTF's metallic-roughness material: every field but the type optional,
+// with glTF's defaults; a round trip keeps every field bit for bit.
+TEST(Json, PbrMaterialsTakeGltfDefaultsAndRoundTripBitExactly) {
+  const Scene d = parse_scene_json(R"({"materials": [{"type": "pbr"}], "spheres": []})", "pbr.json");
+  ASSERT_EQ(d.materials.size(), 1u);
+  const Material& m = d.materials[0];
+  EXPECT_EQ(m.type, MaterialType::Pbr);
+  EXPECT_EQ(m.albedo, glm::vec3(1.0f));
+  EXPECT_EQ(m.metallic, 1.0f);
+  EXPECT_EQ(m.roughness, 1.0f);
+  EXPECT_EQ(m.emission, glm::vec3(0.0f));
+  EXPECT_EQ(m.transmission, 0.0f);
+  EXPECT_EQ(m.ior, 1.5f);
+
+  Scene s = every_kind();
+  Material p = test::pbr(0.3f, 0.25f, 1.0f / 3.0f);
+  p.albedo = {0.1f, 0.2f, 1.0f};
+  p.emission = {0.5f, 7.0f, 1e-3f};
+  p.ior = 1.33f;
+  s.materials.push_back(p);
+  s.spheres.push_back({{0, 0, 0}, 1, 4});
+  expect_bit_identical(parse_scene_json(scene_to_json(s), "rt.json"), s);
+}
+
+// Transmission is read and checked but not rendered yet: one warning naming
+// the file and the materials, and the scene loads.
+TEST(Json, PbrTransmissionLoadsWithOneWarning) {
+  testing::internal::CaptureStderr();
+  const Scene s = parse_scene_json(R"({"materials": [{"type": "pbr", "transmission": 0.5}, {"type": "pbr"},
+                                                     {"type": "pbr", "transmission": 1}], "spheres": []})",
+                                   "glass.json");
+  EXPECT_EQ(testing::internal::GetCapturedStderr(),
+            "octrace: warning: glass.json: transmission is not rendered yet: materials[0], materials[2] render opaque\n");
+  EXPECT_EQ(s.materials[0].transmission, 0.5f);
+}
+
+TEST(JsonErrors, PbrValuesOutOfRange) {
+  const auto error = [](const std::string& material) {
+    return parse_error(R"({"materials": [)" + material + R"(], "spheres": []})");
+  };
+  EXPECT_EQ(error(R"({"type": "pbr", "roughness": -0.5})"),
+            "scene.json: materials[0].roughness: must be a number in [0, 1], got -0.5");
+  EXPECT_EQ(error(R"({"type": "pbr", "metallic": 2})"),
+            "scene.json: materials[0].metallic: must be a number in [0, 1], got 2");
+  EXPECT_EQ(error(R"({"type": "pbr", "ior": 0})"), "scene.json: materials[0].ior: must be a finite number > 0, got 0");
+  EXPECT_EQ(error(R"({"type": "pbr", "transmission": 1.5})"),
+            "scene.json: materials[0].transmission: must be a number in [0, 1], got 1.5");
+  EXPECT_EQ(error(R"({"type": "pbr", "base_color": [1.5, 0, 0]})"),
+            "scene.json: materials[0].base_color: must be 3 numbers in [0, 1], got [1.5, 0, 0]");
+  EXPECT_EQ(error(R"({"type": "pbr", "emission": [1, -1, 0]})"),
+            "scene.json: materials[0].emission: must be 3 finite numbers >= 0, got [1, -1, 0]");
+  EXPECT_EQ(error(R"({"type": "pbr", "albedo": [1, 1, 1]})"),
+            "scene.json: materials[0].albedo: unknown key (expected type, base_color, metallic, roughness, emission, "
+            "transmission, ior)");
+}
+
+// NaN cannot come from JSON; a scene built in code is checked the same way.
+TEST(SceneValidation, PbrNanIsRefused) {
+  Scene s;
+  s.materials = {test::pbr(1.0f, 1.0f, std::nanf(""))};
+  EXPECT_EQ(input_error([&] { validate_scene(s, "mine"); }),
+            "mine: materials[0].roughness: must be a number in [0, 1], got nan");
+}
+
 TEST(Json, WritesShortNumbersAndOneSpherePerLine) {
   const std::string text = scene_to_json(rtiow(3, 0.2f));
   EXPECT_NE(text.find(R"("aperture": 0.1,)"), std::string::npos) << text;
@@ -402,7 +466,7 @@ TEST(JsonErrors, ValuesOutOfRange) {
 TEST(JsonErrors, UnknownTypes) {
   EXPECT_EQ(parse_error(R"({"materials": [{"type": "lambertian", "albedo": [1, 1, 1]}, {"type": "glas", "ior": 1.5}],
                              "spheres": []})"),
-            "scene.json: materials[1].type: unknown material type \"glas\" (expected lambertian, metal, dielectric, emissive)");
+            "scene.json: materials[1].type: unknown material type \"glas\" (expected lambertian, metal, dielectric, emissive, pbr)");
   EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "sky": {"type": "sunset"}})"),
             "scene.json: sky.type: unknown sky type \"sunset\" (expected gradient, uniform, none)");
   EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "sky": {"type": 1}})"),
@@ -477,7 +541,7 @@ TEST(JsonMeshes, FilesAreFoundBesideTheSceneFile) {
   ASSERT_EQ(s.meshes.size(), 2u);
   ASSERT_EQ(s.instances.size(), 2u);
   ASSERT_EQ(s.materials.size(), 2u);
-  EXPECT_EQ(s.materials[1], (Material{MaterialType::Lambertian, glm::vec3(1.0f)}));
+  EXPECT_EQ(s.materials[1], (Material{MaterialType::Pbr, glm::vec3(1.0f)}));
   EXPECT_EQ(s.mesh_file_materials, 1u);
   EXPECT_EQ(s.meshes[0].materials, (std::vector<uint32_t>{1, 1}));
   EXPECT_EQ(s.meshes[1].materials, (std::vector<uint32_t>{0, 0}));
@@ -580,7 +644,7 @@ TEST(JsonMeshes, TexturesAndEmissionOfTheScenesOwnMaterialsCannotBeWritten) {
   s.materials = {test::lambertian(0.5f)};
   s.materials[0].emission = glm::vec3(1.0f);
   EXPECT_EQ(input_error([&] { scene_to_json(s); }),
-            "scene: materials[0]: textures and emission come only from mesh files and cannot be written");
+            "scene: materials[0]: textures (and a lambertian material's emission) come only from mesh files and cannot be written");
 }
 
 TEST(JsonMeshes, MeshesWithoutReferencesCannotBeWritten) {
@@ -644,7 +708,7 @@ TEST(Validate, TexturesAndTheMaterialsThatUseThem) {
   EXPECT_EQ(error([](Scene& s) { s.materials[0].emission = {1, -1, 0}; }),
             "mine: materials[0].emission: must be 3 finite numbers >= 0, got [1, -1, 0]");
   EXPECT_EQ(error([](Scene& s) { s.materials[0].type = MaterialType::Metal; }),
-            "mine: materials[0]: only lambertian materials take textures and an emission (an emissive one has a radiance)");
+            "mine: materials[0]: only lambertian and pbr materials take textures and an emission (an emissive one has a radiance)");
   EXPECT_EQ(error([](Scene& s) { s.textures[0].texels.pop_back(); }), "mine: textures[0].texels: 1 texels for 2x1");
   EXPECT_EQ(error([](Scene& s) { s.textures[0].height = 0; }), "mine: textures[0]: must be at least 1x1 texels, got 2x0");
   EXPECT_EQ(error([](Scene& s) { s.textures[0].wrap_t = Wrap(7); }), "mine: textures[0].wrap_t: unknown wrap mode 7");

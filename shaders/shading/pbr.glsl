@@ -1,0 +1,165 @@
+// glTF 2.0's metallic-roughness material, as the specification's Appendix B
+// defines it ("BRDF Implementation"):
+//   alpha            = roughness^2
+//   specular_brdf    = D(h) * V(wo, wi), D the Trowbridge-Reitz/GGX
+//                      distribution, V = G2 / (4 |n.wo| |n.wi|) with G2 the
+//                      height-correlated Smith masking-shadowing function
+//   metal_brdf       = specular_brdf * (base + (1 - base) (1 - |wo.h|)^5)
+//                      (Schlick's Fresnel, F0 = base colour)
+//   dielectric_brdf  = mix(base / pi, specular_brdf, Fr), Fr = F0 + (1 - F0)
+//                      (1 - |wo.h|)^5, F0 = ((ior - 1) / (ior + 1))^2 (0.04
+//                      for glTF's ior 1.5)
+//   material         = mix(dielectric_brdf, metal_brdf, metallic)
+// wo points to the viewer, wi to the light, h = normalize(wo + wi).
+//
+// Sampling (one sample, either lobe): the specular lobe by the distribution of
+// visible normals (Heitz 2018, "Sampling the GGX Distribution of Visible
+// Normals", JCGT 7(4)), in the spherical-cap form of Dupuy & Benyoub 2023
+// ("Sampling Visible GGX Normals with Spherical Caps", HPG); the diffuse lobe
+// cosine-weighted. The lobe is chosen with probability proportional to its
+// estimated weight at the macro-normal view angle, and the weight of the
+// sample is f(wo, wi) cos / (p_spec pdf_spec(wi) + p_diff pdf_diff(wi)): the
+// pdf of the direction under the mixture actually sampled (one-sample MIS
+// with the balance heuristic, Veach 1997 ch. 9), so the estimator is
+// unbiased whichever lobe produced wi.
+//
+// Precision: everything but the colours is fp32 in every variant (D spans
+// 1 / (pi alpha^2) = 3e5 at the smallest alpha, beyond half's 65504; the
+// masking terms divide small cosines at grazing angles; the directions must
+// resolve a lobe of width alpha = 1e-3). The colour terms (base colour,
+// Schlick's Fresnel colours) and the throughput are `real`: half in the fp16
+// variants. The ratios f cos / pdf that multiply them are formed in fp32 and
+// rounded once (docs/precision.md).
+#ifndef OCTRACE_PBR_GLSL
+#define OCTRACE_PBR_GLSL
+
+#include "shading/materials.glsl"
+#include "shared/rng.h"
+
+// The smallest alpha shaded. roughness 0 is a perfect mirror (D a delta),
+// which this sampler cannot weigh; clamping alpha to 1e-3 (roughness 0.032)
+// turns it into a lobe about 0.06 degrees wide, which no pixel of a normal
+// image resolves, while keeping D <= 1 / (pi 1e-6) = 3.2e5 finite in fp32.
+// It is a bias: a roughness-0 surface renders as one of alpha 1e-3, whose
+// albedo is at most ~1e-3 below the mirror's at grazing views.
+const float PBR_MIN_ALPHA = 1e-3;
+
+// Rec. 709 luminance, for the lobe choice only.
+const vec3 PBR_LUMINANCE = vec3(0.2126, 0.7152, 0.0722);
+
+// An orthonormal basis (t, b, n) around unit n, without the singularity of a
+// fixed helper axis: Duff et al. 2017, "Building an Orthonormal Basis,
+// Revisited", JCGT 6(1), listing 3.
+void pbr_basis(vec3 n, out vec3 t, out vec3 b) {
+  float s = n.z >= 0.0 ? 1.0 : -1.0;
+  float a = -1.0 / (s + n.z);
+  float c = n.x * n.y * a;
+  t = vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
+  b = vec3(c, s + n.y * n.y * a, -n.y);
+}
+
+// GGX D for a unit half vector h in the local frame (z = normal): Walter et
+// al. 2007 eq. 33, alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2), written as
+// 1 / (pi alpha^2 (|h.xy|^2 / alpha^2 + h.z^2)^2) so that no 1 - cos^2
+// cancels when alpha is small.
+float ggx_d(vec3 h, float alpha) {
+  float a2 = alpha * alpha;
+  float k = dot(h.xy, h.xy) / a2 + h.z * h.z;
+  return 1.0 / (PI * a2 * k * k);
+}
+
+// sqrt(alpha^2 + (1 - alpha^2) z^2) for a direction at cos z to the normal:
+// z (1 + 2 Lambda), with Smith's Lambda for GGX (Heitz 2014, "Understanding
+// the Masking-Shadowing Function", eq. 72), in a form that stays finite at
+// z = 0 (it is >= alpha). Then
+//   G1(w)      = 1 / (1 + Lambda(w))            = 2 z / (z + s(z))
+//   G2(wo, wi) = 1 / (1 + Lambda(wo) + Lambda(wi))   (height-correlated, eq. 99)
+//              = 2 zo zi / (s(zo) zi + s(zi) zo).
+float smith_s(float z, float alpha) {
+  float a2 = alpha * alpha;
+  return sqrt(a2 + (1.0 - a2) * z * z);
+}
+
+// A visible normal for the view wo (local frame, wo.z > 0): Dupuy & Benyoub
+// 2023, listing 3 (isotropic). Stretch the view to the configuration where
+// alpha = 1, sample the spherical cap of normals it sees, unstretch.
+vec3 sample_ggx_vndf(vec3 wo, float alpha, float u1, float u2) {
+  vec3 v = normalize(vec3(alpha * wo.xy, wo.z));
+  float phi = 2.0 * PI * u1;
+  float z = (1.0 - u2) * (1.0 + v.z) - v.z;
+  float sin_theta = sqrt(clamp(1.0 - z * z, 0.0, 1.0));
+  vec3 h = vec3(sin_theta * cos(phi), sin_theta * sin(phi), z) + v;
+  return normalize(vec3(alpha * h.xy, h.z));
+}
+
+float pow5(float x) {
+  float x2 = x * x;
+  return x2 * x2 * x;
+}
+
+// Samples a direction `dir` (world space) off a pbr surface with shading
+// normal n (on the viewer's side) seen from `to_viewer`, and its weight
+// f cos / pdf. False when there is none: the view is exactly grazing, or the
+// sample went below the surface (where f = 0: the path ends, as the integral
+// over the upper hemisphere says). Draws three numbers from `rng` whatever
+// happens.
+bool sample_pbr(Material m, vec2 uv, vec3 n, vec3 to_viewer, inout Rng rng, out vec3 dir, out real3 weight) {
+  float u0 = rng_next(rng), u1 = rng_next(rng), u2 = rng_next(rng);
+  dir = n;
+  weight = real3(0.0);
+  real3 base = base_color(m, uv);
+  float metallic = float(m.metallic), roughness = float(m.roughness);
+  if (HAS_TEXTURES && m.metallic_roughness_texture != NO_TEXTURE) {
+    vec3 mr = sample_texture(m.metallic_roughness_texture, uv, false);
+    roughness *= mr.g;
+    metallic *= mr.b;
+  }
+  float alpha = max(roughness * roughness, PBR_MIN_ALPHA);
+  vec3 t, b;
+  pbr_basis(n, t, b);
+  vec3 wo = vec3(dot(to_viewer, t), dot(to_viewer, b), dot(to_viewer, n));
+  if (!(wo.z > 0.0)) return false;
+  float ior = float(m.ior);
+  float f0 = (ior - 1.0) / (ior + 1.0);
+  f0 *= f0;
+
+  // Lobe choice: each lobe's weight estimated with Fresnel at the macro
+  // normal (n.wo in place of h.wo), in luminance. The metal's Schlick colour
+  // is linear in the base colour, so its luminance is lum(base) + (1 -
+  // lum(base)) w. A diffuse estimate of 0 means no diffuse reflection at all
+  // (metallic 1 or a black base): then p_spec = 1.
+  float w_view = pow5(1.0 - wo.z);
+  float lum_base = dot(vec3(base), PBR_LUMINANCE);
+  float fr_view = f0 + (1.0 - f0) * w_view;
+  float spec_est = (1.0 - metallic) * fr_view + metallic * (lum_base + (1.0 - lum_base) * w_view);
+  float diff_est = (1.0 - metallic) * (1.0 - fr_view) * lum_base;
+  float p_spec = diff_est > 0.0 ? spec_est / (spec_est + diff_est) : 1.0;
+
+  vec3 wi;
+  if (u0 < p_spec) {
+    wi = reflect(-wo, sample_ggx_vndf(wo, alpha, u1, u2));
+  } else {
+    // Cosine-weighted (Malley's method): pdf cos / pi.
+    float r = sqrt(u1), phi = 2.0 * PI * u2;
+    wi = vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0, 1.0 - u1)));
+  }
+  if (!(wi.z > 0.0)) return false;
+  vec3 h = normalize(wo + wi);
+  float d = ggx_d(h, alpha);
+  float so = smith_s(wo.z, alpha), si = smith_s(wi.z, alpha);
+  // specular_brdf * cos = D G2 / (4 zo zi) * zi = D zi / (2 (so zi + si zo)).
+  float spec = d * wi.z / (2.0 * (so * wi.z + si * wo.z));
+  // pdf of wi by the VNDF: D_wo(h) / (4 wo.h) with D_wo(h) = G1(wo) (wo.h)
+  // D(h) / zo (Heitz 2018 eq. 3 and the reflection Jacobian) = D / (2 (zo + so)).
+  float pdf = p_spec * d / (2.0 * (wo.z + so)) + (1.0 - p_spec) * wi.z / PI;
+  if (!(pdf > 0.0)) return false;
+  float w = pow5(1.0 - clamp(dot(wo, h), 0.0, 1.0));
+  float fr = f0 + (1.0 - f0) * w;
+  real3 spec_colour = real((1.0 - metallic) * fr) + real(metallic) * (base + (real(1.0) - base) * real(w));
+  real3 diff_colour = real((1.0 - metallic) * (1.0 - fr)) * base;
+  weight = spec_colour * real(spec / pdf) + diff_colour * real(wi.z / (PI * pdf));
+  dir = wi.x * t + wi.y * b + wi.z * n;
+  return true;
+}
+
+#endif
