@@ -34,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/gltf.h"
 #include "test_util.h"
 
 namespace octrace {
@@ -83,9 +84,30 @@ Scene emissive_black_sky() {
   return s;
 }
 
+// glTF's metallic-roughness material on spheres: a rough coloured metal and
+// a rough coloured dielectric (specular layer over diffuse).
+Scene pbr_spheres() {
+  Material metal = test::pbr(1.0f, 1.0f, 0.35f);
+  metal.albedo = {0.95f, 0.64f, 0.54f};
+  Material plastic = test::pbr(1.0f, 0.0f, 0.5f);
+  plastic.albedo = {0.2f, 0.4f, 0.8f};
+  Scene s = single_material(metal);
+  s.materials.push_back(plastic);
+  s.spheres[2].material = 2;
+  return s;
+}
+
+// The 2CylinderEngine of Debian's assimp-testmodels (tools/setup.sh installs
+// it) with its own pbr materials and camera: instanced meshes, vertex
+// normals, metal and dielectric lobes together.
+Scene engine() {
+  return load_gltf_scene("/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb");
+}
+
 const GoldenCase CASES[] = {
     {"rtiow", rtiow_small},          {"lambertian", lambertian_only}, {"metal", metal_only},
-    {"glass", glass_only},           {"emissive", emissive_black_sky},
+    {"glass", glass_only},           {"emissive", emissive_black_sky}, {"pbr", pbr_spheres},
+    {"engine", engine},
 };
 
 std::string golden_path(const std::string& name, const char* kind) {
