@@ -157,7 +157,10 @@ bool sample_pbr(Material m, vec2 uv, vec3 n, vec3 to_viewer, inout Rng rng, out 
   float fr = f0 + (1.0 - f0) * w;
   real3 spec_colour = real((1.0 - metallic) * fr) + real(metallic) * (base + (real(1.0) - base) * real(w));
   real3 diff_colour = real((1.0 - metallic) * (1.0 - fr)) * base;
-  weight = spec_colour * real(spec / pdf) + diff_colour * real(wi.z / (PI * pdf));
+  // In fp32, then to `real`: a factor such as cos / (pi pdf) after an
+  // unlikely lobe choice may exceed half's range although its product with
+  // the lobe's colour does not (the fp16 variants saw Inf samples from it).
+  weight = real3(vec3(spec_colour) * (spec / pdf) + vec3(diff_colour) * (wi.z / (PI * pdf)));
   dir = wi.x * t + wi.y * b + wi.z * n;
   return true;
 }
