@@ -158,7 +158,7 @@ def main():
         w.writeheader()
         w.writerows(rows)
 
-    header = (f"Device: {device['name']} ({device['type']}). Image {args.size}, rtiow scene "
+    header = (f"Device: {device['name']} ({device['type']}). Image {args.size}, scene "
               f"{ref_info['scene']['source']}; reference fp32 {args.ref_spp} spp (sample seed 1000); "
               f"renders with sample seed 1; time = device time of the passes.\n\n")
     with open(os.path.join(args.out, "accuracy.md"), "w") as f:
@@ -194,7 +194,7 @@ def main():
 
     with open(os.path.join(args.out, "precision.md"), "w") as f:
         f.write(f"Device: {device['name']} ({device['type']}).\n\n")
-        f.write(f"The study's comparison: rtiow, {args.study_size}, 10 spp, depth 50, sample seed 1 for every "
+        f.write(f"The study's comparison: {ref_info['scene']['source']}, {args.study_size}, 10 spp, depth 50, sample seed 1 for every "
                 f"precision. Noise floor: SSIM between fp32 with seed 2 and fp32 with seed 1 = "
                 f"**{floor['ssim']:.4f}**.\n\n")
         f.write("| precision | SSIM vs fp32 (same seed) | noise floor SSIM | render ms | NaN/Inf samples |\n")
