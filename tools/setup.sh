@@ -12,6 +12,7 @@ packages=(
   libtinyexr-dev libtinygltf-dev libgtest-dev
   assimp-testmodels
   xvfb xauth python3 python3-matplotlib python3-numpy
+  libegl1 libegl-mesa0
 )
 
 missing=()

@@ -1,0 +1,84 @@
+#!/usr/bin/python3
+"""Side by side: octrace's render of a glTF file and the same view drawn by
+an independent glTF viewer (pyrender, a rasteriser on trimesh's glTF loader,
+off-screen through Mesa's EGL), so that one can check that materials and
+textures land where they should. The camera is octrace's own (its framing
+camera or the file's, from `octrace render --dump-scene`); the rasteriser's
+light is an ambient term plus a light at the camera, so its shading differs
+by design; colours, textures and their placement must not.
+
+  tools/viewer_compare.py --octrace build/app/octrace --scene model.glb --out docs/images/compare.png
+      [--size 600x400] [--spp 64] [--device auto]
+
+Needs the Python packages pyrender and trimesh (pip install pyrender trimesh)
+and Debian's libegl1 and libegl-mesa0 (tools/setup.sh installs them).
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+# Off-screen OpenGL through Mesa's EGL without a display (llvmpipe here).
+os.environ.setdefault("PYOPENGL_PLATFORM", "egl")
+os.environ.setdefault("EGL_PLATFORM", "surfaceless")
+
+import numpy as np  # noqa: E402
+import pyrender  # noqa: E402
+import trimesh  # noqa: E402
+from PIL import Image, ImageDraw  # noqa: E402
+
+
+def look_at_pose(eye, target, up):
+    eye, target, up = (np.asarray(v, dtype=float) for v in (eye, target, up))
+    z = eye - target
+    z /= np.linalg.norm(z)
+    x = np.cross(up, z)
+    x /= np.linalg.norm(x)
+    y = np.cross(z, x)
+    pose = np.eye(4)
+    pose[:3, 0], pose[:3, 1], pose[:3, 2], pose[:3, 3] = x, y, z, eye
+    return pose
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--octrace", default="build/app/octrace")
+    ap.add_argument("--scene", required=True, help=".gltf or .glb")
+    ap.add_argument("--out", required=True, help="the side-by-side PNG")
+    ap.add_argument("--size", default="600x400")
+    ap.add_argument("--spp", type=int, default=64)
+    ap.add_argument("--device", default="auto")
+    args = ap.parse_args()
+    width, height = (int(v) for v in args.size.split("x"))
+
+    with tempfile.TemporaryDirectory() as tmp:
+        dump, ours = os.path.join(tmp, "scene.json"), os.path.join(tmp, "octrace.png")
+        subprocess.run([args.octrace, "render", "--scene", args.scene, "--size", args.size, "--spp", str(args.spp),
+                        "--device", args.device, "--quiet", "--dump-scene", dump, "--out", ours], check=True)
+        camera = json.load(open(dump))["camera"]
+        octrace_image = Image.open(ours).convert("RGB")
+
+    scene = pyrender.Scene.from_trimesh_scene(trimesh.load(args.scene), ambient_light=np.full(3, 0.35),
+                                              bg_color=np.array([1.0, 1.0, 1.0, 1.0]))
+    pose = look_at_pose(camera["lookfrom"], camera["lookat"], camera["vup"])
+    scene.add(pyrender.PerspectiveCamera(yfov=np.radians(camera["vfov"]), aspectRatio=width / height), pose=pose)
+    scene.add(pyrender.DirectionalLight(color=np.ones(3), intensity=3.0), pose=pose)
+    renderer = pyrender.OffscreenRenderer(width, height)
+    colour, _ = renderer.render(scene)
+    renderer.delete()
+
+    pair = Image.new("RGB", (2 * width, height + 24), "white")
+    pair.paste(octrace_image, (0, 24))
+    pair.paste(Image.fromarray(colour[:, :, :3]), (width, 24))
+    draw = ImageDraw.Draw(pair)
+    draw.text((8, 6), f"octrace, {args.spp} spp, its camera", fill="black")
+    draw.text((width + 8, 6), "pyrender (rasteriser, trimesh glTF loader), same camera", fill="black")
+    pair.save(args.out)
+    print(f"wrote {args.out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
