@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +25,7 @@
 #include "io/image.h"
 #include "io/file.h"
 #include "core/clock.h"
+#include "render/multi_device.h"
 #include "render/path_tracer.h"
 #include "render/render_state.h"
 #include "scene/gltf.h"
@@ -289,6 +291,34 @@ class Progress {
   Clock::time_point start_ = Clock::now();
 };
 
+// --device: "all" is every GPU (every device where there is none); a
+// comma-separated list names devices by index (one may repeat: two logical
+// devices on one physical device); anything else is one selection.
+std::vector<std::string> device_selections(const std::string& device) {
+  std::vector<std::string> out;
+  if (device == "all") {
+    const std::vector<DeviceInfo> infos = list_devices();
+    for (const DeviceInfo& d : infos)
+      if (!d.software) out.push_back(std::to_string(d.index));
+    if (out.empty())
+      for (const DeviceInfo& d : infos) out.push_back(std::to_string(d.index));
+    if (out.empty()) out.push_back("auto");
+    return out;
+  }
+  if (device.find(',') == std::string::npos) return {device};
+  size_t at = 0;
+  for (;;) {
+    const size_t comma = device.find(',', at);
+    const std::string item = device.substr(at, comma - at);
+    if (item.empty() || item.find_first_not_of("0123456789") != std::string::npos)
+      throw InputError("--device: expected a list of device indices like 0,2, got \"" + device + "\"");
+    out.push_back(item);
+    if (comma == std::string::npos) break;
+    at = comma + 1;
+  }
+  return out;
+}
+
 // The settings a checkpoint must match (render_state.h); the scene's hash
 // is known once it is on the device.
 CheckpointInfo checkpoint_info(const RenderSettings& s) {
@@ -334,10 +364,22 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
   if (outputs.empty() && state.empty()) return 0;  // only --dump-scene
 
   start = Clock::now();
+  // --device all | 0,2: one context per device, the first one the main one.
+  const std::vector<std::string> device_list = device_selections(render_opts.device);
+  if (device_list.size() > 1 && (!state.empty() || !resume_prefix.empty()))
+    throw InputError("--device " + render_opts.device +
+                     ": --state, --checkpoint and --resume work with one device only (use octrace merge)");
   VulkanContext ctx;
-  ContextOptions context_opts{render_opts.device, settings.precision != Precision::FP32, render_opts.validation};
+  ContextOptions context_opts{device_list[0], settings.precision != Precision::FP32, render_opts.validation};
   context_opts.pipeline_statistics = render_opts.pipeline_stats;
   create_context(ctx, context_opts);
+  std::vector<std::unique_ptr<VulkanContext>> more_contexts;
+  for (size_t k = 1; k < device_list.size(); ++k) {
+    ContextOptions o = context_opts;
+    o.device = device_list[k];
+    more_contexts.push_back(std::make_unique<VulkanContext>());
+    create_context(*more_contexts.back(), o);
+  }
   if (render_opts.pipeline_stats && !ctx.pipeline_statistics)
     print_warning(ctx.info.name + " has no VK_KHR_pipeline_executable_properties: no pipeline statistics");
   double device_ms = ms_since(start);
@@ -374,8 +416,15 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
   }
   SignalGuard signals;
   RenderResult result;
+  std::vector<DeviceShare> shares;
   try {
-    result = render(ctx, scene, settings, control);
+    if (!more_contexts.empty()) {
+      std::vector<const VulkanContext*> contexts = {&ctx};
+      for (const auto& c : more_contexts) contexts.push_back(c.get());
+      result = render_on_devices(contexts, scene, settings, control, shares);
+    } else {
+      result = render(ctx, scene, settings, control);
+    }
   } catch (const RuntimeError& e) {
     if (last_checkpoint.empty()) throw;
     throw RuntimeError(std::string(e.what()) + "; the last checkpoint is " + last_checkpoint + ": resume with --resume " +
@@ -434,6 +483,12 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
               {"rays_per_second", rays_per_s},
               {"nonfinite_samples", result.nonfinite_samples},
               {"outputs", outputs}};
+    if (!shares.empty()) {
+      json per_device = json::array();
+      for (const DeviceShare& d : shares)
+        per_device.push_back({{"name", d.name}, {"samples", d.samples}, {"render_ms", d.device_ms}, {"setup_ms", d.setup_ms}});
+      j["devices"] = per_device;
+    }
     if (settings.accel == Accel::Octree) {
       const OctreeStats& o = result.octree;
       j["octree"] = {{"leaf_size", settings.octree.leaf_size}, {"max_depth", settings.octree.max_depth},
@@ -446,7 +501,10 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
     }
     if (render_opts.pipeline_stats) {
       json stats = json::object();
-      for (const auto& [name, value] : result.pipeline_statistics) stats[name] = value;
+      for (size_t d = 0; d < shares.size(); ++d)
+      std::printf("device %zu  %s: %u spp, %.1f ms of passes, %.1f ms set-up\n", d, shares[d].name.c_str(),
+                  shares[d].samples, shares[d].device_ms, shares[d].setup_ms);
+    for (const auto& [name, value] : result.pipeline_statistics) stats[name] = value;
       j["pipeline_statistics"] = stats;
     }
     std::cout << j.dump(2) << "\n";
@@ -464,6 +522,9 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
                 t.render_device_ms);
     std::printf("speed     %.3g paths/s, %.3g rays/s (%.2f segments per path)\n", paths_per_s, rays_per_s,
                 paths > 0 ? double(result.rays) / paths : 0.0);
+    for (size_t d = 0; d < shares.size(); ++d)
+      std::printf("device %zu  %s: %u spp, %.1f ms of passes, %.1f ms set-up\n", d, shares[d].name.c_str(),
+                  shares[d].samples, shares[d].device_ms, shares[d].setup_ms);
     for (const auto& [name, value] : result.pipeline_statistics)
       std::printf("pipeline  %s: %s\n", name.c_str(), value.c_str());
     if (result.nonfinite_samples)

@@ -294,40 +294,45 @@ void PathTracer::write_accumulation(const Accumulation& a) {
 
 uint64_t PathTracer::scene_hash() const { return state_->scene.content_hash; }
 
-RenderResult PathTracer::read_result() {
-  State& s = *state_;
-  auto start = Clock::now();
-  const uint64_t pixels = s.pixels();
-  Accumulation a = read_accumulation();
-  const std::vector<glm::vec4>& sum = a.sum;
-  const std::vector<glm::vec4>& comp = a.comp;
-  const std::vector<glm::vec4>& sq = a.sq;
-  gpu::RenderStats stats{};
-  download_buffer(s.ctx, s.stats, &stats, sizeof(stats));
-
-  RenderResult r;
-  r.mean.width = r.variance_of_mean.width = s.settings.width;
-  r.mean.height = r.variance_of_mean.height = s.settings.height;
-  r.mean.rgb.resize(pixels * 3);
-  r.variance_of_mean.rgb.resize(pixels * 3);
-  r.nonfinite_samples = stats.nonfinite_samples;
+void resolve_accumulation(const Accumulation& a, RenderResult& r) {
+  const uint64_t pixels = a.sum.size();
+  r.mean.width = r.variance_of_mean.width = a.width;
+  r.mean.height = r.variance_of_mean.height = a.height;
+  r.mean.rgb.assign(pixels * 3, 0.0f);
+  r.variance_of_mean.rgb.assign(pixels * 3, 0.0f);
   r.count.resize(pixels);
   r.min_samples = UINT32_MAX;
+  r.rays = 0;
   for (uint64_t i = 0; i < pixels; ++i) {
-    double n = sum[i].w;
+    double n = a.sum[i].w;
     r.min_samples = std::min(r.min_samples, uint32_t(n));
     r.count[i] = float(n);
-    r.rays += std::bit_cast<uint32_t>(sq[i].w);
+    r.rays += std::bit_cast<uint32_t>(a.sq[i].w);
     for (int c = 0; c < 3; ++c) {
       // The Kahan sum is sum - comp (comp holds what the float sum overshot).
-      double total = double(sum[i][c]) - double(comp[i][c]);
+      double total = double(a.sum[i][c]) - double(a.comp[i][c]);
       double mean = n > 0 ? total / n : 0.0;
-      double var = n > 1 ? double(sq[i][c]) / (n - 1) : 0.0;
+      double var = n > 1 ? double(a.sq[i][c]) / (n - 1) : 0.0;
       r.mean.rgb[3 * i + c] = float(mean);
       r.variance_of_mean.rgb[3 * i + c] = n > 0 ? float(var / n) : 0.0f;
     }
   }
   if (pixels == 0) r.min_samples = 0;
+}
+
+uint64_t PathTracer::nonfinite_samples() {
+  State& s = *state_;
+  gpu::RenderStats stats{};
+  download_buffer(s.ctx, s.stats, &stats, sizeof(stats));
+  return stats.nonfinite_samples;
+}
+
+RenderResult PathTracer::read_result() {
+  State& s = *state_;
+  auto start = Clock::now();
+  RenderResult r;
+  resolve_accumulation(read_accumulation(), r);
+  r.nonfinite_samples = nonfinite_samples();
   s.timings.readback_ms = ms_since(start);
   r.timings = s.timings;
   r.octree = s.scene.octree;

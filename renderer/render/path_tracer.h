@@ -99,6 +99,8 @@ class PathTracer {
   // resize and reconfigure).
   const RenderSettings& settings() const;
   RenderResult read_result();
+  // NaN/Inf samples rejected since the last reset.
+  uint64_t nonfinite_samples();
   // The raw accumulation buffers, and a state to continue from (a
   // checkpoint; InputError if its size is not the tracer's).
   Accumulation read_accumulation();
@@ -120,6 +122,11 @@ class PathTracer {
 // are cut short and the image is wrong where they are. Returns a one-line
 // warning for such a render on a software device, or an empty string.
 std::string software_loop_limit_warning(const DeviceInfo& device, const Scene& scene, const RenderSettings& settings);
+
+// The mean, variance of the mean, counts, smallest count and rays of an
+// accumulation state, as PathTracer::read_result has them (the other fields
+// of `r` are left as they are).
+void resolve_accumulation(const Accumulation& acc, RenderResult& r);
 
 // What a caller may do to a render while it runs.
 struct RenderControl {

@@ -1,0 +1,157 @@
+#include "render/multi_device.h"
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "core/clock.h"
+#include "core/errors.h"
+
+namespace octrace {
+
+Accumulation merge_accumulations(const std::vector<Accumulation>& parts) {
+  if (parts.empty()) throw InputError("merge: no accumulation states");
+  const Accumulation& first = parts.front();
+  for (const Accumulation& p : parts)
+    if (p.width != first.width || p.height != first.height || p.sum.size() != first.sum.size())
+      throw InputError("merge: accumulation states of different sizes");
+  Accumulation out{first.width, first.height, std::vector<glm::vec4>(first.sum.size()),
+                   std::vector<glm::vec4>(first.sum.size()), std::vector<glm::vec4>(first.sum.size())};
+  for (size_t i = 0; i < first.sum.size(); ++i) {
+    double n = 0, total[3] = {0, 0, 0};
+    uint32_t rays = 0;
+    for (const Accumulation& p : parts) {
+      n += p.sum[i].w;
+      rays += std::bit_cast<uint32_t>(p.sq[i].w);
+      for (int c = 0; c < 3; ++c) total[c] += double(p.sum[i][c]) - double(p.comp[i][c]);
+    }
+    for (int c = 0; c < 3; ++c) {
+      const double mean = n > 0 ? total[c] / n : 0.0;
+      double m2 = 0;
+      for (const Accumulation& p : parts) {
+        const double ni = p.sum[i].w;
+        if (ni == 0) continue;
+        const double mean_i = (double(p.sum[i][c]) - double(p.comp[i][c])) / ni;
+        m2 += double(p.sq[i][c]) + ni * (mean_i - mean) * (mean_i - mean);
+      }
+      // The total as a float and what it overshoots (the Kahan form: sum - comp).
+      out.sum[i][c] = float(total[c]);
+      out.comp[i][c] = float(double(out.sum[i][c]) - total[c]);
+      out.sq[i][c] = float(m2);
+    }
+    out.sum[i].w = float(n);
+    out.sq[i].w = std::bit_cast<float>(rays);
+  }
+  return out;
+}
+
+RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts, const Scene& scene,
+                               const RenderSettings& settings, const RenderControl& control,
+                               std::vector<DeviceShare>& shares) {
+  if (contexts.empty()) throw InputError("device: no device given");
+  if (control.resume || control.checkpoint)
+    throw InputError("--resume and --state/--checkpoint work on one device only, not with a device list");
+  const size_t devices = contexts.size();
+  shares.assign(devices, {});
+  std::vector<Accumulation> parts(devices);
+  std::vector<RenderResult> first_result(1);
+  std::vector<uint64_t> nonfinite(devices, 0);
+  std::atomic<uint32_t> next{0};  // the next sample offset to hand out
+  std::atomic<uint32_t> done{0};
+  std::atomic<bool> failed{false};
+  std::mutex progress_mutex;
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  const PassSettings pass = pass_settings(scene, settings);
+  // The passes' wall time runs from when every device is set up to when the
+  // last one finishes its passes: set-up (octree, upload, pipeline) and the
+  // read-back and merge are timed apart, as render() does.
+  std::atomic<size_t> ready{0};
+  std::vector<Clock::time_point> ends(devices);
+  Clock::time_point start;
+  std::mutex start_mutex;
+  std::condition_variable all_ready;
+
+  const auto work = [&](size_t d) {
+    try {
+      auto setup_start = Clock::now();
+      PathTracer tracer(*contexts[d], scene, settings);
+      shares[d].name = contexts[d]->info.name;
+      shares[d].setup_ms = ms_since(setup_start);
+      {
+        std::unique_lock<std::mutex> lock(start_mutex);
+        if (++ready == devices) {
+          start = Clock::now();
+          all_ready.notify_all();
+        } else {
+          all_ready.wait(lock, [&] { return ready.load() >= devices; });
+        }
+      }
+      // Batches grow until one takes about a quarter second, and shrink near
+      // the end so that no device is left with much more than the others.
+      uint32_t batch = 1;
+      for (;;) {
+        if (failed || (control.stop && control.stop->load())) break;
+        const uint32_t remaining = settings.spp - std::min(settings.spp, next.load());
+        const uint32_t want = std::max(1u, std::min(batch, remaining / uint32_t(2 * devices) + 1));
+        const uint32_t first = next.fetch_add(want);
+        if (first >= settings.spp) break;
+        const uint32_t n = std::min(want, settings.spp - first);
+        auto batch_start = Clock::now();
+        shares[d].device_ms += tracer.run_passes(pass, settings.first_sample + first, n);
+        const double per_pass = ms_since(batch_start) / n;
+        shares[d].samples += n;
+        batch = uint32_t(std::clamp(250.0 / std::max(per_pass, 1e-3), 1.0, 1024.0));
+        const uint32_t total = done += n;
+        if (control.progress) {
+          std::lock_guard<std::mutex> lock(progress_mutex);
+          control.progress(total, settings.spp);
+        }
+      }
+      ends[d] = Clock::now();
+      parts[d] = tracer.read_accumulation();
+      nonfinite[d] = tracer.nonfinite_samples();
+      if (d == 0) {
+        first_result[0].timings = tracer.setup_timings();
+        first_result[0].octree = tracer.octree_stats();
+        first_result[0].features = tracer.features();
+      }
+    } catch (...) {
+      failed = true;
+      {
+        // A device that failed before the start releases the others.
+        std::lock_guard<std::mutex> lock(start_mutex);
+        ready = devices;
+        all_ready.notify_all();
+      }
+      std::lock_guard<std::mutex> lock(error_mutex);
+      if (!error) error = std::current_exception();
+    }
+  };
+  std::vector<std::thread> threads;
+  for (size_t d = 1; d < devices; ++d) threads.emplace_back(work, d);
+  work(0);
+  for (std::thread& t : threads) t.join();
+  if (error) std::rethrow_exception(error);
+
+  RenderResult r = std::move(first_result[0]);
+  auto merge_start = Clock::now();
+  resolve_accumulation(merge_accumulations(parts), r);
+  r.timings.readback_ms = ms_since(merge_start);
+  r.nonfinite_samples = 0;
+  for (uint64_t k : nonfinite) r.nonfinite_samples += k;
+  const Clock::time_point last = *std::max_element(ends.begin(), ends.end());
+  r.timings.render_wall_ms = std::chrono::duration<double, std::milli>(last - start).count();
+  r.timings.render_device_ms = 0;
+  for (const DeviceShare& s : shares) r.timings.render_device_ms = std::max(r.timings.render_device_ms, s.device_ms);
+  r.samples = std::min(done.load(), settings.spp);
+  r.interrupted = r.samples < settings.spp;
+  return r;
+}
+
+}  // namespace octrace
