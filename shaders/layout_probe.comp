@@ -23,6 +23,7 @@ layout(std430, binding = 10) buffer B10 { GpuInstance instances[2]; };
 layout(std430, binding = 11) buffer B11 { GpuMesh meshes[2]; };
 layout(std430, binding = 12) buffer B12 { GpuTexture textures[2]; };
 layout(std430, binding = 13) buffer B13 { GpuTriangleUvs triangle_uvs[2]; };
+layout(std430, binding = 14) buffer B14 { GpuUvTransform uv_transforms[2]; };
 
 void main() {
   scene.sky_a = vec3(1, 2, 3);
@@ -128,5 +129,8 @@ void main() {
     triangle_uvs[i].uv0 = vec2(o + 95, o + 96);
     triangle_uvs[i].uv1 = vec2(o + 97, o + 98);
     triangle_uvs[i].uv2 = vec2(o + 99, o + 100);
+    uv_transforms[i].x_axis = vec2(o + 109, o + 110);
+    uv_transforms[i].y_axis = vec2(o + 111, o + 112);
+    uv_transforms[i].offset = vec2(o + 113, o + 114);
   }
 }

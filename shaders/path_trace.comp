@@ -32,6 +32,7 @@ layout(std430, binding = BINDING_MESHES) readonly buffer MeshBuf { GpuMesh meshe
 layout(std430, binding = BINDING_TEXTURES) readonly buffer TextureBuf { GpuTexture textures[]; };
 layout(std430, binding = BINDING_TEXELS) readonly buffer TexelBuf { uint texels[]; };
 layout(std430, binding = BINDING_TRIANGLE_UVS) readonly buffer TriangleUvBuf { GpuTriangleUvs triangle_uvs[]; };
+layout(std430, binding = BINDING_TEXTURE_TRANSFORMS) readonly buffer TextureTransformBuf { GpuUvTransform texture_transforms[]; };
 
 layout(push_constant) uniform Push { PassParams pass; };
 

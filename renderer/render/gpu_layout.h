@@ -30,6 +30,10 @@ static_assert(sizeof(GpuTriangleUvs) == 24);
 static_assert(offsetof(GpuTriangleUvs, uv1) == 8);
 static_assert(offsetof(GpuTriangleUvs, uv2) == 16);
 
+static_assert(sizeof(GpuUvTransform) == 24);
+static_assert(offsetof(GpuUvTransform, y_axis) == 8);
+static_assert(offsetof(GpuUvTransform, offset) == 16);
+
 static_assert(sizeof(GpuMaterial) == 64);
 static_assert(offsetof(GpuMaterial, type) == 12);
 static_assert(offsetof(GpuMaterial, fuzz) == 16);

@@ -125,7 +125,8 @@ void PathTracer::State::create_pipeline() {
                    {gpu::BINDING_OCTREE_REFS, &g.refs},
                    {gpu::BINDING_TEXTURES, &g.textures},
                    {gpu::BINDING_TEXELS, &g.texels},
-                   {gpu::BINDING_TRIANGLE_UVS, &g.triangle_uvs}});
+                   {gpu::BINDING_TRIANGLE_UVS, &g.triangle_uvs},
+                   {gpu::BINDING_TEXTURE_TRANSFORMS, &g.texture_transforms}});
   bind_accumulation();
   s.timings.pipeline_ms = ms_since(start);
 }

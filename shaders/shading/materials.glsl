@@ -11,6 +11,7 @@
 #include "shading/texture.glsl"
 
 struct Material {
+  uint index;   // in the material array (its texture transforms are read by it)
   real3 color;  // albedo, base colour or radiance
   uint type;    // MAT_*
   real fuzz;
@@ -26,13 +27,20 @@ struct Material {
 Material load_material(uint i) {
 #if OCTRACE_PRECISION >= 1
   GpuMaterialHalf m = materials[i];
-  return Material(m.color_type.rgb, uint(m.color_type.a), m.params.x, m.params.y, m.base_color_texture,
+  return Material(i, m.color_type.rgb, uint(m.color_type.a), m.params.x, m.params.y, m.base_color_texture,
                   m.emission_texture, m.emission.rgb, m.metallic_roughness_texture, m.params.z, m.params.w);
 #else
   GpuMaterial m = materials[i];
-  return Material(m.color, m.type, m.fuzz, m.ior, m.base_color_texture, m.emission_texture, m.emission,
+  return Material(i, m.color, m.type, m.fuzz, m.ior, m.base_color_texture, m.emission_texture, m.emission,
                   m.metallic_roughness_texture, m.metallic, m.roughness);
 #endif
+}
+
+// Texture `index` of material m's slot TEXTURE_SLOT_* at the surface's uv,
+// through the slot's uv transform (KHR_texture_transform; shared.h).
+vec3 sample_material_texture(Material m, uint slot, uint index, vec2 uv, bool srgb) {
+  GpuUvTransform t = texture_transforms[m.index * TEXTURE_SLOTS + slot];
+  return sample_texture(index, t.x_axis * uv.x + t.y_axis * uv.y + t.offset, srgb);
 }
 
 // A lambertian material's albedo, or a pbr material's base colour, at
@@ -41,7 +49,7 @@ Material load_material(uint i) {
 real3 base_color(Material m, vec2 uv) {
   real3 albedo = m.color;
   if (HAS_TEXTURES && m.base_color_texture != NO_TEXTURE)
-    albedo *= real3(sample_texture(m.base_color_texture, uv, true));
+    albedo *= real3(sample_material_texture(m, TEXTURE_SLOT_BASE_COLOR, m.base_color_texture, uv, true));
   return albedo;
 }
 
@@ -50,7 +58,7 @@ real3 base_color(Material m, vec2 uv) {
 real3 surface_emission(Material m, vec2 uv) {
   real3 emission = m.emission;
   if (HAS_TEXTURES && m.emission_texture != NO_TEXTURE)
-    emission *= real3(sample_texture(m.emission_texture, uv, true));
+    emission *= real3(sample_material_texture(m, TEXTURE_SLOT_EMISSION, m.emission_texture, uv, true));
   return emission;
 }
 

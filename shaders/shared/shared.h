@@ -45,6 +45,14 @@ OCT_CONST(uint, WRAP_CLAMP_TO_EDGE, 1u);
 OCT_CONST(uint, WRAP_MIRRORED_REPEAT, 2u);
 OCT_CONST(uint, NO_TEXTURE, 0xffffffffu);
 
+// A material's texture references (slots), each with its uv transform
+// (GpuUvTransform): the transform of material i's slot k is
+// texture_transforms[i * TEXTURE_SLOTS + k].
+OCT_CONST(uint, TEXTURE_SLOT_BASE_COLOR, 0u);
+OCT_CONST(uint, TEXTURE_SLOT_METALLIC_ROUGHNESS, 1u);
+OCT_CONST(uint, TEXTURE_SLOT_EMISSION, 2u);
+OCT_CONST(uint, TEXTURE_SLOTS, 3u);
+
 OCT_CONST(uint, WORKGROUP_SIZE, 8u);  // 8x8 invocations per workgroup
 // At most this many invocations of a path-tracing workgroup share one pixel's
 // samples (PassParams.sample_lanes).
@@ -78,7 +86,8 @@ OCT_CONST(uint, BINDING_MESHES, 13u);
 OCT_CONST(uint, BINDING_TEXTURES, 14u);
 OCT_CONST(uint, BINDING_TEXELS, 15u);
 OCT_CONST(uint, BINDING_TRIANGLE_UVS, 16u);
-OCT_CONST(uint, BINDING_COUNT, 17u);
+OCT_CONST(uint, BINDING_TEXTURE_TRANSFORMS, 17u);
+OCT_CONST(uint, BINDING_COUNT, 18u);
 
 // Descriptor bindings of the resolve pipeline (resolve.comp).
 OCT_CONST(uint, RESOLVE_BINDING_ACCUM_SUM, 0u);
@@ -157,6 +166,18 @@ struct GpuTriangleUvs {
   vec2 uv0;
   vec2 uv1;
   vec2 uv2;
+};
+
+// 24 bytes. The uv transform of one texture reference of a material
+// (glTF's KHR_texture_transform, as a 2x3 matrix by columns): a surface at
+// uv samples the texture at x_axis * uv.x + y_axis * uv.y + offset. The
+// identity (1, 0), (0, 1), (0, 0) gives uv back exactly. Uploaded only when
+// the scene has textures; 24 bytes in both views for the reason
+// GpuTriangleUvs gives.
+struct GpuUvTransform {
+  vec2 x_axis;
+  vec2 y_axis;
+  vec2 offset;
 };
 
 // 64 bytes. One placement of a mesh. A ray enters the instance through

@@ -117,6 +117,39 @@ TEST_F(TextureTest, UvOriginIsTheImagesTopLeft) {
   }
 }
 
+// KHR_texture_transform on the same quad and image: offset (1, -1), rotation
+// pi/2, scale (2, 1), applied as uv' = T R S uv (the rotation counter-clockwise
+// in uv space). The corners then sample (0.8, 0.2) green, (0.8, 1.8) white,
+// (-0.8, 0.2) red and (-0.8, 1.8) blue, clamped to the image's corners. The
+// transform left out, or any one part of it, or the rotation the other way,
+// or S and R swapped, shows another pattern.
+TEST_F(TextureTest, TextureTransformOffsetsRotatesAndScalesTheUvs) {
+  const std::string png = test::png(2, 2, {255, 0, 0, 255, 0, 255, 0, 255,       // top: red, green
+                                           0, 0, 255, 255, 255, 255, 255, 255});  // bottom: blue, white
+  test::GltfBuilder b = test::textured_quad_gltf(png, test::kClampToEdge, test::kClampToEdge);
+  b.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {
+      {"KHR_texture_transform", {{"offset", {1, -1}}, {"rotation", 1.5707963267948966}, {"scale", {2, 1}}}}};
+  b.doc["extensionsUsed"] = {"KHR_texture_transform"};
+  b.doc["extensionsRequired"] = {"KHR_texture_transform"};
+  const std::string path = test::tmp_path("texture_transform.gltf");
+  b.write(path);
+  std::vector<std::string> warnings;
+  GltfOptions opts;
+  opts.warn = [&](const std::string& w) { warnings.push_back(w); };
+  Scene s = as_lambertian(load_gltf_scene(path, opts));
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  s.sky = uniform_sky().sky;
+  frame(s, 1, 1);
+  for (Precision p : kPrecisions) {
+    const RenderResult r = render_framed(s, 1, 1, p);
+    const std::string name = precision_name(p);
+    expect_near(at(r, 0.1f, 0.9f), {0, 1, 0}, tolerance(p), name + " top left");
+    expect_near(at(r, 0.9f, 0.9f), {1, 1, 1}, tolerance(p), name + " top right");
+    expect_near(at(r, 0.1f, 0.1f), {1, 0, 0}, tolerance(p), name + " bottom left");
+    expect_near(at(r, 0.9f, 0.1f), {0, 0, 1}, tolerance(p), name + " bottom right");
+  }
+}
+
 // A texel of 128 is 0.2158605 in linear colour (the exact EOTF; the 2.2 power
 // gives 0.2176, a texel used as it is 0.502), here as the albedo under a sky
 // of radiance 1.
