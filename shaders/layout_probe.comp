@@ -76,8 +76,8 @@ void main() {
     materials[i].metallic_roughness_texture = u + 84;
     materials[i].metallic = o + 101;
     materials[i].roughness = o + 102;
-    materials[i].pad0 = u + 103;
-    materials[i].pad1 = u + 104;
+    materials[i].normal_texture = u + 103;
+    materials[i].normal_scale = o + 104;
     stats[i].nonfinite_samples = u + 13;
     stats[i].pad0 = u + 14;
     stats[i].pad1 = u + 15;
@@ -88,8 +88,8 @@ void main() {
     materials_half[i].base_color_texture = u + 89;
     materials_half[i].emission_texture = u + 90;
     materials_half[i].metallic_roughness_texture = u + 105;
-    materials_half[i].pad0 = u + 106;
-    materials_half[i].pad1 = u + 107;
+    materials_half[i].normal_texture = u + 106;
+    materials_half[i].normal_scale = o + 107;
     materials_half[i].pad2 = u + 108;
     nodes[i].lo = vec3(o + 25, o + 26, o + 27);
     nodes[i].first = u + 28;

@@ -259,6 +259,8 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
     f.metallic_roughness_texture = m.metallic_roughness_texture.value_or(gpu::NO_TEXTURE);
     f.metallic = m.metallic;
     f.roughness = m.roughness;
+    f.normal_texture = m.normal_texture.value_or(gpu::NO_TEXTURE);
+    f.normal_scale = m.normal_scale;
     gpu::GpuMaterialHalf& h = materials_half[i];
     h.color_type = {glm::packHalf1x16(f.color.r), glm::packHalf1x16(f.color.g), glm::packHalf1x16(f.color.b),
                     glm::packHalf1x16(float(f.type))};
@@ -268,6 +270,8 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
     h.base_color_texture = f.base_color_texture;
     h.emission_texture = f.emission_texture;
     h.metallic_roughness_texture = f.metallic_roughness_texture;
+    h.normal_texture = f.normal_texture;
+    h.normal_scale = f.normal_scale;
   }
   const size_t texture_count = scene.textures.size();
   check_fits(ctx, texel_count(scene) * sizeof(uint32_t),
@@ -278,7 +282,7 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   if (!textures.table.empty()) {
     uv_transforms.reserve(scene.materials.size() * gpu::TEXTURE_SLOTS);
     for (const Material& m : scene.materials)
-      for (const glm::mat3x2& t : {m.base_color_uv, m.metallic_roughness_uv, m.emission_uv})
+      for (const glm::mat3x2& t : {m.base_color_uv, m.metallic_roughness_uv, m.emission_uv, m.normal_uv})
         uv_transforms.push_back({t[0], t[1], t[2]});
   }
   gpu::SceneParams& p = g.values;

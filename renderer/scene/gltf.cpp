@@ -840,9 +840,10 @@ double extension_number(const tinygltf::Material& gm, const char* name, const ch
 // without it), as the extension defines it: uv' = T R S uv, T the offset, R
 // the rotation counter-clockwise in uv space by `rotation` radians, S the
 // scale. By columns: x_axis = R (sx, 0), y_axis = R (0, sy), offset.
-glm::mat3x2 uv_transform(const File& f, const tinygltf::TextureInfo& t, const std::string& at) {
-  const auto it = t.extensions.find("KHR_texture_transform");
-  if (it == t.extensions.end()) return glm::mat3x2(1.0f);
+// `extensions`: the textureInfo's (a normalTextureInfo is another type).
+glm::mat3x2 uv_transform(const File& f, const tinygltf::ExtensionMap& extensions, const std::string& at) {
+  const auto it = extensions.find("KHR_texture_transform");
+  if (it == extensions.end()) return glm::mat3x2(1.0f);
   const std::string ext_at = at + ".extensions.KHR_texture_transform";
   const tinygltf::Value& v = it->second;
   // The schema checked the types and lengths; the values must fit a float.
@@ -875,7 +876,8 @@ int texture_coordinate_set(const tinygltf::TextureInfo& t) {
 // baseColorTexture, metallic and roughness = their factors x the blue and
 // green channels of metallicRoughnessTexture, the ior of KHR_materials_ior,
 // and emission = emissiveFactor x KHR_materials_emissive_strength's
-// emissiveStrength x emissiveTexture (3.9.3), each texture through its
+// emissiveStrength x emissiveTexture (3.9.3), the normal map of
+// normalTexture (3.9.4: tangent space, xy times its scale), each texture through its
 // KHR_texture_transform. Alpha is not read.
 Material read_material(const File& f, Textures& textures, size_t i) {
   const tinygltf::Material& gm = f.model.materials[i];
@@ -889,7 +891,7 @@ Material read_material(const File& f, Textures& textures, size_t i) {
   m.albedo = {float(c[0]), float(c[1]), float(c[2])};
   if (pbr.baseColorTexture.index >= 0) {
     m.base_color_texture = read_texture(f, textures, pbr.baseColorTexture.index, pbr_at + ".baseColorTexture");
-    m.base_color_uv = uv_transform(f, pbr.baseColorTexture, pbr_at + ".baseColorTexture");
+    m.base_color_uv = uv_transform(f, pbr.baseColorTexture.extensions, pbr_at + ".baseColorTexture");
   }
   for (const auto& [factor, out, name] : {std::tuple{pbr.metallicFactor, &m.metallic, ".metallicFactor"},
                                           std::tuple{pbr.roughnessFactor, &m.roughness, ".roughnessFactor"}}) {
@@ -900,13 +902,22 @@ Material read_material(const File& f, Textures& textures, size_t i) {
   if (pbr.metallicRoughnessTexture.index >= 0) {
     m.metallic_roughness_texture =
         read_texture(f, textures, pbr.metallicRoughnessTexture.index, pbr_at + ".metallicRoughnessTexture");
-    m.metallic_roughness_uv = uv_transform(f, pbr.metallicRoughnessTexture, pbr_at + ".metallicRoughnessTexture");
+    m.metallic_roughness_uv = uv_transform(f, pbr.metallicRoughnessTexture.extensions, pbr_at + ".metallicRoughnessTexture");
   }
   const double ior = extension_number(gm, "KHR_materials_ior", "ior", 1.5);
   // The extension's schema: 1 or more (its 0, "infinitely reflective", is not supported).
   if (!(ior >= 1.0 && std::isfinite(float(ior))))
     f.fail(at + ".extensions.KHR_materials_ior.ior", "must be a finite number >= 1, got " + float_string(float(ior)));
   m.ior = float(ior);
+
+  if (gm.normalTexture.index >= 0) {
+    const std::string normal_at = at + ".normalTexture";
+    m.normal_texture = read_texture(f, textures, gm.normalTexture.index, normal_at);
+    m.normal_uv = uv_transform(f, gm.normalTexture.extensions, normal_at);
+    if (!std::isfinite(float(gm.normalTexture.scale)))
+      f.fail(normal_at + ".scale", "must be a finite number, got " + float_string(float(gm.normalTexture.scale)));
+    m.normal_scale = float(gm.normalTexture.scale);
+  }
 
   const std::vector<double>& e = gm.emissiveFactor;
   if (!in_unit_range(e)) f.fail(at + ".emissiveFactor", "must be 3 numbers in [0, 1], got " + numbers_string(e));
@@ -921,7 +932,7 @@ Material read_material(const File& f, Textures& textures, size_t i) {
     // Times a zero emission it adds nothing: not stored.
     if (m.emission != glm::vec3(0.0f)) {
       m.emission_texture = read_texture(f, textures, gm.emissiveTexture.index, texture_at);
-      m.emission_uv = uv_transform(f, gm.emissiveTexture, texture_at);
+      m.emission_uv = uv_transform(f, gm.emissiveTexture.extensions, texture_at);
     }
   }
   return m;
@@ -936,10 +947,10 @@ std::vector<std::string> approximations(const tinygltf::Model& model) {
   };
   for (const tinygltf::Material& m : model.materials) {
     const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
-    if (m.normalTexture.index >= 0) note("normal maps");
     if (m.alphaMode == "BLEND" || m.alphaMode == "MASK") note("alpha " + m.alphaMode);
     for (const tinygltf::TextureInfo* t : {&pbr.baseColorTexture, &pbr.metallicRoughnessTexture, &m.emissiveTexture})
       if (t->index >= 0 && texture_coordinate_set(*t) != 0) note("texture coordinate sets other than 0");
+    if (m.normalTexture.index >= 0 && m.normalTexture.texCoord != 0) note("texture coordinate sets other than 0");
   }
   for (const std::string& e : model.extensionsUsed)
     if (e.rfind("KHR_materials_", 0) == 0 && e != "KHR_materials_emissive_strength" && e != "KHR_materials_ior")

@@ -51,7 +51,8 @@ OCT_CONST(uint, NO_TEXTURE, 0xffffffffu);
 OCT_CONST(uint, TEXTURE_SLOT_BASE_COLOR, 0u);
 OCT_CONST(uint, TEXTURE_SLOT_METALLIC_ROUGHNESS, 1u);
 OCT_CONST(uint, TEXTURE_SLOT_EMISSION, 2u);
-OCT_CONST(uint, TEXTURE_SLOTS, 3u);
+OCT_CONST(uint, TEXTURE_SLOT_NORMAL, 3u);
+OCT_CONST(uint, TEXTURE_SLOTS, 4u);
 
 OCT_CONST(uint, WORKGROUP_SIZE, 8u);  // 8x8 invocations per workgroup
 // At most this many invocations of a path-tracing workgroup share one pixel's
@@ -117,6 +118,7 @@ OCT_CONST(uint, SPEC_SURFACE_EMISSION, 13u);
 // off, the workgroup barrier that sharing needs is compiled out.
 OCT_CONST(uint, SPEC_SAMPLE_LANES, 14u);
 OCT_CONST(uint, SPEC_PBR, 15u);
+OCT_CONST(uint, SPEC_NORMAL_MAPS, 16u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 3u);
 
@@ -215,9 +217,11 @@ struct GpuMesh {
 // albedo x base colour texture, and emission x emission texture (glTF's
 // materials; scene/scene.h). A pbr material's metallic and roughness are
 // multiplied by the blue and green channels of its metallic-roughness
-// texture; its ior sets the dielectric layer's F0. The first 24 bytes are all
-// that the RTIOW materials use; the texture indices sit in what was padding,
-// the emission and the pbr parameters in rows of their own.
+// texture; its ior sets the dielectric layer's F0. A lambertian or pbr
+// material may have a normal map (tangent space, linear; its xy times
+// normal_scale). The first 24 bytes are all that the RTIOW materials use;
+// the texture indices sit in what was padding, the emission and the pbr
+// parameters in rows of their own, the normal map in the last row's padding.
 struct GpuMaterial {
   vec3 color;
   uint type;   // MAT_*
@@ -229,8 +233,8 @@ struct GpuMaterial {
   uint metallic_roughness_texture;
   float metallic;   // pbr
   float roughness;  // pbr (perceptual: alpha = roughness^2)
-  uint pad0;
-  uint pad1;
+  uint normal_texture;
+  float normal_scale;
 };
 
 // 16 bytes. One texture of the texture table: its texels are
@@ -275,8 +279,8 @@ struct GpuMaterialHalf {
   uint base_color_texture;
   uint emission_texture;
   uint metallic_roughness_texture;
-  uint pad0;
-  uint pad1;
+  uint normal_texture;
+  float normal_scale;  // fp32: read once per hit, and the row has room
   uint pad2;
 };
 #endif

@@ -131,8 +131,8 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(materials[i].metallic_roughness_texture, u + 84) << "material " << i;
     EXPECT_EQ(materials[i].metallic, o + 101) << "material " << i;
     EXPECT_EQ(materials[i].roughness, o + 102) << "material " << i;
-    EXPECT_EQ(materials[i].pad0, u + 103) << "material " << i;
-    EXPECT_EQ(materials[i].pad1, u + 104) << "material " << i;
+    EXPECT_EQ(materials[i].normal_texture, u + 103) << "material " << i;
+    EXPECT_EQ(materials[i].normal_scale, o + 104) << "material " << i;
     EXPECT_EQ(stats[i].nonfinite_samples, u + 13) << "stats " << i;
     EXPECT_EQ(stats[i].pad0, u + 14) << "stats " << i;
     EXPECT_EQ(stats[i].pad1, u + 15) << "stats " << i;
@@ -145,8 +145,8 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(halves[i].base_color_texture, u + 89) << "half material " << i;
     EXPECT_EQ(halves[i].emission_texture, u + 90) << "half material " << i;
     EXPECT_EQ(halves[i].metallic_roughness_texture, u + 105) << "half material " << i;
-    EXPECT_EQ(halves[i].pad0, u + 106) << "half material " << i;
-    EXPECT_EQ(halves[i].pad1, u + 107) << "half material " << i;
+    EXPECT_EQ(halves[i].normal_texture, u + 106) << "half material " << i;
+    EXPECT_EQ(halves[i].normal_scale, o + 107) << "half material " << i;
     EXPECT_EQ(halves[i].pad2, u + 108) << "half material " << i;
     EXPECT_EQ(nodes[i].lo, glm::vec3(o + 25, o + 26, o + 27)) << "node " << i;
     EXPECT_EQ(nodes[i].first, u + 28) << "node " << i;

@@ -638,8 +638,8 @@ TEST(Gltf, WhatMaterialsLackIsNamedInOneWarning) {
   load(b, "lacks.gltf", {}, &warnings);
   EXPECT_EQ(warnings, std::vector<std::string>{tmp("lacks.gltf") +
                                                ": materials render without what octrace does not support yet: "
-                                               "texture coordinate sets other than 0, normal maps, alpha BLEND, "
-                                               "alpha MASK, KHR_materials_transmission"});
+                                               "texture coordinate sets other than 0, alpha BLEND, alpha MASK, "
+                                               "KHR_materials_transmission"});
 }
 
 // ---------------------------------------------------------------------------
