@@ -23,6 +23,7 @@ layout(std430, binding = 10) buffer B10 { GpuInstance instances[2]; };
 layout(std430, binding = 11) buffer B11 { GpuMesh meshes[2]; };
 layout(std430, binding = 12) buffer B12 { GpuTexture textures[2]; };
 layout(std430, binding = 13) buffer B13 { GpuTriangleUvs triangle_uvs[2]; };
+layout(std430, binding = 14) buffer B14 { GpuUvTransform uv_transforms[2]; };
 
 void main() {
   scene.sky_a = vec3(1, 2, 3);
@@ -75,8 +76,8 @@ void main() {
     materials[i].metallic_roughness_texture = u + 84;
     materials[i].metallic = o + 101;
     materials[i].roughness = o + 102;
-    materials[i].pad0 = u + 103;
-    materials[i].pad1 = u + 104;
+    materials[i].normal_texture = u + 103;
+    materials[i].normal_scale = o + 104;
     stats[i].nonfinite_samples = u + 13;
     stats[i].pad0 = u + 14;
     stats[i].pad1 = u + 15;
@@ -87,8 +88,8 @@ void main() {
     materials_half[i].base_color_texture = u + 89;
     materials_half[i].emission_texture = u + 90;
     materials_half[i].metallic_roughness_texture = u + 105;
-    materials_half[i].pad0 = u + 106;
-    materials_half[i].pad1 = u + 107;
+    materials_half[i].normal_texture = u + 106;
+    materials_half[i].normal_scale = o + 107;
     materials_half[i].pad2 = u + 108;
     nodes[i].lo = vec3(o + 25, o + 26, o + 27);
     nodes[i].first = u + 28;
@@ -128,5 +129,8 @@ void main() {
     triangle_uvs[i].uv0 = vec2(o + 95, o + 96);
     triangle_uvs[i].uv1 = vec2(o + 97, o + 98);
     triangle_uvs[i].uv2 = vec2(o + 99, o + 100);
+    uv_transforms[i].x_axis = vec2(o + 109, o + 110);
+    uv_transforms[i].y_axis = vec2(o + 111, o + 112);
+    uv_transforms[i].offset = vec2(o + 113, o + 114);
   }
 }

@@ -32,6 +32,7 @@ layout(std430, binding = BINDING_MESHES) readonly buffer MeshBuf { GpuMesh meshe
 layout(std430, binding = BINDING_TEXTURES) readonly buffer TextureBuf { GpuTexture textures[]; };
 layout(std430, binding = BINDING_TEXELS) readonly buffer TexelBuf { uint texels[]; };
 layout(std430, binding = BINDING_TRIANGLE_UVS) readonly buffer TriangleUvBuf { GpuTriangleUvs triangle_uvs[]; };
+layout(std430, binding = BINDING_TEXTURE_TRANSFORMS) readonly buffer TextureTransformBuf { GpuUvTransform texture_transforms[]; };
 
 layout(push_constant) uniform Push { PassParams pass; };
 
@@ -54,6 +55,7 @@ layout(constant_id = SPEC_TRIANGLES) const bool HAS_TRIANGLES = true;
 layout(constant_id = SPEC_VERTEX_NORMALS) const bool HAS_VERTEX_NORMALS = true;
 layout(constant_id = SPEC_TEXTURES) const bool HAS_TEXTURES = true;
 layout(constant_id = SPEC_SURFACE_EMISSION) const bool HAS_SURFACE_EMISSION = true;
+layout(constant_id = SPEC_NORMAL_MAPS) const bool HAS_NORMAL_MAPS = true;
 layout(constant_id = SPEC_SAMPLE_LANES) const bool SAMPLE_LANES = true;
 
 #include "shared/rng.h"
@@ -80,15 +82,18 @@ vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments)
     }
     Surface surf = surface_at(ray, hit);
     Material m = load_material(surf.material);
+    bool mapped = HAS_NORMAL_MAPS && m.normal_texture != NO_TEXTURE;
+    if (mapped) surf.ns = mapped_normal(m, surf.ns, surf.uv, surf.dpdu, surf.dpdv);
     // Sides are decided by the geometric normal; scattering uses the shading
     // normal turned to the side the ray came from.
     bool front_face = dot(ray.dir, surf.ng) < 0.0;
     vec3 g = front_face ? surf.ng : -surf.ng;
     vec3 n = front_face ? surf.ns : -surf.ns;
     // An interpolated shading normal can face away from the ray near a
-    // silhouette; reflecting about it would send the path below the surface
-    // (a mirror would lose it): use the geometric normal there.
-    if (HAS_VERTEX_NORMALS && scene.vertex_normals != 0u && dot(ray.dir, n) >= 0.0) n = g;
+    // silhouette, and a normal map can bend it below the horizon anywhere;
+    // reflecting about it would send the path below the surface (a mirror
+    // would lose it): use the geometric normal there.
+    if (((HAS_VERTEX_NORMALS && scene.vertex_normals != 0u) || mapped) && dot(ray.dir, n) >= 0.0) n = g;
 
     if (HAS_EMISSIVE && m.type == MAT_EMISSIVE) {
       radiance += throughput * m.color;

@@ -30,6 +30,10 @@ static_assert(sizeof(GpuTriangleUvs) == 24);
 static_assert(offsetof(GpuTriangleUvs, uv1) == 8);
 static_assert(offsetof(GpuTriangleUvs, uv2) == 16);
 
+static_assert(sizeof(GpuUvTransform) == 24);
+static_assert(offsetof(GpuUvTransform, y_axis) == 8);
+static_assert(offsetof(GpuUvTransform, offset) == 16);
+
 static_assert(sizeof(GpuMaterial) == 64);
 static_assert(offsetof(GpuMaterial, type) == 12);
 static_assert(offsetof(GpuMaterial, fuzz) == 16);
@@ -40,8 +44,8 @@ static_assert(offsetof(GpuMaterial, emission) == 32);
 static_assert(offsetof(GpuMaterial, metallic_roughness_texture) == 44);
 static_assert(offsetof(GpuMaterial, metallic) == 48);
 static_assert(offsetof(GpuMaterial, roughness) == 52);
-static_assert(offsetof(GpuMaterial, pad0) == 56);
-static_assert(offsetof(GpuMaterial, pad1) == 60);
+static_assert(offsetof(GpuMaterial, normal_texture) == 56);
+static_assert(offsetof(GpuMaterial, normal_scale) == 60);
 
 static_assert(sizeof(GpuMaterialHalf) == 48);
 static_assert(offsetof(GpuMaterialHalf, params) == 8);
@@ -49,7 +53,8 @@ static_assert(offsetof(GpuMaterialHalf, emission) == 16);
 static_assert(offsetof(GpuMaterialHalf, base_color_texture) == 24);
 static_assert(offsetof(GpuMaterialHalf, emission_texture) == 28);
 static_assert(offsetof(GpuMaterialHalf, metallic_roughness_texture) == 32);
-static_assert(offsetof(GpuMaterialHalf, pad0) == 36);
+static_assert(offsetof(GpuMaterialHalf, normal_texture) == 36);
+static_assert(offsetof(GpuMaterialHalf, normal_scale) == 40);
 static_assert(offsetof(GpuMaterialHalf, pad2) == 44);
 
 static_assert(sizeof(GpuTexture) == 16);

@@ -259,6 +259,8 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
     f.metallic_roughness_texture = m.metallic_roughness_texture.value_or(gpu::NO_TEXTURE);
     f.metallic = m.metallic;
     f.roughness = m.roughness;
+    f.normal_texture = m.normal_texture.value_or(gpu::NO_TEXTURE);
+    f.normal_scale = m.normal_scale;
     gpu::GpuMaterialHalf& h = materials_half[i];
     h.color_type = {glm::packHalf1x16(f.color.r), glm::packHalf1x16(f.color.g), glm::packHalf1x16(f.color.b),
                     glm::packHalf1x16(float(f.type))};
@@ -268,11 +270,21 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
     h.base_color_texture = f.base_color_texture;
     h.emission_texture = f.emission_texture;
     h.metallic_roughness_texture = f.metallic_roughness_texture;
+    h.normal_texture = f.normal_texture;
+    h.normal_scale = f.normal_scale;
   }
   const size_t texture_count = scene.textures.size();
   check_fits(ctx, texel_count(scene) * sizeof(uint32_t),
              "the texels of " + std::to_string(texture_count) + (texture_count == 1 ? " texture" : " textures"));
   const GpuTextures textures = gpu_textures(scene);
+  // The uv transforms of every material's texture slots, only where a texture can be sampled.
+  std::vector<gpu::GpuUvTransform> uv_transforms;
+  if (!textures.table.empty()) {
+    uv_transforms.reserve(scene.materials.size() * gpu::TEXTURE_SLOTS);
+    for (const Material& m : scene.materials)
+      for (const glm::mat3x2& t : {m.base_color_uv, m.metallic_roughness_uv, m.emission_uv, m.normal_uv})
+        uv_transforms.push_back({t[0], t[1], t[2]});
+  }
   gpu::SceneParams& p = g.values;
   p = {};
   const Sky& sky = scene.sky;
@@ -300,8 +312,10 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   p.instance_count = uint32_t(instances.size());
   p.triangle_uvs = uvs.empty() ? 0u : 1u;
 
-  g.content_hash = Hash64()
-                      .add(&p, sizeof p)
+  Hash64 hash;
+  // Scenes without textures keep the hash they had before transforms existed (checkpoints).
+  if (!uv_transforms.empty()) hash.add_vector(uv_transforms);
+  g.content_hash = hash.add(&p, sizeof p)
                       .add_vector(triangles)
                       .add_vector(normals)
                       .add_vector(uvs)
@@ -335,6 +349,9 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   upload_buffer(ctx, g.textures, textures.table.data(), textures.table.size() * sizeof(gpu::GpuTexture));
   upload_buffer(ctx, g.texels, textures.texels.data(), textures.texels.size() * sizeof(uint32_t));
   upload_buffer(ctx, g.triangle_uvs, uvs.data(), uvs.size() * sizeof(gpu::GpuTriangleUvs));
+  create_buffer(g.texture_transforms, ctx, uv_transforms.size() * sizeof(gpu::GpuUvTransform), false,
+                "texture transform buffer");
+  upload_buffer(ctx, g.texture_transforms, uv_transforms.data(), uv_transforms.size() * sizeof(gpu::GpuUvTransform));
   create_buffer(g.nodes, ctx, 0, false, "octree node buffer");
   create_buffer(g.refs, ctx, 0, false, "octree reference buffer");
   upload_buffer(ctx, g.params, &p, sizeof p);

@@ -28,6 +28,7 @@ struct GpuScene {
   Buffer textures;          // GpuTexture per texture (the texture table)
   Buffer texels;            // every texture's texels, one uint (RGBA8) each
   Buffer triangle_uvs;      // GpuTriangleUvs per triangle (placeholder without textures)
+  Buffer texture_transforms;  // GpuUvTransform per material and texture slot (placeholder without textures)
   Buffer nodes, refs;       // the octree (16-byte placeholders without one)
   // A hash of every array above but the octree, as uploaded (spheres,
   // materials, triangles, instances, textures, sky): the scene a checkpoint

@@ -111,7 +111,8 @@ void PathTracer::State::create_pipeline() {
                            {gpu::SPEC_TRIANGLES, f.triangles},
                            {gpu::SPEC_VERTEX_NORMALS, f.vertex_normals},
                            {gpu::SPEC_TEXTURES, f.textures},
-                           {gpu::SPEC_SURFACE_EMISSION, f.surface_emission}});
+                           {gpu::SPEC_SURFACE_EMISSION, f.surface_emission},
+                           {gpu::SPEC_NORMAL_MAPS, f.normal_maps}});
   const GpuScene& g = s.scene;
   bind_buffers(p, {{gpu::BINDING_SCENE, &g.params},
                    {gpu::BINDING_SPHERES, &g.spheres},
@@ -125,7 +126,8 @@ void PathTracer::State::create_pipeline() {
                    {gpu::BINDING_OCTREE_REFS, &g.refs},
                    {gpu::BINDING_TEXTURES, &g.textures},
                    {gpu::BINDING_TEXELS, &g.texels},
-                   {gpu::BINDING_TRIANGLE_UVS, &g.triangle_uvs}});
+                   {gpu::BINDING_TRIANGLE_UVS, &g.triangle_uvs},
+                   {gpu::BINDING_TEXTURE_TRANSFORMS, &g.texture_transforms}});
   bind_accumulation();
   s.timings.pipeline_ms = ms_since(start);
 }

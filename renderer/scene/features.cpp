@@ -30,7 +30,9 @@ SceneFeatures scene_features(const Scene& scene) {
     switch (m.type) {
       case MaterialType::Lambertian:
         f.lambertian = true;
-        f.textures |= m.base_color_texture.has_value() || m.emission_texture.has_value();
+        f.textures |= m.base_color_texture.has_value() || m.emission_texture.has_value() ||
+                      m.normal_texture.has_value();
+        f.normal_maps |= m.normal_texture.has_value();
         f.surface_emission |= !is_black(m.emission);
         break;
       case MaterialType::Metal:
@@ -42,7 +44,8 @@ SceneFeatures scene_features(const Scene& scene) {
       case MaterialType::Pbr:
         f.pbr = true;
         f.textures |= m.base_color_texture.has_value() || m.emission_texture.has_value() ||
-                      m.metallic_roughness_texture.has_value();
+                      m.metallic_roughness_texture.has_value() || m.normal_texture.has_value();
+        f.normal_maps |= m.normal_texture.has_value();
         f.surface_emission |= !is_black(m.emission);
         break;
     }
@@ -67,7 +70,7 @@ SceneFeatures all_features(const Scene& scene) {
   f.sky_black = false;
   f.any_light = true;
   f.empty = false;
-  f.spheres = f.triangles = f.vertex_normals = f.textures = f.surface_emission = true;
+  f.spheres = f.triangles = f.vertex_normals = f.textures = f.surface_emission = f.normal_maps = true;
   return f;
 }
 
@@ -84,6 +87,7 @@ std::vector<std::string> feature_names(const SceneFeatures& f) {
   if (f.vertex_normals) names.push_back("vertex_normals");
   if (f.textures) names.push_back("textures");
   if (f.surface_emission) names.push_back("surface_emission");
+  if (f.normal_maps) names.push_back("normal_maps");
   names.push_back(f.sky == SkyType::Gradient ? "sky_gradient" : f.sky == SkyType::Uniform ? "sky_uniform" : "sky_none");
   if (f.sky_black) names.push_back("sky_black");
   if (!f.any_light) names.push_back("no_light");

@@ -30,6 +30,7 @@ struct SceneFeatures {
   bool vertex_normals = false;  // some instanced mesh has vertex normals (smooth shading)
   bool textures = false;          // some material samples a texture
   bool surface_emission = false;  // some lambertian or pbr material emits (glTF emission)
+  bool normal_maps = false;       // some lambertian or pbr material on a mesh has a normal map
 
   bool operator==(const SceneFeatures&) const = default;
 };

@@ -89,8 +89,12 @@ constexpr Field required(const char* name, Kind kind, const Field* fields = null
   return {name, kind, fields, 0, true};
 }
 
+constexpr Field kTextureTransform[] = {{"offset", Kind::Numbers, nullptr, 2}, {"rotation", Kind::Number},
+                                       {"scale", Kind::Numbers, nullptr, 2}, {"texCoord", Kind::Uint}, {}};
+constexpr Field kTextureInfoExtensions[] = {{"KHR_texture_transform", Kind::Object, kTextureTransform}, {}};
 constexpr Field kTextureInfo[] = {required("index", Kind::Index), {"texCoord", Kind::Uint}, {"scale", Kind::Number},
-                                  {"strength", Kind::Number}, {}};
+                                  {"strength", Kind::Number}, {"extensions", Kind::Object, kTextureInfoExtensions},
+                                  {}};
 constexpr Field kPbr[] = {{"baseColorFactor", Kind::Numbers, nullptr, 4}, {"baseColorTexture", Kind::Object, kTextureInfo},
                           {"metallicFactor", Kind::Number}, {"roughnessFactor", Kind::Number},
                           {"metallicRoughnessTexture", Kind::Object, kTextureInfo}, {}};
@@ -254,7 +258,7 @@ struct SchemaCheck {
 
 // Extensions a file may require (extensionsRequired) that octrace reads.
 constexpr std::string_view kSupportedExtensions[] = {"KHR_mesh_quantization", "KHR_materials_emissive_strength",
-                                                     "KHR_materials_ior"};
+                                                     "KHR_materials_ior", "KHR_texture_transform"};
 
 void check_schema(const Json& doc, const std::string& file) {
   const Where root;
@@ -832,12 +836,49 @@ double extension_number(const tinygltf::Material& gm, const char* name, const ch
   return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
 }
 
+// The uv transform of a textureInfo (KHR_texture_transform; identity
+// without it), as the extension defines it: uv' = T R S uv, T the offset, R
+// the rotation counter-clockwise in uv space by `rotation` radians, S the
+// scale. By columns: x_axis = R (sx, 0), y_axis = R (0, sy), offset.
+// `extensions`: the textureInfo's (a normalTextureInfo is another type).
+glm::mat3x2 uv_transform(const File& f, const tinygltf::ExtensionMap& extensions, const std::string& at) {
+  const auto it = extensions.find("KHR_texture_transform");
+  if (it == extensions.end()) return glm::mat3x2(1.0f);
+  const std::string ext_at = at + ".extensions.KHR_texture_transform";
+  const tinygltf::Value& v = it->second;
+  // The schema checked the types and lengths; the values must fit a float.
+  const auto number = [&](const tinygltf::Value& x, const std::string& field) {
+    const double d = x.GetNumberAsDouble();
+    if (!std::isfinite(float(d))) f.fail(ext_at + "." + field, "must be a finite number, got " + float_string(float(d)));
+    return d;
+  };
+  const auto pair = [&](const char* field, double fallback) {
+    const tinygltf::Value& x = v.Get(field);
+    if (!x.IsArray()) return glm::dvec2(fallback);
+    return glm::dvec2(number(x.Get(0), field), number(x.Get(1), field));
+  };
+  const glm::dvec2 offset = pair("offset", 0.0), scale = pair("scale", 1.0);
+  const double rotation = v.Get("rotation").IsNumber() ? number(v.Get("rotation"), "rotation") : 0.0;
+  const double c = std::cos(rotation), s = std::sin(rotation);
+  return glm::mat3x2(glm::vec2(glm::dvec2(c, s) * scale.x), glm::vec2(glm::dvec2(-s, c) * scale.y), glm::vec2(offset));
+}
+
+// The texture coordinate set a textureInfo uses: KHR_texture_transform's
+// texCoord overrides the textureInfo's own.
+int texture_coordinate_set(const tinygltf::TextureInfo& t) {
+  const auto it = t.extensions.find("KHR_texture_transform");
+  if (it != t.extensions.end() && it->second.Get("texCoord").IsInt()) return it->second.Get("texCoord").GetNumberAsInt();
+  return t.texCoord;
+}
+
 // A glTF material as octrace renders it: glTF's metallic-roughness material
 // (3.9.2, Appendix B) with base colour = baseColorFactor.rgb x
 // baseColorTexture, metallic and roughness = their factors x the blue and
 // green channels of metallicRoughnessTexture, the ior of KHR_materials_ior,
 // and emission = emissiveFactor x KHR_materials_emissive_strength's
-// emissiveStrength x emissiveTexture (3.9.3). Alpha is not read.
+// emissiveStrength x emissiveTexture (3.9.3), the normal map of
+// normalTexture (3.9.4: tangent space, xy times its scale), each texture through its
+// KHR_texture_transform. Alpha is not read.
 Material read_material(const File& f, Textures& textures, size_t i) {
   const tinygltf::Material& gm = f.model.materials[i];
   const std::string at = item("materials", i);
@@ -848,22 +889,35 @@ Material read_material(const File& f, Textures& textures, size_t i) {
   Material m;
   m.type = MaterialType::Pbr;
   m.albedo = {float(c[0]), float(c[1]), float(c[2])};
-  if (pbr.baseColorTexture.index >= 0)
+  if (pbr.baseColorTexture.index >= 0) {
     m.base_color_texture = read_texture(f, textures, pbr.baseColorTexture.index, pbr_at + ".baseColorTexture");
+    m.base_color_uv = uv_transform(f, pbr.baseColorTexture.extensions, pbr_at + ".baseColorTexture");
+  }
   for (const auto& [factor, out, name] : {std::tuple{pbr.metallicFactor, &m.metallic, ".metallicFactor"},
                                           std::tuple{pbr.roughnessFactor, &m.roughness, ".roughnessFactor"}}) {
     if (!(factor >= 0.0 && factor <= 1.0))
       f.fail(pbr_at + name, "must be a number in [0, 1], got " + float_string(float(factor)));
     *out = float(factor);
   }
-  if (pbr.metallicRoughnessTexture.index >= 0)
+  if (pbr.metallicRoughnessTexture.index >= 0) {
     m.metallic_roughness_texture =
         read_texture(f, textures, pbr.metallicRoughnessTexture.index, pbr_at + ".metallicRoughnessTexture");
+    m.metallic_roughness_uv = uv_transform(f, pbr.metallicRoughnessTexture.extensions, pbr_at + ".metallicRoughnessTexture");
+  }
   const double ior = extension_number(gm, "KHR_materials_ior", "ior", 1.5);
   // The extension's schema: 1 or more (its 0, "infinitely reflective", is not supported).
   if (!(ior >= 1.0 && std::isfinite(float(ior))))
     f.fail(at + ".extensions.KHR_materials_ior.ior", "must be a finite number >= 1, got " + float_string(float(ior)));
   m.ior = float(ior);
+
+  if (gm.normalTexture.index >= 0) {
+    const std::string normal_at = at + ".normalTexture";
+    m.normal_texture = read_texture(f, textures, gm.normalTexture.index, normal_at);
+    m.normal_uv = uv_transform(f, gm.normalTexture.extensions, normal_at);
+    if (!std::isfinite(float(gm.normalTexture.scale)))
+      f.fail(normal_at + ".scale", "must be a finite number, got " + float_string(float(gm.normalTexture.scale)));
+    m.normal_scale = float(gm.normalTexture.scale);
+  }
 
   const std::vector<double>& e = gm.emissiveFactor;
   if (!in_unit_range(e)) f.fail(at + ".emissiveFactor", "must be 3 numbers in [0, 1], got " + numbers_string(e));
@@ -876,8 +930,10 @@ Material read_material(const File& f, Textures& textures, size_t i) {
     const std::string texture_at = at + ".emissiveTexture";
     f.get(f.model.textures, gm.emissiveTexture.index, "textures", texture_at + ".index");
     // Times a zero emission it adds nothing: not stored.
-    if (m.emission != glm::vec3(0.0f))
+    if (m.emission != glm::vec3(0.0f)) {
       m.emission_texture = read_texture(f, textures, gm.emissiveTexture.index, texture_at);
+      m.emission_uv = uv_transform(f, gm.emissiveTexture.extensions, texture_at);
+    }
   }
   return m;
 }
@@ -891,14 +947,13 @@ std::vector<std::string> approximations(const tinygltf::Model& model) {
   };
   for (const tinygltf::Material& m : model.materials) {
     const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
-    if (m.normalTexture.index >= 0) note("normal maps");
     if (m.alphaMode == "BLEND" || m.alphaMode == "MASK") note("alpha " + m.alphaMode);
     for (const tinygltf::TextureInfo* t : {&pbr.baseColorTexture, &pbr.metallicRoughnessTexture, &m.emissiveTexture})
-      if (t->index >= 0 && t->texCoord != 0) note("texture coordinate sets other than 0");
+      if (t->index >= 0 && texture_coordinate_set(*t) != 0) note("texture coordinate sets other than 0");
+    if (m.normalTexture.index >= 0 && m.normalTexture.texCoord != 0) note("texture coordinate sets other than 0");
   }
   for (const std::string& e : model.extensionsUsed)
-    if ((e.rfind("KHR_materials_", 0) == 0 && e != "KHR_materials_emissive_strength" && e != "KHR_materials_ior") ||
-        e == "KHR_texture_transform")
+    if (e.rfind("KHR_materials_", 0) == 0 && e != "KHR_materials_emissive_strength" && e != "KHR_materials_ior")
       note(e);
   return out;
 }

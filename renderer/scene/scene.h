@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/mat3x2.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -44,6 +45,18 @@ struct Material {
   // Multiplies them: metallic x its blue, roughness x its green channel
   // (linear, not sRGB; glTF's metallicRoughnessTexture).
   std::optional<uint32_t> metallic_roughness_texture;  // index into Scene::textures
+  // Lambertian and pbr: a tangent-space normal map (glTF's normalTexture,
+  // linear; its x and y times normal_scale), in the frame of the triangle's
+  // uv directions (computed per triangle from the uvs; TANGENT is not read).
+  std::optional<uint32_t> normal_texture;  // index into Scene::textures
+  float normal_scale = 1.0f;
+  // The uv transform of each texture reference (glTF's KHR_texture_transform),
+  // a 2x3 matrix by columns: the texture is sampled at uv' = m * (uv, 1).
+  // Identity by default.
+  glm::mat3x2 base_color_uv{1.0f};
+  glm::mat3x2 emission_uv{1.0f};
+  glm::mat3x2 metallic_roughness_uv{1.0f};
+  glm::mat3x2 normal_uv{1.0f};
 
   bool operator==(const Material&) const = default;
 };

@@ -43,7 +43,7 @@ float intersect_sphere(Ray ray, vec3 center, float radius, float t_max, bool ski
 Surface sphere_surface(Ray ray, float t, GpuSphere s, uint material) {
   vec3 p = ray.origin + t * ray.dir;
   vec3 outward = safe_normalize(p - s.center, -ray.dir);
-  return Surface(p, outward, outward, material, vec2(0.0));
+  return Surface(p, outward, outward, material, vec2(0.0), vec3(0.0), vec3(0.0));
 }
 
 #endif

@@ -10,6 +10,10 @@ struct Surface {
   vec3 ns;         // shading normal, unit, outward (interpolated or mapped; = ng for spheres)
   uint material;   // index into the material array
   vec2 uv;         // texture coordinates (0 where a primitive has none)
+  // World-space dp/du and dp/dv (unnormalised) of a triangle with uvs, for
+  // normal maps (HAS_NORMAL_MAPS); 0 otherwise.
+  vec3 dpdu;
+  vec3 dpdv;
 };
 
 #endif

@@ -1,7 +1,7 @@
 // Triangles: watertight ray/triangle intersection and the surface at a hit,
 // in fp32. The includer declares `scene`, `triangles`, `triangle_normals`
 // and `triangle_uvs` (GpuInstance from shared.h) and the specialization
-// constants HAS_VERTEX_NORMALS and HAS_TEXTURES.
+// constants HAS_VERTEX_NORMALS, HAS_TEXTURES and HAS_NORMAL_MAPS.
 #ifndef OCTRACE_TRIANGLE_GLSL
 #define OCTRACE_TRIANGLE_GLSL
 
@@ -84,6 +84,25 @@ vec3 normal_to_world(GpuInstance g, vec3 n) {
   return n.x * g.to_object0.xyz + n.y * g.to_object1.xyz + n.z * g.to_object2.xyz;
 }
 
+// The tangent frame of a normal map: dp/du and dp/dv of the triangle (the
+// directions in which u and v grow, constant over a triangle: the usual
+// per-triangle tangents, Lengyel 2001, "Computing Tangent Space Basis
+// Vectors for an Arbitrary Mesh"), in object space and then in world space
+// through the placement (tangents are directions, so the inverse of the
+// world-to-object 3x3, not its transpose; a mirror keeps its handedness).
+// A triangle whose uvs have no area gets none (0): the caller keeps the
+// unmapped normal.
+void triangle_tangents(GpuTriangle tri, GpuTriangleUvs u, GpuInstance g, out vec3 dpdu, out vec3 dpdv) {
+  vec3 e1 = tri.v1 - tri.v0, e2 = tri.v2 - tri.v0;
+  vec2 d1 = u.uv1 - u.uv0, d2 = u.uv2 - u.uv0;
+  float r = d1.x * d2.y - d2.x * d1.y;
+  dpdu = dpdv = vec3(0.0);
+  if (r == 0.0) return;
+  mat3 to_world = inverse(transpose(mat3(g.to_object0.xyz, g.to_object1.xyz, g.to_object2.xyz)));
+  dpdu = to_world * ((e1 * d2.y - e2 * d1.y) / r);
+  dpdv = to_world * ((e2 * d1.x - e1 * d2.x) / r);
+}
+
 // The surface of triangle `i` (of instance g) at distance t; `oray` is the
 // ray in the instance's object space. The geometric normal follows the
 // winding (counter-clockwise = front, outward for a closed mesh; the inverse
@@ -97,6 +116,7 @@ Surface triangle_surface(Ray ray, Ray oray, float t, uint i, GpuInstance g) {
   vec3 ng = safe_normalize(normal_to_world(g, cross(tri.v1 - tri.v0, tri.v2 - tri.v0)), -ray.dir);
   vec3 ns = ng;
   vec2 uv = vec2(0.0);
+  vec3 dpdu = vec3(0.0), dpdv = vec3(0.0);
   // The general pipeline reads normals and uvs only where the scene uploaded them.
   bool smooth_normals = HAS_VERTEX_NORMALS && scene.vertex_normals != 0u;
   bool textured = HAS_TEXTURES && scene.triangle_uvs != 0u;
@@ -112,10 +132,11 @@ Surface triangle_surface(Ray ray, Ray oray, float t, uint i, GpuInstance g) {
       if (textured) {
         GpuTriangleUvs u = triangle_uvs[i];
         uv = b.x * u.uv0 + b.y * u.uv1 + b.z * u.uv2;
+        if (HAS_NORMAL_MAPS) triangle_tangents(tri, u, g, dpdu, dpdv);
       }
     }
   }
-  return Surface(p, ng, ns, tri.material, uv);
+  return Surface(p, ng, ns, tri.material, uv, dpdu, dpdv);
 }
 
 #endif

@@ -11,6 +11,7 @@
 #include "shading/texture.glsl"
 
 struct Material {
+  uint index;   // in the material array (its texture transforms are read by it)
   real3 color;  // albedo, base colour or radiance
   uint type;    // MAT_*
   real fuzz;
@@ -21,18 +22,28 @@ struct Material {
   uint metallic_roughness_texture;
   real metallic;
   real roughness;
+  uint normal_texture;
+  float normal_scale;
 };
 
 Material load_material(uint i) {
 #if OCTRACE_PRECISION >= 1
   GpuMaterialHalf m = materials[i];
-  return Material(m.color_type.rgb, uint(m.color_type.a), m.params.x, m.params.y, m.base_color_texture,
-                  m.emission_texture, m.emission.rgb, m.metallic_roughness_texture, m.params.z, m.params.w);
+  return Material(i, m.color_type.rgb, uint(m.color_type.a), m.params.x, m.params.y, m.base_color_texture,
+                  m.emission_texture, m.emission.rgb, m.metallic_roughness_texture, m.params.z, m.params.w,
+                  m.normal_texture, m.normal_scale);
 #else
   GpuMaterial m = materials[i];
-  return Material(m.color, m.type, m.fuzz, m.ior, m.base_color_texture, m.emission_texture, m.emission,
-                  m.metallic_roughness_texture, m.metallic, m.roughness);
+  return Material(i, m.color, m.type, m.fuzz, m.ior, m.base_color_texture, m.emission_texture, m.emission,
+                  m.metallic_roughness_texture, m.metallic, m.roughness, m.normal_texture, m.normal_scale);
 #endif
+}
+
+// Texture `index` of material m's slot TEXTURE_SLOT_* at the surface's uv,
+// through the slot's uv transform (KHR_texture_transform; shared.h).
+vec3 sample_material_texture(Material m, uint slot, uint index, vec2 uv, bool srgb) {
+  GpuUvTransform t = texture_transforms[m.index * TEXTURE_SLOTS + slot];
+  return sample_texture(index, t.x_axis * uv.x + t.y_axis * uv.y + t.offset, srgb);
 }
 
 // A lambertian material's albedo, or a pbr material's base colour, at
@@ -41,7 +52,7 @@ Material load_material(uint i) {
 real3 base_color(Material m, vec2 uv) {
   real3 albedo = m.color;
   if (HAS_TEXTURES && m.base_color_texture != NO_TEXTURE)
-    albedo *= real3(sample_texture(m.base_color_texture, uv, true));
+    albedo *= real3(sample_material_texture(m, TEXTURE_SLOT_BASE_COLOR, m.base_color_texture, uv, true));
   return albedo;
 }
 
@@ -50,8 +61,27 @@ real3 base_color(Material m, vec2 uv) {
 real3 surface_emission(Material m, vec2 uv) {
   real3 emission = m.emission;
   if (HAS_TEXTURES && m.emission_texture != NO_TEXTURE)
-    emission *= real3(sample_texture(m.emission_texture, uv, true));
+    emission *= real3(sample_material_texture(m, TEXTURE_SLOT_EMISSION, m.emission_texture, uv, true));
   return emission;
+}
+
+// The shading normal under material m's normal map (glTF 3.9.4): the
+// texel's rgb in [0, 1] is a tangent-space normal 2 rgb - 1, its x and y
+// times normal_scale, in the frame T (dp/du made orthogonal to the
+// unmapped shading normal ns), B (ns x T, turned to dp/dv's side: the
+// frame's handedness follows the uvs), ns. Without a frame (a primitive
+// without uvs, or uvs without area) or for a degenerate result, ns stays.
+vec3 mapped_normal(Material m, vec3 ns, vec2 uv, vec3 dpdu, vec3 dpdv) {
+  vec3 c = sample_material_texture(m, TEXTURE_SLOT_NORMAL, m.normal_texture, uv, false);
+  vec3 t = 2.0 * c - 1.0;
+  t.xy *= m.normal_scale;
+  vec3 tangent = dpdu - ns * dot(ns, dpdu);
+  float len = length(tangent);
+  if (!(len > 0.0) || isinf(len)) return ns;
+  tangent /= len;
+  vec3 bitangent = cross(ns, tangent);
+  if (dot(bitangent, dpdv) < 0.0) bitangent = -bitangent;
+  return safe_normalize(t.x * tangent + t.y * bitangent + t.z * ns, ns);
 }
 
 // Schlick's approximation of the Fresnel reflectance.

@@ -110,7 +110,7 @@ bool sample_pbr(Material m, vec2 uv, vec3 n, vec3 to_viewer, inout Rng rng, out 
   real3 base = base_color(m, uv);
   float metallic = float(m.metallic), roughness = float(m.roughness);
   if (HAS_TEXTURES && m.metallic_roughness_texture != NO_TEXTURE) {
-    vec3 mr = sample_texture(m.metallic_roughness_texture, uv, false);
+    vec3 mr = sample_material_texture(m, TEXTURE_SLOT_METALLIC_ROUGHNESS, m.metallic_roughness_texture, uv, false);
     roughness *= mr.g;
     metallic *= mr.b;
   }

@@ -45,6 +45,15 @@ OCT_CONST(uint, WRAP_CLAMP_TO_EDGE, 1u);
 OCT_CONST(uint, WRAP_MIRRORED_REPEAT, 2u);
 OCT_CONST(uint, NO_TEXTURE, 0xffffffffu);
 
+// A material's texture references (slots), each with its uv transform
+// (GpuUvTransform): the transform of material i's slot k is
+// texture_transforms[i * TEXTURE_SLOTS + k].
+OCT_CONST(uint, TEXTURE_SLOT_BASE_COLOR, 0u);
+OCT_CONST(uint, TEXTURE_SLOT_METALLIC_ROUGHNESS, 1u);
+OCT_CONST(uint, TEXTURE_SLOT_EMISSION, 2u);
+OCT_CONST(uint, TEXTURE_SLOT_NORMAL, 3u);
+OCT_CONST(uint, TEXTURE_SLOTS, 4u);
+
 OCT_CONST(uint, WORKGROUP_SIZE, 8u);  // 8x8 invocations per workgroup
 // At most this many invocations of a path-tracing workgroup share one pixel's
 // samples (PassParams.sample_lanes).
@@ -78,7 +87,8 @@ OCT_CONST(uint, BINDING_MESHES, 13u);
 OCT_CONST(uint, BINDING_TEXTURES, 14u);
 OCT_CONST(uint, BINDING_TEXELS, 15u);
 OCT_CONST(uint, BINDING_TRIANGLE_UVS, 16u);
-OCT_CONST(uint, BINDING_COUNT, 17u);
+OCT_CONST(uint, BINDING_TEXTURE_TRANSFORMS, 17u);
+OCT_CONST(uint, BINDING_COUNT, 18u);
 
 // Descriptor bindings of the resolve pipeline (resolve.comp).
 OCT_CONST(uint, RESOLVE_BINDING_ACCUM_SUM, 0u);
@@ -108,6 +118,7 @@ OCT_CONST(uint, SPEC_SURFACE_EMISSION, 13u);
 // off, the workgroup barrier that sharing needs is compiled out.
 OCT_CONST(uint, SPEC_SAMPLE_LANES, 14u);
 OCT_CONST(uint, SPEC_PBR, 15u);
+OCT_CONST(uint, SPEC_NORMAL_MAPS, 16u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 3u);
 
@@ -159,6 +170,18 @@ struct GpuTriangleUvs {
   vec2 uv2;
 };
 
+// 24 bytes. The uv transform of one texture reference of a material
+// (glTF's KHR_texture_transform, as a 2x3 matrix by columns): a surface at
+// uv samples the texture at x_axis * uv.x + y_axis * uv.y + offset. The
+// identity (1, 0), (0, 1), (0, 0) gives uv back exactly. Uploaded only when
+// the scene has textures; 24 bytes in both views for the reason
+// GpuTriangleUvs gives.
+struct GpuUvTransform {
+  vec2 x_axis;
+  vec2 y_axis;
+  vec2 offset;
+};
+
 // 64 bytes. One placement of a mesh. A ray enters the instance through
 // to_object (the rows of the 3x4 world-to-object matrix: the ray's t stays
 // the world t, its direction is not renormalised); normals leave it through
@@ -194,9 +217,11 @@ struct GpuMesh {
 // albedo x base colour texture, and emission x emission texture (glTF's
 // materials; scene/scene.h). A pbr material's metallic and roughness are
 // multiplied by the blue and green channels of its metallic-roughness
-// texture; its ior sets the dielectric layer's F0. The first 24 bytes are all
-// that the RTIOW materials use; the texture indices sit in what was padding,
-// the emission and the pbr parameters in rows of their own.
+// texture; its ior sets the dielectric layer's F0. A lambertian or pbr
+// material may have a normal map (tangent space, linear; its xy times
+// normal_scale). The first 24 bytes are all that the RTIOW materials use;
+// the texture indices sit in what was padding, the emission and the pbr
+// parameters in rows of their own, the normal map in the last row's padding.
 struct GpuMaterial {
   vec3 color;
   uint type;   // MAT_*
@@ -208,8 +233,8 @@ struct GpuMaterial {
   uint metallic_roughness_texture;
   float metallic;   // pbr
   float roughness;  // pbr (perceptual: alpha = roughness^2)
-  uint pad0;
-  uint pad1;
+  uint normal_texture;
+  float normal_scale;
 };
 
 // 16 bytes. One texture of the texture table: its texels are
@@ -254,8 +279,8 @@ struct GpuMaterialHalf {
   uint base_color_texture;
   uint emission_texture;
   uint metallic_roughness_texture;
-  uint pad0;
-  uint pad1;
+  uint normal_texture;
+  float normal_scale;  // fp32: read once per hit, and the row has room
   uint pad2;
 };
 #endif

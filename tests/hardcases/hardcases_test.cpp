@@ -779,6 +779,29 @@ void mesh_furnace(CaseRun& run) {
   }
 }
 
+// 1n. Normal maps that bend the shading normal below the horizon: the
+// closed icosphere of 1m (smooth), with planar uvs (x, y) and a normal map
+// whose texels point 45 degrees and 135 degrees off the normal (the second
+// below the surface; normal scale 4 tilts both further), albedo-1
+// lambertian and mirror in the white furnace. No NaN or Inf, and no pixel
+// above 1 (an albedo-1 path brings back 1 or, if lost, less: the guard of
+// path_trace.comp falls back to the geometric normal where the mapped one
+// faces away, and mirrors a direction that went below the surface).
+void normal_map_below_horizon(CaseRun& run) {
+  for (auto [what, m] : {std::pair{"lambertian", lambertian(1.0f)}, std::pair{"mirror", metal(1.0f, 0.0f)}}) {
+    m.normal_texture = 0;
+    m.normal_scale = 4.0f;
+    Scene s = furnace({m}, {});
+    // r | g << 8 | b << 16 | a << 24: (255, 128, 218) and (0, 128, 37).
+    s.textures = {{2, 1, {0xffda80ffu, 0xff258000u}, Wrap::Repeat, Wrap::Repeat}};
+    Mesh mesh = test::icosphere(2, 0, true);
+    for (const glm::vec3& p : mesh.positions) mesh.uvs.push_back({p.x, p.y});
+    test::place(s, mesh, glm::scale(glm::mat4(1.0f), glm::vec3(1.5f)));
+    run.at_most(std::string(what) + " normal-mapped icosphere: max pixel - 1",
+                max_value(run.render(s, settings(32, 24, 16, 1000)).mean) - 1.0, 1e-6);
+  }
+}
+
 // 2m. Watertightness: rays exactly through shared vertices and edges. A black
 // (albedo 0) 4x4 grid of triangle pairs at z = 0 in front of an emitter under
 // a black sky; a camera with a 1e-20 degree field of view makes every ray
@@ -1079,6 +1102,7 @@ const HardCase CASES[] = {
     {"furnace_glass15_inside", [](CaseRun& r) { furnace_glass_inside(r, 1.5f); }},
     {"furnace_glass24_inside", [](CaseRun& r) { furnace_glass_inside(r, 2.4f); }},
     {"furnace_fuzzy_metal", fuzzy_metal},
+    {"normal_map_below_horizon", normal_map_below_horizon},
     {"camera_in_nested_glass", nested_glass},
     {"translated_1e4", [](CaseRun& r) { moved(r, 1.0f, 1e4f); }},
     {"translated_1e5", [](CaseRun& r) { moved(r, 1.0f, 1e5f); }},

@@ -114,8 +114,8 @@ const EffectsCase CASES[] = {
     {"pbr_spheres_and_textured_mesh",
      [] {
        // glTF's material on spheres (metal, dielectric, in between, rough and
-       // smooth, emitting) and on a smooth icosphere with base colour and
-       // metallic-roughness textures.
+       // smooth, emitting) and on a smooth icosphere with base colour,
+       // metallic-roughness and normal textures.
        Scene s = family(test::pbr(0.8f, 1.0f, 0.3f));
        s.materials.push_back(test::pbr(0.6f, 0.0f, 0.0f));
        s.materials.push_back(test::pbr(0.9f, 0.5f, 1.0f));
@@ -126,6 +126,10 @@ const EffectsCase CASES[] = {
        Material textured = test::pbr(1.0f, 1.0f, 1.0f);
        textured.base_color_texture = 0;
        textured.metallic_roughness_texture = 0;
+       // ... and a normal map, through a uv transform.
+       textured.normal_texture = 0;
+       textured.normal_scale = 0.7f;
+       textured.normal_uv = glm::mat3x2(glm::vec2(0.0f, 2.0f), glm::vec2(-1.5f, 0.0f), glm::vec2(0.25f, 0.1f));
        s.materials.push_back(textured);
        Mesh ball = test::icosphere(2, 3, true);
        for (glm::vec3 p : ball.positions) ball.uvs.push_back({2.0f * p.x, 1.5f * p.y - 0.5f});
@@ -133,7 +137,7 @@ const EffectsCase CASES[] = {
                                 glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)));
        return s;
      },
-     {"pbr", "triangles", "vertex_normals", "textures", "surface_emission", "sky_gradient"}},
+     {"pbr", "triangles", "vertex_normals", "textures", "surface_emission", "normal_maps", "sky_gradient"}},
 };
 
 class EffectsTest : public test::VulkanTest, public ::testing::WithParamInterface<EffectsCase> {};

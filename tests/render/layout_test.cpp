@@ -21,7 +21,7 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   // every device the suite runs on (lavapipe, the H100) has.
   ASSERT_TRUE(ctx.fp16_enabled) << ctx.info.name << " lacks 16-bit storage";
   Buffer scene_buf, pass_buf, resolve_buf, sphere_buf, material_buf, half_buf, node_buf, stats_buf, tri_buf, normal_buf,
-      inst_buf, mesh_buf, texture_buf, uv_buf;
+      inst_buf, mesh_buf, texture_buf, uv_buf, uv_transform_buf;
   create_buffer(scene_buf, ctx, sizeof(gpu::SceneParams), false, "probe");
   create_buffer(pass_buf, ctx, sizeof(gpu::PassParams), false, "probe");
   create_buffer(resolve_buf, ctx, sizeof(gpu::ResolveParams), false, "probe");
@@ -36,12 +36,13 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   create_buffer(mesh_buf, ctx, 2 * sizeof(gpu::GpuMesh), false, "probe");
   create_buffer(texture_buf, ctx, 2 * sizeof(gpu::GpuTexture), false, "probe");
   create_buffer(uv_buf, ctx, 2 * sizeof(gpu::GpuTriangleUvs), false, "probe");
+  create_buffer(uv_transform_buf, ctx, 2 * sizeof(gpu::GpuUvTransform), false, "probe");
   ComputePipeline pipeline;
-  create_compute_pipeline(pipeline, ctx, layout_probe_spv, sizeof(layout_probe_spv), 14, 0);
+  create_compute_pipeline(pipeline, ctx, layout_probe_spv, sizeof(layout_probe_spv), 15, 0);
   bind_buffers(pipeline, {{0, &scene_buf}, {1, &pass_buf}, {2, &resolve_buf}, {3, &sphere_buf},
                           {4, &material_buf}, {5, &half_buf}, {6, &node_buf}, {7, &stats_buf},
                           {8, &tri_buf},   {9, &normal_buf}, {10, &inst_buf}, {11, &mesh_buf},
-                          {12, &texture_buf}, {13, &uv_buf}});
+                          {12, &texture_buf}, {13, &uv_buf}, {14, &uv_transform_buf}});
   submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout, 0, 1, &pipeline.set, 0, nullptr);
@@ -107,6 +108,8 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   download_buffer(ctx, mesh_buf, meshes, sizeof meshes);
   download_buffer(ctx, texture_buf, textures, sizeof textures);
   download_buffer(ctx, uv_buf, uvs, sizeof uvs);
+  gpu::GpuUvTransform uv_transforms[2];
+  download_buffer(ctx, uv_transform_buf, uv_transforms, sizeof uv_transforms);
   download_buffer(ctx, sphere_buf, spheres, sizeof spheres);
   download_buffer(ctx, material_buf, materials, sizeof materials);
   download_buffer(ctx, half_buf, halves, sizeof halves);
@@ -128,8 +131,8 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(materials[i].metallic_roughness_texture, u + 84) << "material " << i;
     EXPECT_EQ(materials[i].metallic, o + 101) << "material " << i;
     EXPECT_EQ(materials[i].roughness, o + 102) << "material " << i;
-    EXPECT_EQ(materials[i].pad0, u + 103) << "material " << i;
-    EXPECT_EQ(materials[i].pad1, u + 104) << "material " << i;
+    EXPECT_EQ(materials[i].normal_texture, u + 103) << "material " << i;
+    EXPECT_EQ(materials[i].normal_scale, o + 104) << "material " << i;
     EXPECT_EQ(stats[i].nonfinite_samples, u + 13) << "stats " << i;
     EXPECT_EQ(stats[i].pad0, u + 14) << "stats " << i;
     EXPECT_EQ(stats[i].pad1, u + 15) << "stats " << i;
@@ -142,8 +145,8 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(halves[i].base_color_texture, u + 89) << "half material " << i;
     EXPECT_EQ(halves[i].emission_texture, u + 90) << "half material " << i;
     EXPECT_EQ(halves[i].metallic_roughness_texture, u + 105) << "half material " << i;
-    EXPECT_EQ(halves[i].pad0, u + 106) << "half material " << i;
-    EXPECT_EQ(halves[i].pad1, u + 107) << "half material " << i;
+    EXPECT_EQ(halves[i].normal_texture, u + 106) << "half material " << i;
+    EXPECT_EQ(halves[i].normal_scale, o + 107) << "half material " << i;
     EXPECT_EQ(halves[i].pad2, u + 108) << "half material " << i;
     EXPECT_EQ(nodes[i].lo, glm::vec3(o + 25, o + 26, o + 27)) << "node " << i;
     EXPECT_EQ(nodes[i].first, u + 28) << "node " << i;
@@ -183,6 +186,9 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(uvs[i].uv0, glm::vec2(o + 95, o + 96)) << "uvs " << i;
     EXPECT_EQ(uvs[i].uv1, glm::vec2(o + 97, o + 98)) << "uvs " << i;
     EXPECT_EQ(uvs[i].uv2, glm::vec2(o + 99, o + 100)) << "uvs " << i;
+    EXPECT_EQ(uv_transforms[i].x_axis, glm::vec2(o + 109, o + 110)) << "uv transform " << i;
+    EXPECT_EQ(uv_transforms[i].y_axis, glm::vec2(o + 111, o + 112)) << "uv transform " << i;
+    EXPECT_EQ(uv_transforms[i].offset, glm::vec2(o + 113, o + 114)) << "uv transform " << i;
   }
 }
 

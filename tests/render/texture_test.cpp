@@ -6,6 +6,7 @@
 // black one, so that a path scatters once off the quad's plane and never meets
 // it again: a pixel is albedo x 1 (plus the emission), or the emission alone.
 #include <cmath>
+#include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -114,6 +115,71 @@ TEST_F(TextureTest, UvOriginIsTheImagesTopLeft) {
     expect_near(at(r, 0.9f, 0.9f), {0, 1, 0}, tolerance(p), name + " top right");
     expect_near(at(r, 0.1f, 0.1f), {0, 0, 1}, tolerance(p), name + " bottom left");
     expect_near(at(r, 0.9f, 0.1f), {1, 1, 1}, tolerance(p), name + " bottom right");
+  }
+}
+
+// KHR_texture_transform on the same quad and image: offset (1, -1), rotation
+// pi/2, scale (2, 1), applied as uv' = T R S uv (the rotation counter-clockwise
+// in uv space). The corners then sample (0.8, 0.2) green, (0.8, 1.8) white,
+// (-0.8, 0.2) red and (-0.8, 1.8) blue, clamped to the image's corners. The
+// transform left out, or any one part of it, or the rotation the other way,
+// or S and R swapped, shows another pattern.
+TEST_F(TextureTest, TextureTransformOffsetsRotatesAndScalesTheUvs) {
+  const std::string png = test::png(2, 2, {255, 0, 0, 255, 0, 255, 0, 255,       // top: red, green
+                                           0, 0, 255, 255, 255, 255, 255, 255});  // bottom: blue, white
+  test::GltfBuilder b = test::textured_quad_gltf(png, test::kClampToEdge, test::kClampToEdge);
+  b.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {
+      {"KHR_texture_transform", {{"offset", {1, -1}}, {"rotation", 1.5707963267948966}, {"scale", {2, 1}}}}};
+  b.doc["extensionsUsed"] = {"KHR_texture_transform"};
+  b.doc["extensionsRequired"] = {"KHR_texture_transform"};
+  const std::string path = test::tmp_path("texture_transform.gltf");
+  b.write(path);
+  std::vector<std::string> warnings;
+  GltfOptions opts;
+  opts.warn = [&](const std::string& w) { warnings.push_back(w); };
+  Scene s = as_lambertian(load_gltf_scene(path, opts));
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  s.sky = uniform_sky().sky;
+  frame(s, 1, 1);
+  for (Precision p : kPrecisions) {
+    const RenderResult r = render_framed(s, 1, 1, p);
+    const std::string name = precision_name(p);
+    expect_near(at(r, 0.1f, 0.9f), {0, 1, 0}, tolerance(p), name + " top left");
+    expect_near(at(r, 0.9f, 0.9f), {1, 1, 1}, tolerance(p), name + " top right");
+    expect_near(at(r, 0.1f, 0.1f), {1, 0, 0}, tolerance(p), name + " bottom left");
+    expect_near(at(r, 0.9f, 0.1f), {0, 0, 1}, tolerance(p), name + " bottom right");
+  }
+}
+
+// A normal map tilts the shading normal. The quad (facing +z, u along +x, v
+// along -y) under the gradient sky (dir.y = -1 white, +1 (0.5, 0.7, 1)),
+// lambertian of albedo 1: a path scatters once, cosine-weighted about the
+// shading normal n, whose mean direction is 2/3 n (directions below the
+// quad are mirrored across it, which keeps their y), and the sky is linear
+// in dir.y: a pixel's mean is the sky at dir.y = 2/3 n.y. A map of texels
+// (128, 128, 255) leaves n about +z; one of (128, 218, 218) tilts it 45
+// degrees towards +v, down, where the sky is whiter.
+TEST_F(TextureTest, NormalMapTiltsTheShadingNormal) {
+  for (const auto& [r, g, b] : {std::tuple{128, 128, 255}, std::tuple{128, 218, 218}}) {
+    const std::string png = test::png(1, 1, {uint8_t(r), uint8_t(g), uint8_t(b), 255});
+    test::GltfBuilder builder = test::textured_quad_gltf(png);
+    builder.doc["materials"][0] = {{"pbrMetallicRoughness", {{"metallicFactor", 0}}}, {"normalTexture", {{"index", 0}}}};
+    const std::string path = test::tmp_path("normal_map.gltf");
+    builder.write(path);
+    Scene s = as_lambertian(load_gltf_scene(path));
+    frame(s, 1, 1);
+    const glm::dvec3 t = glm::normalize(glm::dvec3(2 * r / 255.0 - 1, 2 * g / 255.0 - 1, 2 * b / 255.0 - 1));
+    const double y = -t.y;  // +v is -y
+    const double f = 0.5 * (2.0 / 3.0 * y + 1.0);
+    const glm::dvec3 want = (1.0 - f) * glm::dvec3(1.0) + f * glm::dvec3(0.5, 0.7, 1.0);
+    for (Precision p : kPrecisions) {
+      const RenderResult res = render_framed(s, 1, 1, p, 256);
+      glm::dvec3 mean(0.0);
+      for (size_t i = 0; i < res.mean.rgb.size(); ++i) mean[int(i % 3)] += res.mean.rgb[i];
+      mean /= double(res.mean.rgb.size() / 3);
+      // 16384 samples of a sky colour whose spread is under 0.25: 4 sigma < 0.008.
+      expect_near(glm::vec3(mean), want, 0.008f, std::string(precision_name(p)) + " texel g " + std::to_string(g));
+    }
   }
 }
 

@@ -627,6 +627,9 @@ TEST(GltfErrors, MetallicRoughnessAndIorOutOfRange) {
 TEST(Gltf, WhatMaterialsLackIsNamedInOneWarning) {
   GltfBuilder b = test::textured_quad_gltf(test::png(2, 1, kTwoTexels));
   b.doc["extensionsUsed"] = {"KHR_materials_transmission", "KHR_texture_transform", "KHR_materials_emissive_strength"};
+  // KHR_texture_transform is rendered, but not its texCoord override to another set.
+  b.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {
+      {"KHR_texture_transform", {{"texCoord", 1}}}};
   b.add("materials", json::object());  // metallicFactor 1 by default
   b.add("materials", {{"pbrMetallicRoughness", {{"metallicFactor", 0}}}, {"normalTexture", {{"index", 0}}},
                       {"alphaMode", "BLEND"}});
@@ -635,8 +638,8 @@ TEST(Gltf, WhatMaterialsLackIsNamedInOneWarning) {
   load(b, "lacks.gltf", {}, &warnings);
   EXPECT_EQ(warnings, std::vector<std::string>{tmp("lacks.gltf") +
                                                ": materials render without what octrace does not support yet: "
-                                               "normal maps, alpha BLEND, alpha MASK, "
-                                               "KHR_materials_transmission, KHR_texture_transform"});
+                                               "texture coordinate sets other than 0, alpha BLEND, alpha MASK, "
+                                               "KHR_materials_transmission"});
 }
 
 // ---------------------------------------------------------------------------
