@@ -155,6 +155,14 @@ TEST(ImageIo, ReadsBigEndianGreyscalePfm) {
   EXPECT_EQ(read.rgb, (std::vector<float>{1.0f, 1.0f, 1.0f, 0.5f, 0.5f, 0.5f}));
 }
 
+// Found by tests/fuzz/fuzz_image.cpp: tinyexr's LoadEXRFromMemory leaked the
+// header of a file it rejected (tools/sanitize.sh would report the leak).
+TEST(ImageIo, ABrokenExrHeaderIsAnInputErrorOfOneLine) {
+  const std::string path = std::string(OCTRACE_SOURCE_DIR) + "/tests/fuzz/corpus/image/regression_exr_header_leak.exr";
+  EXPECT_EQ(message_of<InputError>([&] { read_image(path); }),
+            path + ": not a valid EXR file: Failed to read attribute.");
+}
+
 TEST(ImageIo, UnknownExtensionIsAnInputError) {
   std::string path = fresh_folder() + "/out.jpg";
   std::string expected = path + ": unknown image format \".jpg\" (expected .png, .pfm or .exr)";
