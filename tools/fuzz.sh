@@ -27,6 +27,8 @@ fi
 cmake --build build-fuzz --target "${targets[@]/#/fuzz_}"
 
 export ASAN_OPTIONS="detect_leaks=1"
+# Leaks inside libraries that octrace does not build; tools/lsan.supp says which and why.
+export LSAN_OPTIONS="suppressions=$root/tools/lsan.supp"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 status=0
 printf '%-11s %12s %8s %8s %8s %7s  %s\n' target executions exec/s cov ft corpus findings

@@ -10,6 +10,7 @@
 #include <iterator>
 #include <limits>
 #include <random>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -155,12 +156,18 @@ TEST(ImageIo, ReadsBigEndianGreyscalePfm) {
   EXPECT_EQ(read.rgb, (std::vector<float>{1.0f, 1.0f, 1.0f, 0.5f, 0.5f, 0.5f}));
 }
 
-// Found by tests/fuzz/fuzz_image.cpp: tinyexr's LoadEXRFromMemory leaked the
-// header of a file it rejected (tools/sanitize.sh would report the leak).
-TEST(ImageIo, ABrokenExrHeaderIsAnInputErrorOfOneLine) {
-  const std::string path = std::string(OCTRACE_SOURCE_DIR) + "/tests/fuzz/corpus/image/regression_exr_header_leak.exr";
-  EXPECT_EQ(message_of<InputError>([&] { read_image(path); }),
-            path + ": not a valid EXR file: Failed to read attribute.");
+// Found by tests/fuzz/fuzz_image.cpp (tools/sanitize.sh reports either
+// again): a broken header, which tinyexr's LoadEXRFromMemory leaked, and
+// pixels that fail to decode, which tinyexr frees itself and octrace freed a
+// second time.
+TEST(ImageIo, BrokenExrFilesAreInputErrorsOfOneLine) {
+  const std::string corpus = std::string(OCTRACE_SOURCE_DIR) + "/tests/fuzz/corpus/image/";
+  for (const auto& [file, message] : {std::pair{"regression_exr_header_leak.exr", "Failed to read attribute."},
+                                      std::pair{"regression_exr_freed_twice.exr",
+                                                "Invalid data found when decoding pixels."}}) {
+    const std::string path = corpus + file;
+    EXPECT_EQ(message_of<InputError>([&] { read_image(path); }), path + ": not a valid EXR file: " + message);
+  }
 }
 
 TEST(ImageIo, UnknownExtensionIsAnInputError) {

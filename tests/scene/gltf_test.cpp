@@ -680,9 +680,9 @@ TEST(GltfErrors, MissingBinAndImage) {
 TEST(GltfErrors, AnImageInABufferViewPastItsBuffer) {
   for (const char* name : {"view.glb", "view.gltf"}) {
     GltfBuilder b = test::quad_gltf();
-    b.add("bufferViews", {{"buffer", 0}, {"byteOffset", 40}, {"byteLength", 100000}});
-    b.add("images", {{"bufferView", 3}, {"mimeType", "image/png"}});
-    EXPECT_EQ(load_error(b, name), "PATH: bufferViews[3]: byteOffset 40 + byteLength 100000 exceeds buffers[0] (60 bytes)")
+    const int view = b.add("bufferViews", {{"buffer", 0}, {"byteOffset", 40}, {"byteLength", 100000}});
+    b.add("images", {{"bufferView", view}, {"mimeType", "image/png"}});
+    EXPECT_EQ(load_error(b, name), "PATH: bufferViews[2]: byteOffset 40 + byteLength 100000 exceeds buffers[0] (60 bytes)")
         << name;
   }
   // The fuzzer's input, kept in the corpus.
