@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs every Debian package octrace needs to build, test and render.
+# Installs every Debian package octrace needs to build, test and render
+# (clang and libclang-rt-14-dev, which holds libFuzzer: tools/fuzz.sh).
 # Idempotent and non-interactive: packages already present are skipped, and
 # apt-get runs only when something is missing.
 set -euo pipefail
@@ -11,6 +12,7 @@ packages=(
   libglm-dev libglfw3-dev libstb-dev nlohmann-json3-dev libcli11-dev
   libtinyexr-dev libtinygltf-dev libgtest-dev
   assimp-testmodels
+  clang libclang-rt-14-dev
   xvfb xauth python3 python3-matplotlib python3-numpy
   libegl1 libegl-mesa0
 )

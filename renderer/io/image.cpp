@@ -93,6 +93,8 @@ Bytes encode_pfm(const Image& image) {
 std::string take_exr_error(const char* err) {
   std::string message = err ? err : "unknown tinyexr error";
   if (err) FreeEXRErrorMessage(err);
+  // Some of tinyexr's messages end in a newline; an octrace error is one line.
+  while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back()))) message.pop_back();
   return message;
 }
 
@@ -143,6 +145,12 @@ Bytes encode_exr(const Image& image, const std::string& path) {
 Image decode_png(const std::string& path, const Bytes& bytes) {
   // 16-bit decoding reads 8- and 16-bit PNGs alike without losing precision
   // (stb widens 8-bit values v to v * 257, so v / 255 == v * 257 / 65535).
+  // stb_image reads other formats too; a .png must be a PNG (a PGM header
+  // claiming millions of pixels took seconds to decode: found by
+  // tests/fuzz/fuzz_image.cpp). PNG specification, 5.2: the signature.
+  constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (bytes.size() < 8 || !std::equal(kSignature, kSignature + 8, bytes.begin()))
+    throw InputError(path + ": not a valid PNG file: no PNG signature");
   int width = 0, height = 0, channels = 0;
   std::uint16_t* data = stbi_load_16_from_memory(bytes.data(), int(bytes.size()), &width,
                                                  &height, &channels, 3);
@@ -219,19 +227,116 @@ Image decode_pfm(const std::string& path, const Bytes& bytes) {
   return image;
 }
 
-// tinyexr 1.0.1 leaks a little memory when it rejects a file; harmless for a
-// run that then stops with an error.
+// tinyexr 1.0.1 sizes its offset table from the header before it checks the
+// header against the file: a tiled header of a few bytes asked for 2^61
+// entries (found by tests/fuzz/fuzz_image.cpp). So the data window, the tiles
+// and the chunk count are checked first: every chunk (a block of scanlines
+// or a tile) has an 8-byte entry in the file's offset table (OpenEXR file
+// layout, "Offset Tables"), so there cannot be more chunks than size / 8.
+template <typename Invalid>
+void check_exr_tables(const EXRHeader& header, size_t size, const Invalid& invalid) {
+  const EXRBox2i& window = header.data_window;
+  const std::int64_t width = std::int64_t(window.max_x) - window.min_x + 1;
+  const std::int64_t height = std::int64_t(window.max_y) - window.min_y + 1;
+  constexpr std::int64_t kMaxSide = std::int64_t(1) << 24;
+  if (width < 1 || height < 1 || width > kMaxSide || height > kMaxSide)
+    throw invalid("bad data window " + std::to_string(width) + "x" + std::to_string(height));
+  const std::int64_t max_chunks = std::int64_t(size / 8);
+  std::int64_t chunks = (height + 31) / 32;  // at most 32 scanlines per chunk (PIZ, PXR24, B44)
+  if (header.tiled) {
+    if (header.tile_size_x < 1 || header.tile_size_y < 1)
+      throw invalid("bad tile size " + std::to_string(header.tile_size_x) + "x" + std::to_string(header.tile_size_y));
+    chunks = (width + header.tile_size_x - 1) / header.tile_size_x * ((height + header.tile_size_y - 1) / header.tile_size_y);
+  }
+  if (header.chunk_count > 0) chunks = std::max<std::int64_t>(chunks, header.chunk_count);
+  if (chunks > max_chunks)
+    throw invalid(std::to_string(chunks) + " chunks cannot fit in " + std::to_string(size) + " bytes");
+  // Nor can the pixels take more bytes than the file's data decompresses to:
+  // tinyexr 1.0.1 accepts a chunk that decompresses short, and a header of
+  // 3.7 million pixels in 400 bytes took seconds (found the same way). The
+  // ratios bound each method: raw 1, RLE 64 (2 bytes give at most 128),
+  // zlib (ZIP, ZIPS, PXR24) about 1032, PIZ and B44 far less; 2048 for all but
+  // the first two.
+  std::int64_t pixel_bytes = 0;
+  for (int c = 0; c < header.num_channels; ++c) pixel_bytes += header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF ? 2 : 4;
+  const std::int64_t ratio = header.compression_type == TINYEXR_COMPRESSIONTYPE_NONE  ? 1
+                             : header.compression_type == TINYEXR_COMPRESSIONTYPE_RLE ? 64
+                                                                                      : 2048;
+  if (pixel_bytes * width * height > std::int64_t(size) * ratio)
+    throw invalid(std::to_string(width) + "x" + std::to_string(height) + " pixels cannot be stored in " +
+                  std::to_string(size) + " bytes");
+}
+
+// Read in tinyexr's steps (version, header, image) rather than with its
+// LoadEXRFromMemory, which does the same but does not free the header when a
+// step fails (tinyexr 1.0.1: a leak found by tests/fuzz/fuzz_image.cpp): here
+// both are freed whatever happens. Like LoadEXRFromMemory, a file of one
+// channel is grey and one of more needs R, G and B (A is not read); half
+// channels are read as float.
 Image decode_exr(const std::string& path, const Bytes& bytes) {
-  float* rgba = nullptr;
-  int width = 0, height = 0;
+  auto invalid = [&](const std::string& why) { return InputError(path + ": not a valid EXR file: " + why); };
+  struct Exr {
+    EXRHeader header;
+    EXRImage image;
+    Exr() {
+      InitEXRHeader(&header);
+      InitEXRImage(&image);
+    }
+    ~Exr() {
+      FreeEXRImage(&image);
+      FreeEXRHeader(&header);
+    }
+  } exr;
+  EXRVersion version;
+  if (int ret = ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size()); ret != TINYEXR_SUCCESS)
+    throw invalid("Failed to parse EXR version. code(" + std::to_string(ret) + ")");
   const char* err = nullptr;
-  if (LoadEXRFromMemory(&rgba, &width, &height, bytes.data(), bytes.size(), &err) !=
-      TINYEXR_SUCCESS)
-    throw InputError(path + ": not a valid EXR file: " + take_exr_error(err));
+  if (ParseEXRHeaderFromMemory(&exr.header, &version, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS)
+    throw invalid(take_exr_error(err));
+  check_exr_tables(exr.header, bytes.size(), invalid);
+  for (int c = 0; c < exr.header.num_channels; ++c)
+    if (exr.header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF)
+      exr.header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
+  if (LoadEXRImageFromMemory(&exr.image, &exr.header, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS) {
+    // tinyexr has freed the image and left its pointers (a second free was
+    // found by tests/fuzz/fuzz_image.cpp); it leaks the channel buffers
+    // (tools/lsan.supp).
+    InitEXRImage(&exr.image);
+    throw invalid(take_exr_error(err));
+  }
+
+  // Which channel gives R, G and B.
+  std::array<int, 3> source{0, 0, 0};
+  if (exr.header.num_channels != 1) {
+    for (int k = 0; k < 3; ++k) {
+      const char* name = k == 0 ? "R" : k == 1 ? "G" : "B";
+      source[k] = -1;
+      for (int c = 0; c < exr.header.num_channels; ++c)
+        if (std::strcmp(exr.header.channels[c].name, name) == 0) source[k] = c;
+      if (source[k] < 0) throw invalid(std::string(name) + " channel not found");
+    }
+  }
+  const int width = exr.image.width, height = exr.image.height;
   Image image{width, height, std::vector<float>(size_t(width) * height * 3)};
-  for (size_t i = 0; i < size_t(width) * height; ++i)
-    for (int c = 0; c < 3; ++c) image.rgb[3 * i + c] = rgba[4 * i + c];
-  std::free(rgba);
+  // Copies a block of `w` x `h` pixels (a tile, or the whole image) to (x0, y0).
+  auto copy = [&](unsigned char** planes, int x0, int y0, int w, int h) {
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w; ++i) {
+        const int x = x0 + i, y = y0 + j;
+        if (x < 0 || y < 0 || x >= width || y >= height) continue;
+        for (int k = 0; k < 3; ++k)
+          image.pixel(x, y)[k] = reinterpret_cast<const float*>(planes[source[k]])[size_t(j) * w + i];
+      }
+  };
+  if (exr.header.tiled) {
+    const int tw = exr.header.tile_size_x, th = exr.header.tile_size_y;
+    for (int t = 0; t < exr.image.num_tiles; ++t) {
+      const EXRTile& tile = exr.image.tiles[t];
+      copy(tile.images, tile.offset_x * tw, tile.offset_y * th, tw, th);
+    }
+  } else {
+    copy(exr.image.images, 0, 0, width, height);
+  }
   return image;
 }
 
@@ -341,9 +446,13 @@ void write_image(const Image& image, const std::string& path) {
 }
 
 Image read_image(const std::string& path) {
+  image_format(path);  // an unknown extension is named before the file is read
+  return decode_image(read_file(path), path);
+}
+
+Image decode_image(const std::string& file_bytes, const std::string& path) {
   ImageFormat format = image_format(path);
-  const std::string text = read_file(path);
-  const Bytes bytes(text.begin(), text.end());
+  const Bytes bytes(file_bytes.begin(), file_bytes.end());
   return format == ImageFormat::png   ? decode_png(path, bytes)
          : format == ImageFormat::pfm ? decode_pfm(path, bytes)
                                       : decode_exr(path, bytes);

@@ -29,6 +29,10 @@ void check_image_path(const std::string& path);
 // Reads .png (decoded from sRGB to linear), .pfm or .exr. Throws InputError
 // naming the file when it is missing or not a readable image.
 Image read_image(const std::string& path);
+// The same from the file's bytes; the format follows `path`'s extension, and
+// `path` names the file in messages. The fuzz target tests/fuzz/fuzz_image.cpp
+// calls it.
+Image decode_image(const std::string& bytes, const std::string& path);
 
 float srgb_encode(float linear);
 float srgb_decode(float encoded);

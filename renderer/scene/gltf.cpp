@@ -324,29 +324,40 @@ void check_external_files(const Json& doc, const std::string& file, const std::s
   }
 }
 
-// tinygltf's image callback: decodes the image with stb_image (PNG and JPEG,
-// the formats of the core spec, 3.8.1, and the others stb reads) to RGBA8,
-// whatever its channels and bit depth (16-bit PNGs are rounded to 8 bits),
-// rows from the top. `user` is a std::string that receives the error, so that
-// it comes out as written here rather than after tinygltf's own lines.
+// Decodes an image's bytes with stb_image (PNG and JPEG, the formats of the
+// core spec, 3.8.1, and the others stb reads) to RGBA8, whatever its channels
+// and bit depth (16-bit PNGs are rounded to 8 bits), rows from the top.
+// Returns the error, or nothing.
+std::string decode_rgba8(tinygltf::Image& image, size_t index, const unsigned char* bytes, size_t size) {
+  const std::string at = item("images", index);
+  if (size > size_t(INT_MAX)) return at + ": cannot be decoded (larger than 2 GiB)";
+  int width = 0, height = 0, channels = 0;
+  stbi_uc* pixels = stbi_load_from_memory(bytes, int(size), &width, &height, &channels, 4);
+  if (!pixels) return at + ": cannot be decoded (" + stbi_failure_reason() + ")";
+  image.width = width;
+  image.height = height;
+  image.component = 4;
+  image.bits = 8;
+  image.pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+  image.image.assign(pixels, pixels + size_t(width) * size_t(height) * 4);
+  stbi_image_free(pixels);
+  return {};
+}
+
+// tinygltf's image callback, for images in a file or a data URI. An image in
+// a bufferView is left to decode_view_images: tinygltf hands over the view's
+// bytes without checking that the view lies inside its buffer (a crash found
+// by tests/fuzz/fuzz_gltf.cpp). `user` is a std::string that receives the
+// error, so that it comes out as written here rather than after tinygltf's own
+// lines.
 bool decode_image(tinygltf::Image* image, int index, std::string* err, std::string*, int, int,
                   const unsigned char* bytes, int size, void* user) {
-  int width = 0, height = 0, channels = 0;
-  stbi_uc* pixels = stbi_load_from_memory(bytes, size, &width, &height, &channels, 4);
-  if (!pixels) {
-    std::string& error = *static_cast<std::string*>(user);
-    error = item("images", size_t(index)) + ": cannot be decoded (" + stbi_failure_reason() + ")";
-    if (err) *err += error + "\n";
-    return false;
-  }
-  image->width = width;
-  image->height = height;
-  image->component = 4;
-  image->bits = 8;
-  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-  image->image.assign(pixels, pixels + size_t(width) * size_t(height) * 4);
-  stbi_image_free(pixels);
-  return true;
+  if (image->bufferView >= 0) return true;
+  std::string& error = *static_cast<std::string*>(user);
+  error = decode_rgba8(*image, size_t(index), bytes, size_t(size));
+  if (error.empty()) return true;
+  if (err) *err += error + "\n";
+  return false;
 }
 
 struct File {
@@ -379,10 +390,10 @@ void check_buffer_views(const File& f) {
   }
 }
 
-// The file read by tinygltf after the checks tinygltf does not make.
-File open_gltf(const std::string& path) {
+// The file's bytes read by tinygltf after the checks tinygltf does not make;
+// `path` names them and is where their external buffers and images lie.
+File open_gltf(const std::string& bytes, const std::string& path) {
   File f{path, {}, {}};
-  const std::string bytes = read_file(path);
   if (bytes.size() > UINT_MAX) throw InputError(path + ": larger than 4 GiB, which tinygltf cannot read");
   std::string lower = std::filesystem::path(path).extension().string();
   std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -417,6 +428,15 @@ File open_gltf(const std::string& path) {
     throw InputError(path + ": " + first);
   }
   check_buffer_views(f);
+  // The images in bufferViews, now that every view is known to lie inside its buffer.
+  for (size_t i = 0; i < f.model.images.size(); ++i) {
+    tinygltf::Image& image = f.model.images[i];
+    if (image.bufferView < 0) continue;
+    const tinygltf::BufferView& v = f.get(f.model.bufferViews, image.bufferView, "bufferViews", item("images", i) + ".bufferView");
+    const std::string error =
+        decode_rgba8(image, i, f.model.buffers[size_t(v.buffer)].data.data() + v.byteOffset, v.byteLength);
+    if (!error.empty()) throw InputError(path + ": " + error);
+  }
   return f;
 }
 
@@ -788,7 +808,7 @@ Wrap wrap_mode(const File& f, int mode, const std::string& at) {
 }
 
 // The texture a textureInfo at `at` names: its image (decoded by
-// decode_image) and its sampler's wrap modes (3.8.4; without a sampler,
+// decode_rgba8) and its sampler's wrap modes (3.8.4; without a sampler,
 // REPEAT). Filters are not read: textures are always sampled bilinearly.
 uint32_t read_texture(const File& f, Textures& textures, int index, const std::string& at) {
   const tinygltf::Texture& t = f.get(f.model.textures, index, "textures", at + ".index");
@@ -1010,8 +1030,9 @@ struct Loaded {
 
 // `own_materials`: read the file's materials and textures (not when the
 // scene replaces them).
-Loaded read_gltf(const std::string& path, std::optional<uint32_t> scene_index, bool own_materials) {
-  File f = open_gltf(path);
+Loaded read_gltf(const std::string& bytes, const std::string& path, std::optional<uint32_t> scene_index,
+                 bool own_materials) {
+  File f = open_gltf(bytes, path);
   const tinygltf::Model& model = f.model;
   Loaded out;
   out.file_cameras = model.cameras.size();
@@ -1195,7 +1216,7 @@ GltfPlacement append_gltf(Scene& scene, const std::string& path, std::optional<u
   if (material_override && *material_override >= scene.materials.size())
     throw InputError(path + ": material " + std::to_string(*material_override) + " out of range (" +
                      plural(scene.materials.size(), "material") + ")");
-  const Loaded file = read_gltf(path, opts.scene, !material_override);
+  const Loaded file = read_gltf(read_file(path), path, opts.scene, !material_override);
   GltfPlacement placement;
   placement.mesh_base = uint32_t(scene.meshes.size());
   for (const Instance& i : file.instances) placement.nodes.emplace_back(i.mesh, glm::dmat4(i.transform));
@@ -1213,7 +1234,11 @@ void place_again(Scene& scene, const GltfPlacement& placement, const glm::mat4& 
 }
 
 Scene load_gltf_scene(const std::string& path, const GltfOptions& opts) {
-  const Loaded file = read_gltf(path, opts.scene, true);
+  return parse_gltf_scene(read_file(path), path, opts);
+}
+
+Scene parse_gltf_scene(const std::string& bytes, const std::string& path, const GltfOptions& opts) {
+  const Loaded file = read_gltf(bytes, path, opts.scene, true);
   Scene scene;
   append(scene, file, std::nullopt, glm::mat4(1.0f));
   MeshRef ref;

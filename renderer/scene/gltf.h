@@ -71,6 +71,11 @@ struct GltfOptions {
 // the default gradient sky. Its mesh_refs holds one reference to the file (by
 // absolute path), so that --dump-scene writes a JSON scene that loads it again.
 Scene load_gltf_scene(const std::string& path, const GltfOptions& opts = {});
+// The same from the file's bytes (what load_gltf_scene does once it has read
+// them): .glb by its "glTF" magic or a ".glb" extension of `path`, else .gltf.
+// `path` names the file in messages and is where its external buffers and
+// images are looked for. The fuzz target tests/fuzz/fuzz_gltf.cpp calls it.
+Scene parse_gltf_scene(const std::string& bytes, const std::string& path, const GltfOptions& opts = {});
 
 // Adds the file's meshes to `scene` (a JSON scene's "meshes" entry), placed at
 // `transform` * (node transform). The file's materials are appended to

@@ -10,6 +10,7 @@
 #include <iterator>
 #include <limits>
 #include <random>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -153,6 +154,32 @@ TEST(ImageIo, ReadsBigEndianGreyscalePfm) {
   ASSERT_EQ(read.width, 2);
   ASSERT_EQ(read.height, 1);
   EXPECT_EQ(read.rgb, (std::vector<float>{1.0f, 1.0f, 1.0f, 0.5f, 0.5f, 0.5f}));
+}
+
+// Found by tests/fuzz/fuzz_image.cpp (tools/sanitize.sh reports the first
+// two again): a broken header, which tinyexr's LoadEXRFromMemory leaked;
+// pixels that fail to decode, which tinyexr frees itself and octrace freed a
+// second time; a data window of 2^31 rows, for which tinyexr asked for an
+// offset table of 2^61 bytes; 3.7 million pixels in 390 bytes, which tinyexr
+// decoded from data that is not there, for seconds.
+TEST(ImageIo, BrokenExrFilesAreInputErrorsOfOneLine) {
+  const std::string corpus = std::string(OCTRACE_SOURCE_DIR) + "/tests/fuzz/corpus/image/";
+  for (const auto& [file, message] : {std::pair{"regression_exr_header_leak.exr", "Failed to read attribute."},
+                                      std::pair{"regression_exr_freed_twice.exr",
+                                                "Invalid data found when decoding pixels."},
+                                      std::pair{"regression_exr_huge_window.exr", "bad data window 3x2147483650"},
+                                      std::pair{"regression_exr_short_data.exr",
+                                                "3670019x2 pixels cannot be stored in 390 bytes"}}) {
+    const std::string path = corpus + file;
+    EXPECT_EQ(message_of<InputError>([&] { read_image(path); }), path + ": not a valid EXR file: " + message);
+  }
+}
+
+// Found by tests/fuzz/fuzz_image.cpp: stb_image read a PGM header of
+// 8888888x3 pixels given as .png, which took seconds; a .png must be a PNG.
+TEST(ImageIo, APngWithoutThePngSignatureIsAnInputError) {
+  const std::string path = std::string(OCTRACE_SOURCE_DIR) + "/tests/fuzz/corpus/image/regression_pgm_as_png.png";
+  EXPECT_EQ(message_of<InputError>([&] { read_image(path); }), path + ": not a valid PNG file: no PNG signature");
 }
 
 TEST(ImageIo, UnknownExtensionIsAnInputError) {

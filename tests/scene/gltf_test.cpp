@@ -713,6 +713,24 @@ TEST(GltfErrors, MissingBinAndImage) {
                                              ": No such file or directory");
 }
 
+// Found by tests/fuzz/fuzz_gltf.cpp: tinygltf hands an image's bufferView to
+// the decoder without checking that the view lies inside its buffer, and
+// stb_image read past the end of it.
+TEST(GltfErrors, AnImageInABufferViewPastItsBuffer) {
+  for (const char* name : {"view.glb", "view.gltf"}) {
+    GltfBuilder b = test::quad_gltf();
+    const int view = b.add("bufferViews", {{"buffer", 0}, {"byteOffset", 40}, {"byteLength", 100000}});
+    b.add("images", {{"bufferView", view}, {"mimeType", "image/png"}});
+    EXPECT_EQ(load_error(b, name), "PATH: bufferViews[2]: byteOffset 40 + byteLength 100000 exceeds buffers[0] (60 bytes)")
+        << name;
+  }
+  // The fuzzer's input, kept in the corpus.
+  const std::string corpus = std::string(OCTRACE_SOURCE_DIR) + "/tests/fuzz/corpus/gltf/";
+  EXPECT_EQ(input_error([&] { load_gltf_scene(corpus + "regression_image_view_past_buffer.glb"); }),
+            corpus + "regression_image_view_past_buffer.glb: bufferViews[3]: byteOffset 840 + byteLength 2433 "
+                     "exceeds buffers[0] (1636 bytes)");
+}
+
 TEST(GltfErrors, AnImageThatCannotBeDecoded) {
   GltfBuilder b = test::quad_gltf();
   const std::string junk = "not an image at all";
