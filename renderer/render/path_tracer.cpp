@@ -1,6 +1,7 @@
 #include "render/path_tracer.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <bit>
 #include <vector>
 
@@ -371,12 +372,18 @@ RenderResult render(const VulkanContext& ctx, const Scene& scene, const RenderSe
   // fast passes, regular progress, a prompt stop and no driver watchdog for
   // slow ones.
   uint32_t batch = 1;
+  // Test hook: OCTRACE_TEST_DEVICE_LOST_AFTER=N fails the render as a lost
+  // device would, after the first batch that reaches N samples and its
+  // checkpoint (tests/app/interrupt_test).
+  const char* lose_env = std::getenv("OCTRACE_TEST_DEVICE_LOST_AFTER");
+  const uint32_t lose_after = lose_env ? uint32_t(std::strtoul(lose_env, nullptr, 10)) : UINT32_MAX;
   while (done < settings.spp) {
     if (control.stop && control.stop->load()) {
       interrupted = true;
       break;
     }
     uint32_t n = std::min(batch, settings.spp - done);
+    if (done < lose_after) n = std::min(n, lose_after - done);
     auto batch_start = Clock::now();
     device_ms += tracer.run_passes(pass, settings.first_sample + done, n);
     double batch_ms = ms_since(batch_start);
@@ -388,6 +395,8 @@ RenderResult render(const VulkanContext& ctx, const Scene& scene, const RenderSe
       control.checkpoint(tracer.read_accumulation(), done, tracer.scene_hash());
       last_checkpoint = Clock::now();
     }
+    if (done == lose_after && done < settings.spp)
+      throw_vk_error(VK_ERROR_DEVICE_LOST, "vkQueueSubmit");
   }
   double wall_ms = ms_since(start);
   if (control.checkpoint) control.checkpoint(tracer.read_accumulation(), done, tracer.scene_hash());  // the final state

@@ -130,6 +130,27 @@ TEST(Interrupt, SecondSigintEndsAtOnceWithoutPartialFiles) {
         << "left behind: " << entry.path();
 }
 
+// A device lost during a render with checkpoints: one line that names the
+// last checkpoint (which resumes), exit 1, and no output image.
+TEST(Interrupt, LostDeviceNamesTheLastCheckpoint) {
+  const std::string state = tmp("lost"), out = tmp("lost.pfm");
+  remove_state(state);
+  fs::remove(out);
+  RunResult r = run_octrace("render " + kScene + "--spp 40 --quiet --checkpoint 0.001 --state " + state + " --out " + out,
+                            "OCTRACE_TEST_DEVICE_LOST_AFTER=10");
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_NE(r.output.find("Vulkan device lost during vkQueueSubmit"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the last checkpoint is " + state + " ("), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  // It resumes to the whole render.
+  r = run_octrace("render " + kScene + "--spp 40 --quiet --resume " + state + " --out " + tmp("lost_resumed.pfm"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  r = run_octrace("render " + kScene + "--spp 40 --quiet --out " + tmp("lost_whole.pfm"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(read_all(tmp("lost_resumed.pfm")), read_all(tmp("lost_whole.pfm")));
+}
+
 // A state is resumed only by the render it belongs to; anything else is one
 // line naming the file and what differs, exit 2, and no output.
 TEST(Interrupt, StateOfAnotherRenderIsRefused) {
