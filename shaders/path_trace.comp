@@ -57,6 +57,7 @@ layout(constant_id = SPEC_TEXTURES) const bool HAS_TEXTURES = true;
 layout(constant_id = SPEC_SURFACE_EMISSION) const bool HAS_SURFACE_EMISSION = true;
 layout(constant_id = SPEC_NORMAL_MAPS) const bool HAS_NORMAL_MAPS = true;
 layout(constant_id = SPEC_ALPHA) const bool HAS_ALPHA = true;
+layout(constant_id = SPEC_SINGLE_SIDED) const bool HAS_SINGLE_SIDED = true;
 layout(constant_id = SPEC_SAMPLE_LANES) const bool SAMPLE_LANES = true;
 
 #include "shared/rng.h"

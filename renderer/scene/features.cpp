@@ -25,6 +25,7 @@ SceneFeatures scene_features(const Scene& scene) {
       if (material < used.size()) {
         used[material] = true;
         f.alpha |= scene.materials[material].alpha_mode != AlphaMode::Opaque;
+        f.single_sided |= !scene.materials[material].double_sided;
       }
   }
   for (size_t i = 0; i < scene.materials.size(); ++i) {
@@ -73,7 +74,7 @@ SceneFeatures all_features(const Scene& scene) {
   f.sky_black = false;
   f.any_light = true;
   f.empty = false;
-  f.spheres = f.triangles = f.vertex_normals = f.textures = f.surface_emission = f.normal_maps = f.alpha = true;
+  f.spheres = f.triangles = f.vertex_normals = f.textures = f.surface_emission = f.normal_maps = f.alpha = f.single_sided = true;
   return f;
 }
 
@@ -92,6 +93,7 @@ std::vector<std::string> feature_names(const SceneFeatures& f) {
   if (f.surface_emission) names.push_back("surface_emission");
   if (f.normal_maps) names.push_back("normal_maps");
   if (f.alpha) names.push_back("alpha");
+  if (f.single_sided) names.push_back("single_sided");
   names.push_back(f.sky == SkyType::Gradient ? "sky_gradient" : f.sky == SkyType::Uniform ? "sky_uniform" : "sky_none");
   if (f.sky_black) names.push_back("sky_black");
   if (!f.any_light) names.push_back("no_light");

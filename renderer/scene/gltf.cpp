@@ -900,7 +900,7 @@ int texture_coordinate_set(const tinygltf::TextureInfo& t) {
 // normalTexture (3.9.4: tangent space, xy times its scale), each texture through its
 // KHR_texture_transform, and alpha = baseColorFactor.a x the base colour
 // texture's alpha with alphaMode and alphaCutoff (3.9.6; BLEND as a
-// stochastic cut-out). doubleSided is read and stored; both faces are hit.
+// stochastic cut-out) and doubleSided (false: back faces are not hit).
 Material read_material(const File& f, Textures& textures, size_t i) {
   const tinygltf::Material& gm = f.model.materials[i];
   const std::string at = item("materials", i);
@@ -1131,7 +1131,11 @@ Loaded read_gltf(const std::string& bytes, const std::string& path, std::optiona
   const bool default_used = std::any_of(out.meshes.begin(), out.meshes.end(), [&](const Mesh& m) {
     return std::find(m.materials.begin(), m.materials.end(), uint32_t(model.materials.size())) != m.materials.end();
   });
-  if (default_used) out.materials.push_back(Material{MaterialType::Pbr, glm::vec3(1.0f)});
+  if (default_used) {
+    Material m{MaterialType::Pbr, glm::vec3(1.0f)};
+    m.double_sided = false;  // glTF's default material is single-sided (3.9.1)
+    out.materials.push_back(m);
+  }
   out.warnings = std::move(f.warnings);
   return out;
 }

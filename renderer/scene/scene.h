@@ -69,8 +69,9 @@ struct Material {
   AlphaMode alpha_mode = AlphaMode::Opaque;
   float alpha_cutoff = 0.5f;
   float alpha = 1.0f;  // baseColorFactor.a, in [0, 1]
-  // glTF's doubleSided, stored but not rendered: both faces of every
-  // triangle are hit (JSON materials are double-sided).
+  // glTF's doubleSided: false, a mesh triangle's back face (the side its
+  // winding's normal points away from) is not hit by any ray (camera or
+  // bounce), as if culled. JSON materials are double-sided.
   bool double_sided = true;
 
   bool operator==(const Material&) const = default;

@@ -7,7 +7,8 @@
 // declares `scene`, `spheres`, `sphere_materials`, `triangles`,
 // `triangle_normals`, `triangle_uvs`, `instances`, `meshes`, `octree_nodes`
 // and `octree_refs`, and the specialization constants HAS_SPHERES,
-// HAS_TRIANGLES, HAS_VERTEX_NORMALS, HAS_TEXTURES and HAS_ALPHA (a kind the
+// HAS_TRIANGLES, HAS_VERTEX_NORMALS, HAS_TEXTURES, HAS_ALPHA and
+// HAS_SINGLE_SIDED (a kind the
 // scene lacks compiles out), and for the alpha test `materials`, `textures`,
 // `texels` and `texture_transforms`. A new
 // primitive kind adds its test to test_primitive and its surface to
@@ -94,7 +95,8 @@ bool alpha_cut(GpuTriangle tri, uint i, uint id, vec3 b) {
 }
 
 // Tests triangle `local` of an instance's mesh against the ray in the mesh's
-// object space (whose t is the world t). A point that alpha cuts out is no hit.
+// object space (whose t is the world t). A point that alpha cuts out is no
+// hit, nor is the back face of a single-sided material.
 void test_instance_triangle(Ray oray, RayShear osh, InstanceRef ir, uint local, uint from_prim, inout Hit hit) {
   uint id = ir.first_id + local;
   uint i = ir.first_triangle + local;
@@ -102,6 +104,13 @@ void test_instance_triangle(Ray oray, RayShear osh, InstanceRef ir, uint local, 
   vec3 b;
   float t = intersect_triangle(oray.origin, osh, tri, widened(hit.t), id == from_prim, b);
   if (t < hit.t || (t == hit.t && t != INF && id < hit.prim)) {
+    // glTF's single-sided materials (doubleSided false): the back face (the
+    // side the winding's normal points away from; the same side shading
+    // calls back, as normal_to_world keeps dot(dir, n) through the
+    // placement) is not hit.
+    if (HAS_SINGLE_SIDED && materials[tri.material].double_sided == 0u &&
+        dot(oray.dir, cross(tri.v1 - tri.v0, tri.v2 - tri.v0)) > 0.0)
+      return;
     if (HAS_ALPHA && alpha_cut(tri, i, id, b)) return;
     hit.t = t;
     hit.prim = id;

@@ -127,6 +127,9 @@ OCT_CONST(uint, SPEC_NORMAL_MAPS, 16u);
 // Whether some mesh material is not opaque (alpha MASK or BLEND): off, the
 // alpha test in the triangle hit test (accel/closest_hit.glsl) compiles out.
 OCT_CONST(uint, SPEC_ALPHA, 17u);
+// Whether some mesh material is single-sided (glTF's doubleSided false): off,
+// the back-face test in the triangle hit test compiles out.
+OCT_CONST(uint, SPEC_SINGLE_SIDED, 18u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 3u);
 
@@ -235,7 +238,7 @@ struct GpuMesh {
 // the test reads either struct alike): alpha_mode ALPHA_*, alpha_cutoff
 // (MASK: a texel is cut out where alpha < cutoff), alpha (baseColorFactor.a,
 // times the base colour texture's alpha where it is sampled) and
-// double_sided (stored; both faces are hit whatever it says).
+// double_sided (0: a triangle's back face is not hit, by any ray).
 struct GpuMaterial {
   vec3 color;
   uint type;   // MAT_*

@@ -138,7 +138,7 @@ const EffectsCase CASES[] = {
        return s;
      },
      {"pbr", "triangles", "vertex_normals", "textures", "surface_emission", "normal_maps", "sky_gradient"}},
-    {"alpha_mask_and_blend_meshes",
+    {"alpha_mask_single_sided_and_blend_meshes",
      [] {
        // Two icospheres over the spheres: one MASK through a texture whose
        // alpha varies (cut-outs in camera and bounce rays alike), one BLEND
@@ -149,6 +149,7 @@ const EffectsCase CASES[] = {
        mask.base_color_texture = 0;
        mask.alpha_mode = AlphaMode::Mask;
        mask.alpha_cutoff = 0.6f;
+       mask.double_sided = false;  // its back faces (inside the ball) are not hit either
        s.materials.push_back(mask);
        Material blend = lambertian({0.8f, 0.3f, 0.3f});
        blend.alpha_mode = AlphaMode::Blend;
@@ -162,7 +163,7 @@ const EffectsCase CASES[] = {
                                                  glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)));
        return s;
      },
-     {"lambertian", "pbr", "triangles", "textures", "alpha", "sky_gradient"}},
+     {"lambertian", "pbr", "triangles", "textures", "alpha", "single_sided", "sky_gradient"}},
 };
 
 class EffectsTest : public test::VulkanTest, public ::testing::WithParamInterface<EffectsCase> {};

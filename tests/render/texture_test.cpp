@@ -280,7 +280,8 @@ TEST_F(TextureTest, EmissionIsFactorTimesTextureTimesStrengthAndTheSurfaceStillR
   s.sky.type = SkyType::None;
   frame(s, 1, 1);
   EXPECT_EQ(feature_names(scene_features(s)),
-            (std::vector<std::string>{"pbr", "triangles", "textures", "surface_emission", "sky_none", "sky_black"}));
+            (std::vector<std::string>{"pbr", "triangles", "textures", "surface_emission", "single_sided", "sky_none",
+                                      "sky_black"}));
   const glm::dvec3 emission(4 * srgb(255), 2 * srgb(128), 1 * srgb(64));
   for (Precision p : kPrecisions) {
     const RenderResult r = render_framed(s, 1, 1, p);
@@ -414,6 +415,27 @@ TEST_F(TextureTest, BlendIsAStochasticCutOutWithCoverageAlpha) {
   EXPECT_NEAR(coverage, 0.5, 5 * 0.0039);
   // And it is deterministic: the same render again is the same image.
   EXPECT_EQ(render_framed(s, 1, 1, Precision::FP32, 256).mean.rgb, r.mean.rgb);
+}
+
+// doubleSided false (glTF's default): a quad wound to face -z, seen from +z,
+// shows its back face, which is not hit: the quad behind shows through.
+// doubleSided true: the quad is hit (white under the sky).
+TEST_F(TextureTest, SingleSidedBackFacesAreNotHit) {
+  test::GltfBuilder b = test::quad_gltf();
+  const int flipped = b.add_indices(std::vector<uint16_t>{0, 2, 1, 0, 3, 2});
+  b.doc["meshes"][0]["primitives"][0]["indices"] = flipped;
+  b.add("materials", {{"pbrMetallicRoughness", {{"metallicFactor", 0}}}});
+  b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  const Scene single = alpha_scene(b, "single_sided.gltf", {0.2f, 0.4f, 0.6f});
+  EXPECT_TRUE(scene_features(single).single_sided);
+  b.doc["materials"][0]["doubleSided"] = true;
+  const Scene both = alpha_scene(b, "double_sided.gltf", {0.2f, 0.4f, 0.6f});
+  EXPECT_FALSE(scene_features(both).single_sided);
+  for (Precision p : kPrecisions) {
+    const std::string name = precision_name(p);
+    expect_near(at(render_framed(single, 1, 1, p), 0.5f, 0.5f), {0.2, 0.4, 0.6}, tolerance(p), name + " single-sided");
+    expect_near(at(render_framed(both, 1, 1, p), 0.5f, 0.5f), {1, 1, 1}, tolerance(p), name + " double-sided");
+  }
 }
 
 }  // namespace

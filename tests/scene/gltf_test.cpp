@@ -118,7 +118,7 @@ TEST(Gltf, QuadLoadsAsOneMeshPlacedOnce) {
   EXPECT_EQ(s.instances[0].transform, glm::mat4(1.0f));
   // No material in the file: glTF's default, base colour 1, metallic 1, roughness 1.
   ASSERT_EQ(s.materials.size(), 1u);
-  EXPECT_EQ(s.materials[0], (Material{MaterialType::Pbr, glm::vec3(1.0f)}));
+  EXPECT_EQ(s.materials[0], test::gltf_default_material());
   EXPECT_EQ(s.materials[0].metallic, 1.0f);
   EXPECT_EQ(s.materials[0].roughness, 1.0f);
   EXPECT_EQ(m.materials, (std::vector<uint32_t>{0, 0}));
@@ -331,7 +331,7 @@ TEST(Gltf, PrimitivesConcatenateWithAMaterialPerTriangle) {
   ASSERT_EQ(s.materials.size(), 3u);  // the file's two, then glTF's default for the primitive without
   EXPECT_EQ(s.materials[0].albedo, glm::vec3(0.8f, 0.2f, 0.1f));
   EXPECT_EQ(s.materials[1].albedo, glm::vec3(1.0f));
-  EXPECT_EQ(s.materials[2], (Material{MaterialType::Pbr, glm::vec3(1.0f)}));
+  EXPECT_EQ(s.materials[2], test::gltf_default_material());
   const Mesh& m = s.meshes.at(0);
   EXPECT_EQ(m.positions.size(), 7u);
   EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5, 4, 6, 5, 0, 1, 2}));
@@ -641,6 +641,8 @@ TEST(Gltf, AlphaModeCutoffAndDoubleSided) {
   EXPECT_EQ(s.materials[2].alpha, 0.3f);
   EXPECT_EQ(s.materials[3].alpha_mode, AlphaMode::Mask);
   EXPECT_EQ(s.materials[3].alpha_cutoff, 0.5f);
+  // glTF's default material (a primitive without one) is single-sided.
+  EXPECT_FALSE(load(test::quad_gltf(), "no_material.gltf").materials.at(0).double_sided);
 }
 
 TEST(GltfErrors, BadAlphaCutoffAndMode) {
