@@ -78,6 +78,10 @@ void main() {
     materials[i].roughness = o + 102;
     materials[i].normal_texture = u + 103;
     materials[i].normal_scale = o + 104;
+    materials[i].alpha_mode = u + 121;
+    materials[i].alpha_cutoff = o + 122;
+    materials[i].alpha = o + 123;
+    materials[i].double_sided = u + 124;
     stats[i].nonfinite_samples = u + 13;
     stats[i].pad0 = u + 14;
     stats[i].pad1 = u + 15;
@@ -91,6 +95,10 @@ void main() {
     materials_half[i].normal_texture = u + 106;
     materials_half[i].normal_scale = o + 107;
     materials_half[i].pad2 = u + 108;
+    materials_half[i].alpha_mode = u + 125;
+    materials_half[i].alpha_cutoff = o + 126;
+    materials_half[i].alpha = o + 127;
+    materials_half[i].double_sided = u + 128;
     nodes[i].lo = vec3(o + 25, o + 26, o + 27);
     nodes[i].first = u + 28;
     nodes[i].hi = vec3(o + 29, o + 30, o + 31);

@@ -56,6 +56,8 @@ layout(constant_id = SPEC_VERTEX_NORMALS) const bool HAS_VERTEX_NORMALS = true;
 layout(constant_id = SPEC_TEXTURES) const bool HAS_TEXTURES = true;
 layout(constant_id = SPEC_SURFACE_EMISSION) const bool HAS_SURFACE_EMISSION = true;
 layout(constant_id = SPEC_NORMAL_MAPS) const bool HAS_NORMAL_MAPS = true;
+layout(constant_id = SPEC_ALPHA) const bool HAS_ALPHA = true;
+layout(constant_id = SPEC_SINGLE_SIDED) const bool HAS_SINGLE_SIDED = true;
 layout(constant_id = SPEC_SAMPLE_LANES) const bool SAMPLE_LANES = true;
 
 #include "shared/rng.h"
@@ -76,6 +78,8 @@ vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments)
   for (uint bounce = 0; bounce < pass.bounce_limit; ++bounce) {
     Hit hit;
     ++segments;
+    // BLEND's cut-out key for this ray (accel/closest_hit.glsl: alpha_cut).
+    if (HAS_ALPHA) alpha_key = pcg4d(uvec4(pixel_index, sample_index, bounce | ALPHA_STREAM, pass.sample_seed)).x;
     if (!closest_hit(ray, from_prim, into_from, hit)) {
       if (SKY != SKY_NONE) radiance += throughput * sky_radiance(ray.dir);
       break;

@@ -34,7 +34,9 @@ static_assert(sizeof(GpuUvTransform) == 24);
 static_assert(offsetof(GpuUvTransform, y_axis) == 8);
 static_assert(offsetof(GpuUvTransform, offset) == 16);
 
-static_assert(sizeof(GpuMaterial) == 64);
+static_assert(sizeof(GpuMaterial) == 80);
+static_assert(ALPHA_OPAQUE == uint32_t(AlphaMode::Opaque) && ALPHA_MASK == uint32_t(AlphaMode::Mask) &&
+              ALPHA_BLEND == uint32_t(AlphaMode::Blend));
 static_assert(offsetof(GpuMaterial, type) == 12);
 static_assert(offsetof(GpuMaterial, fuzz) == 16);
 static_assert(offsetof(GpuMaterial, ior) == 20);
@@ -46,8 +48,12 @@ static_assert(offsetof(GpuMaterial, metallic) == 48);
 static_assert(offsetof(GpuMaterial, roughness) == 52);
 static_assert(offsetof(GpuMaterial, normal_texture) == 56);
 static_assert(offsetof(GpuMaterial, normal_scale) == 60);
+static_assert(offsetof(GpuMaterial, alpha_mode) == 64);
+static_assert(offsetof(GpuMaterial, alpha_cutoff) == 68);
+static_assert(offsetof(GpuMaterial, alpha) == 72);
+static_assert(offsetof(GpuMaterial, double_sided) == 76);
 
-static_assert(sizeof(GpuMaterialHalf) == 48);
+static_assert(sizeof(GpuMaterialHalf) == 64);
 static_assert(offsetof(GpuMaterialHalf, params) == 8);
 static_assert(offsetof(GpuMaterialHalf, emission) == 16);
 static_assert(offsetof(GpuMaterialHalf, base_color_texture) == 24);
@@ -56,6 +62,10 @@ static_assert(offsetof(GpuMaterialHalf, metallic_roughness_texture) == 32);
 static_assert(offsetof(GpuMaterialHalf, normal_texture) == 36);
 static_assert(offsetof(GpuMaterialHalf, normal_scale) == 40);
 static_assert(offsetof(GpuMaterialHalf, pad2) == 44);
+static_assert(offsetof(GpuMaterialHalf, alpha_mode) == 48);
+static_assert(offsetof(GpuMaterialHalf, alpha_cutoff) == 52);
+static_assert(offsetof(GpuMaterialHalf, alpha) == 56);
+static_assert(offsetof(GpuMaterialHalf, double_sided) == 60);
 
 static_assert(sizeof(GpuTexture) == 16);
 static_assert(offsetof(GpuTexture, width) == 4);

@@ -261,6 +261,10 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
     f.roughness = m.roughness;
     f.normal_texture = m.normal_texture.value_or(gpu::NO_TEXTURE);
     f.normal_scale = m.normal_scale;
+    f.alpha_mode = uint32_t(m.alpha_mode);
+    f.alpha_cutoff = m.alpha_cutoff;
+    f.alpha = m.alpha;
+    f.double_sided = m.double_sided ? 1u : 0u;
     gpu::GpuMaterialHalf& h = materials_half[i];
     h.color_type = {glm::packHalf1x16(f.color.r), glm::packHalf1x16(f.color.g), glm::packHalf1x16(f.color.b),
                     glm::packHalf1x16(float(f.type))};
@@ -272,6 +276,10 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
     h.metallic_roughness_texture = f.metallic_roughness_texture;
     h.normal_texture = f.normal_texture;
     h.normal_scale = f.normal_scale;
+    h.alpha_mode = f.alpha_mode;
+    h.alpha_cutoff = f.alpha_cutoff;
+    h.alpha = f.alpha;
+    h.double_sided = f.double_sided;
   }
   const size_t texture_count = scene.textures.size();
   check_fits(ctx, texel_count(scene) * sizeof(uint32_t),

@@ -22,7 +22,11 @@ SceneFeatures scene_features(const Scene& scene) {
     f.triangles = true;
     f.vertex_normals |= !mesh.normals.empty();
     for (uint32_t material : mesh.materials)
-      if (material < used.size()) used[material] = true;
+      if (material < used.size()) {
+        used[material] = true;
+        f.alpha |= scene.materials[material].alpha_mode != AlphaMode::Opaque;
+        f.single_sided |= !scene.materials[material].double_sided;
+      }
   }
   for (size_t i = 0; i < scene.materials.size(); ++i) {
     if (!used[i]) continue;
@@ -70,7 +74,7 @@ SceneFeatures all_features(const Scene& scene) {
   f.sky_black = false;
   f.any_light = true;
   f.empty = false;
-  f.spheres = f.triangles = f.vertex_normals = f.textures = f.surface_emission = f.normal_maps = true;
+  f.spheres = f.triangles = f.vertex_normals = f.textures = f.surface_emission = f.normal_maps = f.alpha = f.single_sided = true;
   return f;
 }
 
@@ -88,6 +92,8 @@ std::vector<std::string> feature_names(const SceneFeatures& f) {
   if (f.textures) names.push_back("textures");
   if (f.surface_emission) names.push_back("surface_emission");
   if (f.normal_maps) names.push_back("normal_maps");
+  if (f.alpha) names.push_back("alpha");
+  if (f.single_sided) names.push_back("single_sided");
   names.push_back(f.sky == SkyType::Gradient ? "sky_gradient" : f.sky == SkyType::Uniform ? "sky_uniform" : "sky_none");
   if (f.sky_black) names.push_back("sky_black");
   if (!f.any_light) names.push_back("no_light");

@@ -31,6 +31,8 @@ struct SceneFeatures {
   bool textures = false;          // some material samples a texture
   bool surface_emission = false;  // some lambertian or pbr material emits (glTF emission)
   bool normal_maps = false;       // some lambertian or pbr material on a mesh has a normal map
+  bool alpha = false;             // some mesh material is not opaque (alpha MASK or BLEND)
+  bool single_sided = false;      // some mesh material is single-sided (back faces not hit)
 
   bool operator==(const SceneFeatures&) const = default;
 };

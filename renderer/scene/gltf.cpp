@@ -898,7 +898,9 @@ int texture_coordinate_set(const tinygltf::TextureInfo& t) {
 // and emission = emissiveFactor x KHR_materials_emissive_strength's
 // emissiveStrength x emissiveTexture (3.9.3), the normal map of
 // normalTexture (3.9.4: tangent space, xy times its scale), each texture through its
-// KHR_texture_transform. Alpha is not read.
+// KHR_texture_transform, and alpha = baseColorFactor.a x the base colour
+// texture's alpha with alphaMode and alphaCutoff (3.9.6; BLEND as a
+// stochastic cut-out) and doubleSided (false: back faces are not hit).
 Material read_material(const File& f, Textures& textures, size_t i) {
   const tinygltf::Material& gm = f.model.materials[i];
   const std::string at = item("materials", i);
@@ -909,6 +911,17 @@ Material read_material(const File& f, Textures& textures, size_t i) {
   Material m;
   m.type = MaterialType::Pbr;
   m.albedo = {float(c[0]), float(c[1]), float(c[2])};
+  m.alpha = float(c[3]);
+  // Alpha (3.9.6): OPAQUE ignores it, MASK cuts out below alphaCutoff, BLEND
+  // is rendered as a stochastic cut-out (scene.h).
+  if (gm.alphaMode == "MASK") m.alpha_mode = AlphaMode::Mask;
+  else if (gm.alphaMode == "BLEND") m.alpha_mode = AlphaMode::Blend;
+  else if (gm.alphaMode != "OPAQUE")
+    f.fail(at + ".alphaMode", "must be \"OPAQUE\", \"MASK\" or \"BLEND\", got \"" + gm.alphaMode + "\"");
+  if (!(gm.alphaCutoff >= 0.0 && std::isfinite(float(gm.alphaCutoff))))
+    f.fail(at + ".alphaCutoff", "must be a finite number >= 0, got " + float_string(float(gm.alphaCutoff)));
+  m.alpha_cutoff = float(gm.alphaCutoff);
+  m.double_sided = gm.doubleSided;
   if (pbr.baseColorTexture.index >= 0) {
     m.base_color_texture = read_texture(f, textures, pbr.baseColorTexture.index, pbr_at + ".baseColorTexture");
     m.base_color_uv = uv_transform(f, pbr.baseColorTexture.extensions, pbr_at + ".baseColorTexture");
@@ -967,7 +980,6 @@ std::vector<std::string> approximations(const tinygltf::Model& model) {
   };
   for (const tinygltf::Material& m : model.materials) {
     const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
-    if (m.alphaMode == "BLEND" || m.alphaMode == "MASK") note("alpha " + m.alphaMode);
     for (const tinygltf::TextureInfo* t : {&pbr.baseColorTexture, &pbr.metallicRoughnessTexture, &m.emissiveTexture})
       if (t->index >= 0 && texture_coordinate_set(*t) != 0) note("texture coordinate sets other than 0");
     if (m.normalTexture.index >= 0 && m.normalTexture.texCoord != 0) note("texture coordinate sets other than 0");
@@ -1119,7 +1131,11 @@ Loaded read_gltf(const std::string& bytes, const std::string& path, std::optiona
   const bool default_used = std::any_of(out.meshes.begin(), out.meshes.end(), [&](const Mesh& m) {
     return std::find(m.materials.begin(), m.materials.end(), uint32_t(model.materials.size())) != m.materials.end();
   });
-  if (default_used) out.materials.push_back(Material{MaterialType::Pbr, glm::vec3(1.0f)});
+  if (default_used) {
+    Material m{MaterialType::Pbr, glm::vec3(1.0f)};
+    m.double_sided = false;  // glTF's default material is single-sided (3.9.1)
+    out.materials.push_back(m);
+  }
   out.warnings = std::move(f.warnings);
   return out;
 }

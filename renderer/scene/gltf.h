@@ -21,10 +21,12 @@
 // roughness = metallicFactor and roughnessFactor x metallicRoughnessTexture's
 // blue and green channels (linear), ior from KHR_materials_ior, emission =
 // emissiveFactor x emissiveStrength (KHR_materials_emissive_strength) x
-// emissiveTexture (sRGB); alpha is not read. A texture is its image decoded
-// to RGBA8 (stb_image) with its sampler's wrap modes, stored once however many
-// materials use it. Whatever else the materials have (normal maps, alpha
-// modes, transmission and other material extensions, texture transforms) is
+// emissiveTexture (sRGB); alpha = baseColorFactor.a x baseColorTexture's
+// alpha, with alphaMode (MASK cuts out below alphaCutoff, BLEND is a
+// stochastic cut-out), and doubleSided (false: back faces are not hit). A
+// texture is its image decoded to RGBA8 (stb_image) with its sampler's wrap modes, stored once however many
+// materials use it. Whatever else the materials have (normal maps,
+// transmission and other material extensions, texture transforms) is
 // named in one warning. Primitives without a material take glTF's default
 // material (base colour 1, metallic 1, roughness 1).
 //

@@ -231,6 +231,12 @@ void validate_material(const Material& m, const Scene& scene, const std::string&
       check_colour(m.emission, source, path + ".emission");
       check_unit(m.transmission, source, path + ".transmission");
       check_positive(m.ior, source, path + ".ior");
+      if (m.alpha_mode != AlphaMode::Opaque && m.alpha_mode != AlphaMode::Mask && m.alpha_mode != AlphaMode::Blend)
+        invalid(source, path + ".alpha_mode",
+                "unknown alpha mode " + std::to_string(static_cast<uint32_t>(m.alpha_mode)));
+      if (!(m.alpha_cutoff >= 0.0f && std::isfinite(m.alpha_cutoff)))
+        invalid(source, path + ".alpha_cutoff", "must be a finite number >= 0, got " + format(m.alpha_cutoff));
+      check_unit(m.alpha, source, path + ".alpha");
       return;
   }
   invalid(source, path + ".type", "unknown material type " + std::to_string(static_cast<uint32_t>(m.type)));

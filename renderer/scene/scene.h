@@ -21,6 +21,10 @@ namespace octrace {
 // (Appendix B; shaders/shading/pbr.glsl).
 enum class MaterialType : uint32_t { Lambertian = 0, Metal = 1, Dielectric = 2, Emissive = 3, Pbr = 4 };
 
+// glTF's alpha modes (3.9.6). Values match the ALPHA_* constants in
+// shaders/shared/shared.h (static_assert in render/gpu_layout.h).
+enum class AlphaMode : uint32_t { Opaque = 0, Mask = 1, Blend = 2 };
+
 struct Material {
   MaterialType type = MaterialType::Lambertian;
   glm::vec3 albedo{0.5f};    // lambertian, metal; pbr: the base colour
@@ -57,6 +61,18 @@ struct Material {
   glm::mat3x2 emission_uv{1.0f};
   glm::mat3x2 metallic_roughness_uv{1.0f};
   glm::mat3x2 normal_uv{1.0f};
+  // glTF's alpha (3.9.6; JSON materials are opaque): alpha = alpha x the base
+  // colour texture's alpha (linear) at the hit. Opaque ignores it; Mask cuts
+  // the surface out where alpha < alpha_cutoff (finite, >= 0); Blend cuts it
+  // out with probability 1 - alpha (a stochastic cut-out: coverage alpha on
+  // average). Applies to mesh triangles; a cut-out point is not hit by any ray.
+  AlphaMode alpha_mode = AlphaMode::Opaque;
+  float alpha_cutoff = 0.5f;
+  float alpha = 1.0f;  // baseColorFactor.a, in [0, 1]
+  // glTF's doubleSided: false, a mesh triangle's back face (the side its
+  // winding's normal points away from) is not hit by any ray (camera or
+  // bounce), as if culled. JSON materials are double-sided.
+  bool double_sided = true;
 
   bool operator==(const Material&) const = default;
 };

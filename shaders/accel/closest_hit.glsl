@@ -7,8 +7,10 @@
 // declares `scene`, `spheres`, `sphere_materials`, `triangles`,
 // `triangle_normals`, `triangle_uvs`, `instances`, `meshes`, `octree_nodes`
 // and `octree_refs`, and the specialization constants HAS_SPHERES,
-// HAS_TRIANGLES, HAS_VERTEX_NORMALS and HAS_TEXTURES (a kind the scene lacks
-// compiles out). A new
+// HAS_TRIANGLES, HAS_VERTEX_NORMALS, HAS_TEXTURES, HAS_ALPHA and
+// HAS_SINGLE_SIDED (a kind the
+// scene lacks compiles out), and for the alpha test `materials`, `textures`,
+// `texels` and `texture_transforms`. A new
 // primitive kind adds its test to test_primitive and its surface to
 // surface_at; nothing else here or in the integrator changes.
 #ifndef OCTRACE_SCENE_HIT_GLSL
@@ -17,6 +19,7 @@
 #include "geometry/sphere.glsl"
 #include "geometry/surface.glsl"
 #include "geometry/triangle.glsl"
+#include "shading/texture.glsl"
 
 layout(constant_id = SPEC_ACCEL) const uint ACCEL = ACCEL_OCTREE;
 
@@ -59,12 +62,56 @@ void test_sphere(Ray ray, uint i, uint from_prim, bool into_from, inout Hit hit)
   }
 }
 
+// The key of BLEND's stochastic cut-out for the ray being traced: the
+// integrator sets it before each closest_hit from (seed, pixel, sample,
+// bounce | ALPHA_STREAM) (shared.h). 0 where no alpha is rendered.
+uint alpha_key = 0u;
+
+// glTF's alpha (3.9.6; scene/scene.h): whether the point at barycentrics b
+// of triangle `tri` (index `i` in the triangle array, global id `id`) is cut
+// out, so that the ray passes through it. alpha = the material's alpha x its
+// base colour texture's alpha at the point's uv (through the slot's uv
+// transform, as shading samples it). MASK: cut out where alpha < cutoff.
+// BLEND: a stochastic cut-out, cut out where a uniform number u in [0, 1)
+// is >= alpha, so a point is seen with probability alpha (its coverage:
+// unbiased on average over samples). u hashes the ray's key with the
+// triangle's id (pcg4d): it depends on neither the order the traversal tests
+// triangles in (octree == brute force) nor on any random stream, and a ray
+// that meets the same triangle twice decides the same way both times.
+bool alpha_cut(GpuTriangle tri, uint i, uint id, vec3 b) {
+  uint mode = materials[tri.material].alpha_mode;
+  if (mode == ALPHA_OPAQUE) return false;
+  float alpha = materials[tri.material].alpha;
+  uint tex = materials[tri.material].base_color_texture;
+  if (HAS_TEXTURES && tex != NO_TEXTURE && scene.triangle_uvs != 0u) {
+    GpuTriangleUvs u = triangle_uvs[i];
+    vec2 uv = b.x * u.uv0 + b.y * u.uv1 + b.z * u.uv2;
+    GpuUvTransform x = texture_transforms[tri.material * TEXTURE_SLOTS + TEXTURE_SLOT_BASE_COLOR];
+    alpha *= sample_texture_alpha(tex, x.x_axis * uv.x + x.y_axis * uv.y + x.offset);
+  }
+  if (mode == ALPHA_MASK) return alpha < materials[tri.material].alpha_cutoff;
+  uint h = pcg4d(uvec4(alpha_key, id, ALPHA_STREAM, 0u)).x;
+  return float(h >> 8u) * (1.0 / 16777216.0) >= alpha;
+}
+
 // Tests triangle `local` of an instance's mesh against the ray in the mesh's
-// object space (whose t is the world t).
+// object space (whose t is the world t). A point that alpha cuts out is no
+// hit, nor is the back face of a single-sided material.
 void test_instance_triangle(Ray oray, RayShear osh, InstanceRef ir, uint local, uint from_prim, inout Hit hit) {
   uint id = ir.first_id + local;
-  float t = intersect_triangle(oray.origin, osh, triangles[ir.first_triangle + local], widened(hit.t), id == from_prim);
+  uint i = ir.first_triangle + local;
+  GpuTriangle tri = triangles[i];
+  vec3 b;
+  float t = intersect_triangle(oray.origin, osh, tri, widened(hit.t), id == from_prim, b);
   if (t < hit.t || (t == hit.t && t != INF && id < hit.prim)) {
+    // glTF's single-sided materials (doubleSided false): the back face (the
+    // side the winding's normal points away from; the same side shading
+    // calls back, as normal_to_world keeps dot(dir, n) through the
+    // placement) is not hit.
+    if (HAS_SINGLE_SIDED && materials[tri.material].double_sided == 0u &&
+        dot(oray.dir, cross(tri.v1 - tri.v0, tri.v2 - tri.v0)) > 0.0)
+      return;
+    if (HAS_ALPHA && alpha_cut(tri, i, id, b)) return;
     hit.t = t;
     hit.prim = id;
     hit.kind = PRIM_TRIANGLE;

@@ -71,4 +71,19 @@ vec3 sample_texture(uint index, vec2 uv, bool srgb) {
   return mix(top, bottom, fy);
 }
 
+// Texture `index` at uv, its alpha (linear, 0 to 1) filtered bilinearly:
+// glTF's base colour alpha (3.9.6).
+float sample_texture_alpha(uint index, vec2 uv) {
+  GpuTexture t = textures[index];
+  uint x0, x1, y0, y1;
+  float fx, fy;
+  wrap_axis(uv.x, t.width, t.wrap & 0xffffu, x0, x1, fx);
+  wrap_axis(uv.y, t.height, t.wrap >> 16, y0, y1, fy);
+  float a00 = unpackUnorm4x8(texels[t.first_texel + y0 * t.width + x0]).a;
+  float a10 = unpackUnorm4x8(texels[t.first_texel + y0 * t.width + x1]).a;
+  float a01 = unpackUnorm4x8(texels[t.first_texel + y1 * t.width + x0]).a;
+  float a11 = unpackUnorm4x8(texels[t.first_texel + y1 * t.width + x1]).a;
+  return mix(mix(a00, a10, fx), mix(a01, a11, fx), fy);
+}
+
 #endif

@@ -54,6 +54,11 @@ OCT_CONST(uint, TEXTURE_SLOT_EMISSION, 2u);
 OCT_CONST(uint, TEXTURE_SLOT_NORMAL, 3u);
 OCT_CONST(uint, TEXTURE_SLOTS, 4u);
 
+// glTF's alpha modes (GpuMaterial.alpha_mode; scene/scene.h's AlphaMode).
+OCT_CONST(uint, ALPHA_OPAQUE, 0u);
+OCT_CONST(uint, ALPHA_MASK, 1u);
+OCT_CONST(uint, ALPHA_BLEND, 2u);
+
 OCT_CONST(uint, WORKGROUP_SIZE, 8u);  // 8x8 invocations per workgroup
 // At most this many invocations of a path-tracing workgroup share one pixel's
 // samples (PassParams.sample_lanes).
@@ -119,6 +124,12 @@ OCT_CONST(uint, SPEC_SURFACE_EMISSION, 13u);
 OCT_CONST(uint, SPEC_SAMPLE_LANES, 14u);
 OCT_CONST(uint, SPEC_PBR, 15u);
 OCT_CONST(uint, SPEC_NORMAL_MAPS, 16u);
+// Whether some mesh material is not opaque (alpha MASK or BLEND): off, the
+// alpha test in the triangle hit test (accel/closest_hit.glsl) compiles out.
+OCT_CONST(uint, SPEC_ALPHA, 17u);
+// Whether some mesh material is single-sided (glTF's doubleSided false): off,
+// the back-face test in the triangle hit test compiles out.
+OCT_CONST(uint, SPEC_SINGLE_SIDED, 18u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 3u);
 
@@ -211,7 +222,7 @@ struct GpuMesh {
   uint pad2;
 };
 
-// 64 bytes. `color` is the albedo (lambertian, metal), the base colour
+// 80 bytes. `color` is the albedo (lambertian, metal), the base colour
 // (pbr) or the radiance (emissive). A lambertian or pbr material may also
 // sample textures (indices into the texture table, or NO_TEXTURE) and emit:
 // albedo x base colour texture, and emission x emission texture (glTF's
@@ -222,6 +233,12 @@ struct GpuMesh {
 // normal_scale). The first 24 bytes are all that the RTIOW materials use;
 // the texture indices sit in what was padding, the emission and the pbr
 // parameters in rows of their own, the normal map in the last row's padding.
+// The last row (no padding was left) is glTF's alpha (read by the triangle
+// hit test, not by shading; the same row, fp32, ends GpuMaterialHalf so that
+// the test reads either struct alike): alpha_mode ALPHA_*, alpha_cutoff
+// (MASK: a texel is cut out where alpha < cutoff), alpha (baseColorFactor.a,
+// times the base colour texture's alpha where it is sampled) and
+// double_sided (0: a triangle's back face is not hit, by any ray).
 struct GpuMaterial {
   vec3 color;
   uint type;   // MAT_*
@@ -235,6 +252,10 @@ struct GpuMaterial {
   float roughness;  // pbr (perceptual: alpha = roughness^2)
   uint normal_texture;
   float normal_scale;
+  uint alpha_mode;  // ALPHA_*
+  float alpha_cutoff;
+  float alpha;
+  uint double_sided;
 };
 
 // 16 bytes. One texture of the texture table: its texels are
@@ -264,7 +285,7 @@ struct GpuTexture {
 //     uint, the ray segments the pixel's paths traced (camera rays and
 //     bounces; NaN/Inf samples' not counted), for rays per second.
 
-// 48 bytes: the material as the fp16 variants read it (16-bit storage).
+// 64 bytes: the material as the fp16 variants read it (16-bit storage).
 // color_type: albedo, base colour or radiance, and the MAT_* type as a half
 // (exact); params: fuzz, ior, metallic, roughness; emission: rgb, unused. The
 // host writes half bit patterns. The texture indices stay 32-bit (a half
@@ -282,6 +303,10 @@ struct GpuMaterialHalf {
   uint normal_texture;
   float normal_scale;  // fp32: read once per hit, and the row has room
   uint pad2;
+  uint alpha_mode;     // the last row as GpuMaterial's, fp32: the alpha test
+  float alpha_cutoff;  // compares alpha with the cutoff exactly as the fp32
+  float alpha;         // variant does
+  uint double_sided;
 };
 #endif
 
@@ -363,6 +388,10 @@ struct ResolveParams {
 // Russian roulette draws from a stream of its own (bounce | RR_STREAM), so
 // turning it on changes no other random number.
 OCT_CONST(uint, RR_STREAM, 0x40000000u);
+// BLEND's stochastic cut-out hashes a per-ray key (bounce | ALPHA_STREAM,
+// with the pixel, sample and seed; path_trace.comp) with the triangle's id:
+// no stream's numbers are drawn, so alpha changes no other random number.
+OCT_CONST(uint, ALPHA_STREAM, 0x20000000u);
 
 #ifdef __cplusplus
 }  // namespace octrace::gpu

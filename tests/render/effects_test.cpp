@@ -138,6 +138,32 @@ const EffectsCase CASES[] = {
        return s;
      },
      {"pbr", "triangles", "vertex_normals", "textures", "surface_emission", "normal_maps", "sky_gradient"}},
+    {"alpha_mask_single_sided_and_blend_meshes",
+     [] {
+       // Two icospheres over the spheres: one MASK through a texture whose
+       // alpha varies (cut-outs in camera and bounce rays alike), one BLEND
+       // (a stochastic cut-out).
+       Scene s = family(lambertian({0.5f, 0.5f, 0.5f}));
+       s.textures = {{2, 2, {0x002040c0u, 0xffc08020u, 0x80808080u, 0xff10f010u}, Wrap::Repeat, Wrap::Repeat}};
+       Material mask = test::pbr(0.9f, 0.0f, 0.5f);
+       mask.base_color_texture = 0;
+       mask.alpha_mode = AlphaMode::Mask;
+       mask.alpha_cutoff = 0.6f;
+       mask.double_sided = false;  // its back faces (inside the ball) are not hit either
+       s.materials.push_back(mask);
+       Material blend = lambertian({0.8f, 0.3f, 0.3f});
+       blend.alpha_mode = AlphaMode::Blend;
+       blend.alpha = 0.5f;
+       s.materials.push_back(blend);
+       Mesh ball = test::icosphere(2, 1);
+       for (glm::vec3 p : ball.positions) ball.uvs.push_back({2.0f * p.x, 1.5f * p.y - 0.5f});
+       test::place(s, ball, glm::translate(glm::mat4(1.0f), glm::vec3(-0.6f, 0.6f, 1.2f)) *
+                                glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)));
+       test::place(s, test::icosphere(2, 2), glm::translate(glm::mat4(1.0f), glm::vec3(0.6f, 0.6f, 1.2f)) *
+                                                 glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)));
+       return s;
+     },
+     {"lambertian", "pbr", "triangles", "textures", "alpha", "single_sided", "sky_gradient"}},
 };
 
 class EffectsTest : public test::VulkanTest, public ::testing::WithParamInterface<EffectsCase> {};

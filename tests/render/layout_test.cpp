@@ -133,6 +133,10 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(materials[i].roughness, o + 102) << "material " << i;
     EXPECT_EQ(materials[i].normal_texture, u + 103) << "material " << i;
     EXPECT_EQ(materials[i].normal_scale, o + 104) << "material " << i;
+    EXPECT_EQ(materials[i].alpha_mode, u + 121) << "material " << i;
+    EXPECT_EQ(materials[i].alpha_cutoff, o + 122) << "material " << i;
+    EXPECT_EQ(materials[i].alpha, o + 123) << "material " << i;
+    EXPECT_EQ(materials[i].double_sided, u + 124) << "material " << i;
     EXPECT_EQ(stats[i].nonfinite_samples, u + 13) << "stats " << i;
     EXPECT_EQ(stats[i].pad0, u + 14) << "stats " << i;
     EXPECT_EQ(stats[i].pad1, u + 15) << "stats " << i;
@@ -148,6 +152,10 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(halves[i].normal_texture, u + 106) << "half material " << i;
     EXPECT_EQ(halves[i].normal_scale, o + 107) << "half material " << i;
     EXPECT_EQ(halves[i].pad2, u + 108) << "half material " << i;
+    EXPECT_EQ(halves[i].alpha_mode, u + 125) << "half material " << i;
+    EXPECT_EQ(halves[i].alpha_cutoff, o + 126) << "half material " << i;
+    EXPECT_EQ(halves[i].alpha, o + 127) << "half material " << i;
+    EXPECT_EQ(halves[i].double_sided, u + 128) << "half material " << i;
     EXPECT_EQ(nodes[i].lo, glm::vec3(o + 25, o + 26, o + 27)) << "node " << i;
     EXPECT_EQ(nodes[i].first, u + 28) << "node " << i;
     EXPECT_EQ(nodes[i].hi, glm::vec3(o + 29, o + 30, o + 31)) << "node " << i;

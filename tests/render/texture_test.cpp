@@ -280,7 +280,8 @@ TEST_F(TextureTest, EmissionIsFactorTimesTextureTimesStrengthAndTheSurfaceStillR
   s.sky.type = SkyType::None;
   frame(s, 1, 1);
   EXPECT_EQ(feature_names(scene_features(s)),
-            (std::vector<std::string>{"pbr", "triangles", "textures", "surface_emission", "sky_none", "sky_black"}));
+            (std::vector<std::string>{"pbr", "triangles", "textures", "surface_emission", "single_sided", "sky_none",
+                                      "sky_black"}));
   const glm::dvec3 emission(4 * srgb(255), 2 * srgb(128), 1 * srgb(64));
   for (Precision p : kPrecisions) {
     const RenderResult r = render_framed(s, 1, 1, p);
@@ -345,6 +346,96 @@ TEST_F(TextureTest, TexelsBeyondOneStorageBufferAreRefused) {
   const std::string message = test::input_error([&] { render_framed(s, 1, 1, Precision::FP32); });
   EXPECT_EQ(message.rfind("the texels of 1 texture need ", 0), 0u) << message;
   EXPECT_NE(message.find(" per buffer"), std::string::npos) << message;
+}
+
+// glTF's alpha: a quad whose material cuts it out (MASK or BLEND) in front
+// of a large quad at z = -1 that emits `behind` (and so shows it exactly).
+// A camera ray through the cut-out part meets the quad behind; one that hits
+// the front quad scatters to +z, where only the uniform sky is.
+Scene alpha_scene(const test::GltfBuilder& b, const std::string& name, glm::vec3 behind) {
+  const std::string path = test::tmp_path(name);
+  b.write(path);
+  Scene s = as_lambertian(load_gltf_scene(path));
+  s.sky = uniform_sky().sky;
+  Material glow;
+  glow.type = MaterialType::Emissive;
+  glow.radiance = behind;
+  s.materials.push_back(glow);
+  Mesh back;
+  back.positions = {{-5, -5, -1}, {6, -5, -1}, {6, 6, -1}, {-5, 6, -1}};
+  back.indices = {0, 1, 2, 0, 2, 3};
+  back.materials = {uint32_t(s.materials.size() - 1), uint32_t(s.materials.size() - 1)};
+  test::place(s, back);
+  frame(s, 1, 1);
+  return s;
+}
+
+// MASK: a texture of two halves, alpha 0 (left, red) and 1 (right, white):
+// the left half shows the quad behind, exactly, in camera rays; the right
+// half is the texel's colour under the sky.
+TEST_F(TextureTest, MaskCutsOutTexelsBelowTheCutoff) {
+  const std::string png = test::png(2, 1, {255, 0, 0, 0, 255, 255, 255, 255});
+  test::GltfBuilder b = test::textured_quad_gltf(png, test::kClampToEdge, test::kClampToEdge);
+  b.doc["materials"][0]["alphaMode"] = "MASK";
+  const Scene s = alpha_scene(b, "alpha_mask.gltf", {0.2f, 0.4f, 0.6f});
+  ASSERT_TRUE(scene_features(s).alpha);
+  for (Precision p : kPrecisions) {
+    const RenderResult r = render_framed(s, 1, 1, p);
+    const std::string name = precision_name(p);
+    expect_near(at(r, 0.1f, 0.5f), {0.2, 0.4, 0.6}, tolerance(p), name + " cut-out half");
+    expect_near(at(r, 0.4f, 0.2f), {0.2, 0.4, 0.6}, tolerance(p), name + " cut-out half");
+    expect_near(at(r, 0.9f, 0.5f), {1, 1, 1}, tolerance(p), name + " opaque half");
+    expect_near(at(r, 0.8f, 0.8f), {1, 1, 1}, tolerance(p), name + " opaque half");
+  }
+  // OPAQUE (the same file without alphaMode) hides the quad behind.
+  b.doc["materials"][0].erase("alphaMode");
+  const Scene opaque = alpha_scene(b, "alpha_opaque.gltf", {0.2f, 0.4f, 0.6f});
+  EXPECT_FALSE(scene_features(opaque).alpha);
+  expect_near(at(render_framed(opaque, 1, 1, Precision::FP32), 0.1f, 0.5f), {srgb(255), 0, 0}, 1e-5f, "opaque");
+}
+
+// BLEND with alpha 0.5 (baseColorFactor.a, no texture), white, in front of a
+// black emitter: a sample is 1 where the stochastic cut-out keeps the quad,
+// 0 where it lets the ray through, so the image's mean is the coverage.
+// 64 pixels x 256 samples of a Bernoulli(0.5) (independent: hashed per
+// pixel and sample): standard deviation 0.5 / sqrt(16384) = 0.0039; the
+// bound is 5 of them.
+TEST_F(TextureTest, BlendIsAStochasticCutOutWithCoverageAlpha) {
+  test::GltfBuilder b = test::quad_gltf();
+  b.add("materials", {{"alphaMode", "BLEND"}, {"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, 0.5}}}}});
+  b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  const Scene s = alpha_scene(b, "alpha_blend.gltf", glm::vec3(0.0f));
+  const RenderResult r = render_framed(s, 1, 1, Precision::FP32, 256);
+  double sum = 0;
+  for (size_t i = 0; i < r.mean.rgb.size(); i += 3) {
+    EXPECT_EQ(r.mean.rgb[i], r.mean.rgb[i + 1]);
+    sum += r.mean.rgb[i];
+  }
+  const double coverage = sum / double(r.mean.rgb.size() / 3);
+  EXPECT_NEAR(coverage, 0.5, 5 * 0.0039);
+  // And it is deterministic: the same render again is the same image.
+  EXPECT_EQ(render_framed(s, 1, 1, Precision::FP32, 256).mean.rgb, r.mean.rgb);
+}
+
+// doubleSided false (glTF's default): a quad wound to face -z, seen from +z,
+// shows its back face, which is not hit: the quad behind shows through.
+// doubleSided true: the quad is hit (white under the sky).
+TEST_F(TextureTest, SingleSidedBackFacesAreNotHit) {
+  test::GltfBuilder b = test::quad_gltf();
+  const int flipped = b.add_indices(std::vector<uint16_t>{0, 2, 1, 0, 3, 2});
+  b.doc["meshes"][0]["primitives"][0]["indices"] = flipped;
+  b.add("materials", {{"pbrMetallicRoughness", {{"metallicFactor", 0}}}});
+  b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  const Scene single = alpha_scene(b, "single_sided.gltf", {0.2f, 0.4f, 0.6f});
+  EXPECT_TRUE(scene_features(single).single_sided);
+  b.doc["materials"][0]["doubleSided"] = true;
+  const Scene both = alpha_scene(b, "double_sided.gltf", {0.2f, 0.4f, 0.6f});
+  EXPECT_FALSE(scene_features(both).single_sided);
+  for (Precision p : kPrecisions) {
+    const std::string name = precision_name(p);
+    expect_near(at(render_framed(single, 1, 1, p), 0.5f, 0.5f), {0.2, 0.4, 0.6}, tolerance(p), name + " single-sided");
+    expect_near(at(render_framed(both, 1, 1, p), 0.5f, 0.5f), {1, 1, 1}, tolerance(p), name + " double-sided");
+  }
 }
 
 }  // namespace

@@ -17,6 +17,8 @@
 #include <nlohmann/json.hpp>
 #include <stb_image_write.h>
 
+#include "scene/scene.h"
+
 namespace octrace::test {
 
 constexpr int kByte = 5120, kUnsignedByte = 5121, kShort = 5122, kUnsignedShort = 5123, kUnsignedInt = 5125,
@@ -158,6 +160,14 @@ struct GltfBuilder {
     return path;
   }
 };
+
+// glTF's default material, as a primitive without one loads: base colour 1,
+// metallic 1, roughness 1, single-sided.
+inline Material gltf_default_material() {
+  Material m{MaterialType::Pbr, glm::vec3(1.0f)};
+  m.double_sided = false;
+  return m;
+}
 
 // A unit square in the xy plane facing +z: 4 vertices, 2 triangles, one node.
 inline GltfBuilder quad_gltf() {

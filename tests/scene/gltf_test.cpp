@@ -118,7 +118,7 @@ TEST(Gltf, QuadLoadsAsOneMeshPlacedOnce) {
   EXPECT_EQ(s.instances[0].transform, glm::mat4(1.0f));
   // No material in the file: glTF's default, base colour 1, metallic 1, roughness 1.
   ASSERT_EQ(s.materials.size(), 1u);
-  EXPECT_EQ(s.materials[0], (Material{MaterialType::Pbr, glm::vec3(1.0f)}));
+  EXPECT_EQ(s.materials[0], test::gltf_default_material());
   EXPECT_EQ(s.materials[0].metallic, 1.0f);
   EXPECT_EQ(s.materials[0].roughness, 1.0f);
   EXPECT_EQ(m.materials, (std::vector<uint32_t>{0, 0}));
@@ -331,7 +331,7 @@ TEST(Gltf, PrimitivesConcatenateWithAMaterialPerTriangle) {
   ASSERT_EQ(s.materials.size(), 3u);  // the file's two, then glTF's default for the primitive without
   EXPECT_EQ(s.materials[0].albedo, glm::vec3(0.8f, 0.2f, 0.1f));
   EXPECT_EQ(s.materials[1].albedo, glm::vec3(1.0f));
-  EXPECT_EQ(s.materials[2], (Material{MaterialType::Pbr, glm::vec3(1.0f)}));
+  EXPECT_EQ(s.materials[2], test::gltf_default_material());
   const Mesh& m = s.meshes.at(0);
   EXPECT_EQ(m.positions.size(), 7u);
   EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5, 4, 6, 5, 0, 1, 2}));
@@ -623,6 +623,38 @@ TEST(GltfErrors, MetallicRoughnessAndIorOutOfRange) {
             "PATH: materials[0].extensions.KHR_materials_ior.ior: must be a finite number >= 1, got 0.5");
 }
 
+// alphaMode, alphaCutoff (default 0.5), baseColorFactor's alpha and doubleSided.
+TEST(Gltf, AlphaModeCutoffAndDoubleSided) {
+  GltfBuilder b = test::textured_quad_gltf(test::png(2, 1, kTwoTexels));
+  b.add("materials", {{"alphaMode", "MASK"}, {"alphaCutoff", 0.25}, {"doubleSided", true}});
+  b.add("materials", {{"alphaMode", "BLEND"}, {"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, 0.3}}}}});
+  b.add("materials", {{"alphaMode", "MASK"}});
+  const Scene s = load(b, "alpha.gltf");
+  ASSERT_EQ(s.materials.size(), 4u);
+  EXPECT_EQ(s.materials[0].alpha_mode, AlphaMode::Opaque);
+  EXPECT_EQ(s.materials[0].alpha, 1.0f);
+  EXPECT_FALSE(s.materials[0].double_sided);
+  EXPECT_EQ(s.materials[1].alpha_mode, AlphaMode::Mask);
+  EXPECT_EQ(s.materials[1].alpha_cutoff, 0.25f);
+  EXPECT_TRUE(s.materials[1].double_sided);
+  EXPECT_EQ(s.materials[2].alpha_mode, AlphaMode::Blend);
+  EXPECT_EQ(s.materials[2].alpha, 0.3f);
+  EXPECT_EQ(s.materials[3].alpha_mode, AlphaMode::Mask);
+  EXPECT_EQ(s.materials[3].alpha_cutoff, 0.5f);
+  // glTF's default material (a primitive without one) is single-sided.
+  EXPECT_FALSE(load(test::quad_gltf(), "no_material.gltf").materials.at(0).double_sided);
+}
+
+TEST(GltfErrors, BadAlphaCutoffAndMode) {
+  GltfBuilder b = test::quad_gltf();
+  b.add("materials", {{"alphaMode", "MASK"}, {"alphaCutoff", -0.5}});
+  b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  EXPECT_EQ(load_error(b, "cutoff.gltf"), "PATH: materials[0].alphaCutoff: must be a finite number >= 0, got -0.5");
+  b.doc["materials"][0] = {{"alphaMode", "CUTOUT"}};
+  EXPECT_EQ(load_error(b, "mode.gltf"),
+            "PATH: materials[0].alphaMode: must be \"OPAQUE\", \"MASK\" or \"BLEND\", got \"CUTOUT\"");
+}
+
 // What is not rendered yet is named in one warning per file.
 TEST(Gltf, WhatMaterialsLackIsNamedInOneWarning) {
   GltfBuilder b = test::textured_quad_gltf(test::png(2, 1, kTwoTexels));
@@ -638,7 +670,7 @@ TEST(Gltf, WhatMaterialsLackIsNamedInOneWarning) {
   load(b, "lacks.gltf", {}, &warnings);
   EXPECT_EQ(warnings, std::vector<std::string>{tmp("lacks.gltf") +
                                                ": materials render without what octrace does not support yet: "
-                                               "texture coordinate sets other than 0, alpha BLEND, alpha MASK, "
+                                               "texture coordinate sets other than 0, "
                                                "KHR_materials_transmission"});
 }
 

@@ -541,7 +541,7 @@ TEST(JsonMeshes, FilesAreFoundBesideTheSceneFile) {
   ASSERT_EQ(s.meshes.size(), 2u);
   ASSERT_EQ(s.instances.size(), 2u);
   ASSERT_EQ(s.materials.size(), 2u);
-  EXPECT_EQ(s.materials[1], (Material{MaterialType::Pbr, glm::vec3(1.0f)}));
+  EXPECT_EQ(s.materials[1], test::gltf_default_material());
   EXPECT_EQ(s.mesh_file_materials, 1u);
   EXPECT_EQ(s.meshes[0].materials, (std::vector<uint32_t>{1, 1}));
   EXPECT_EQ(s.meshes[1].materials, (std::vector<uint32_t>{0, 0}));
