@@ -151,6 +151,8 @@ Image decode_png(const std::string& path, const Bytes& bytes) {
   constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   if (bytes.size() < 8 || !std::equal(kSignature, kSignature + 8, bytes.begin()))
     throw InputError(path + ": not a valid PNG file: no PNG signature");
+  if (std::string why = png_chunk_error(bytes.data(), bytes.size()); !why.empty())
+    throw InputError(path + ": not a valid PNG file: " + why);
   int width = 0, height = 0, channels = 0;
   std::uint16_t* data = stbi_load_16_from_memory(bytes.data(), int(bytes.size()), &width,
                                                  &height, &channels, 3);
@@ -493,6 +495,24 @@ ErrorMetrics compare_images(const Image& test, const Image& reference) {
   metrics.psnr = mse == 0 ? std::numeric_limits<double>::infinity() : 10 * std::log10(1 / mse);
   metrics.ssim = ssim(test, reference);
   return metrics;
+}
+
+std::string png_chunk_error(const unsigned char* bytes, size_t size) {
+  constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (size < 8 || !std::equal(kSignature, kSignature + 8, bytes)) return {};
+  size_t at = 8;
+  for (int chunk = 0; at < size; ++chunk) {
+    if (size - at < 12) return "chunk " + std::to_string(chunk) + " is cut off at the end of the file";
+    const uint64_t length = (uint64_t(bytes[at]) << 24) | (uint64_t(bytes[at + 1]) << 16) |
+                            (uint64_t(bytes[at + 2]) << 8) | uint64_t(bytes[at + 3]);
+    if (length > size - at - 12)
+      return "chunk " + std::to_string(chunk) + " claims " + std::to_string(length) + " bytes, past the end of the file (" +
+             std::to_string(size) + " bytes)";
+    const bool end = std::equal(bytes + at + 4, bytes + at + 8, "IEND");
+    at += 12 + size_t(length);
+    if (end) break;
+  }
+  return {};
 }
 
 }  // namespace octrace

@@ -36,6 +36,7 @@
 #include "core/errors.h"
 #include "core/text.h"
 #include "io/file.h"
+#include "io/image.h"
 #include "scene/json_text.h"
 
 namespace octrace {
@@ -331,6 +332,7 @@ void check_external_files(const Json& doc, const std::string& file, const std::s
 std::string decode_rgba8(tinygltf::Image& image, size_t index, const unsigned char* bytes, size_t size) {
   const std::string at = item("images", index);
   if (size > size_t(INT_MAX)) return at + ": cannot be decoded (larger than 2 GiB)";
+  if (std::string why = png_chunk_error(bytes, size); !why.empty()) return at + ": cannot be decoded (" + why + ")";
   int width = 0, height = 0, channels = 0;
   stbi_uc* pixels = stbi_load_from_memory(bytes, int(size), &width, &height, &channels, 4);
   if (!pixels) return at + ": cannot be decoded (" + stbi_failure_reason() + ")";

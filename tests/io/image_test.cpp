@@ -182,6 +182,14 @@ TEST(ImageIo, APngWithoutThePngSignatureIsAnInputError) {
   EXPECT_EQ(message_of<InputError>([&] { read_image(path); }), path + ": not a valid PNG file: no PNG signature");
 }
 
+// A chunk whose length runs past the end of the file: stb_image reserved
+// 2 GiB for it (found by tests/fuzz/fuzz_image.cpp in a CI run).
+TEST(ImageIo, APngChunkPastTheEndIsAnInputError) {
+  const std::string path = std::string(OCTRACE_SOURCE_DIR) + "/tests/fuzz/corpus/image/regression_png_chunk_past_end.png";
+  EXPECT_EQ(message_of<InputError>([&] { read_image(path); }),
+            path + ": not a valid PNG file: chunk 2 claims 1862271002 bytes, past the end of the file (115 bytes)");
+}
+
 TEST(ImageIo, UnknownExtensionIsAnInputError) {
   std::string path = fresh_folder() + "/out.jpg";
   std::string expected = path + ": unknown image format \".jpg\" (expected .png, .pfm or .exr)";
