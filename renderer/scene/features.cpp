@@ -34,8 +34,7 @@ SceneFeatures scene_features(const Scene& scene) {
     switch (m.type) {
       case MaterialType::Lambertian:
         f.lambertian = true;
-        f.textures |= m.base_color_texture.has_value() || m.emission_texture.has_value() ||
-                      m.normal_texture.has_value();
+        f.textures |= has_texture(m);
         f.normal_maps |= m.normal_texture.has_value();
         f.surface_emission |= !is_black(m.emission);
         break;
@@ -47,8 +46,7 @@ SceneFeatures scene_features(const Scene& scene) {
       case MaterialType::Emissive: f.emissive |= !is_black(m.radiance); break;
       case MaterialType::Pbr:
         f.pbr = true;
-        f.textures |= m.base_color_texture.has_value() || m.emission_texture.has_value() ||
-                      m.metallic_roughness_texture.has_value() || m.normal_texture.has_value();
+        f.textures |= has_texture(m);
         f.normal_maps |= m.normal_texture.has_value();
         f.surface_emission |= !is_black(m.emission);
         break;

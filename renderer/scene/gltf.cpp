@@ -1153,8 +1153,8 @@ void append(Scene& scene, const Loaded& file, std::optional<uint32_t> material_o
   if (!material_override) {
     const auto texture_base = uint32_t(scene.textures.size());
     for (Material m : file.materials) {
-      for (std::optional<uint32_t>* t : {&m.base_color_texture, &m.emission_texture, &m.metallic_roughness_texture})
-        if (*t) **t += texture_base;
+      for (const MaterialTexture& t : kMaterialTextures)
+        if (m.*t.index) *(m.*t.index) += texture_base;
       scene.materials.push_back(m);
     }
     scene.mesh_file_materials += file.materials.size();

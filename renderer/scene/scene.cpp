@@ -201,11 +201,9 @@ void validate_material(const Material& m, const Scene& scene, const std::string&
             "only lambertian and pbr materials take textures and an emission (an emissive one has a radiance)");
   if (m.type != MaterialType::Pbr && m.metallic_roughness_texture)
     invalid(source, path, "only pbr materials take a metallic-roughness texture");
-  for (const auto& [texture, field] : {std::pair{m.base_color_texture, ".base_color_texture"},
-                                       std::pair{m.emission_texture, ".emission_texture"},
-                                       std::pair{m.metallic_roughness_texture, ".metallic_roughness_texture"}})
-    if (texture && *texture >= scene.textures.size())
-      invalid(source, path + field, out_of_range(*texture, scene.textures.size(), "texture", "textures"));
+  for (const MaterialTexture& t : kMaterialTextures)
+    if (const std::optional<uint32_t>& texture = m.*t.index; texture && *texture >= scene.textures.size())
+      invalid(source, path + "." + t.field, out_of_range(*texture, scene.textures.size(), "texture", "textures"));
   switch (m.type) {
     case MaterialType::Lambertian:
       check_colour(m.albedo, source, path + ".albedo");

@@ -77,6 +77,25 @@ struct Material {
   bool operator==(const Material&) const = default;
 };
 
+// Every texture reference of a material, with its field name: the one list
+// that code treating them alike (rebasing, range checks) walks.
+struct MaterialTexture {
+  const char* field;
+  std::optional<uint32_t> Material::*index;
+};
+inline constexpr MaterialTexture kMaterialTextures[] = {
+    {"base_color_texture", &Material::base_color_texture},
+    {"emission_texture", &Material::emission_texture},
+    {"metallic_roughness_texture", &Material::metallic_roughness_texture},
+    {"normal_texture", &Material::normal_texture},
+};
+// Whether the material samples any texture.
+inline bool has_texture(const Material& m) {
+  for (const MaterialTexture& t : kMaterialTextures)
+    if (m.*t.index) return true;
+  return false;
+}
+
 // How texture coordinates outside [0, 1] map onto the image (glTF's sampler
 // wrapS / wrapT). Values match the WRAP_* constants in shaders/shared/shared.h
 // (static_assert in render/gpu_layout.h).

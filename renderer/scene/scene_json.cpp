@@ -577,8 +577,7 @@ std::string scene_to_json(const Scene& scene) {
   const size_t written = scene.materials.size() - scene.mesh_file_materials;
   for (size_t i = 0; i < written; ++i) {
     const Material& m = scene.materials[i];
-    if (m.base_color_texture || m.emission_texture || m.metallic_roughness_texture ||
-        (m.type != MaterialType::Pbr && m.emission != glm::vec3(0.0f)))
+    if (has_texture(m) || (m.type != MaterialType::Pbr && m.emission != glm::vec3(0.0f)))
       throw InputError("scene: materials[" + std::to_string(i) +
                        "]: textures (and a lambertian material's emission) come only from mesh files and cannot be written");
   }

@@ -553,6 +553,28 @@ TEST(JsonMeshes, FilesAreFoundBesideTheSceneFile) {
   EXPECT_TRUE(s.spheres.empty());
 }
 
+// Every texture slot of a second file's materials points past the first
+// file's textures (a normal map once kept the index it had in its own file).
+TEST(JsonMeshes, EveryTextureOfASecondFileIsRebased) {
+  const std::string dir = mesh_folder();
+  const std::string png = test::png(1, 1, {128, 128, 255, 255});
+  test::textured_quad_gltf(png).write(dir + "/first.glb");
+  test::GltfBuilder second = test::textured_quad_gltf(png);
+  second.doc["materials"][0] = {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}},
+                                                          {"metallicRoughnessTexture", {{"index", 0}}}}},
+                                {"emissiveTexture", {{"index", 0}}},
+                                {"emissiveFactor", {1, 1, 1}},
+                                {"normalTexture", {{"index", 0}}}};
+  second.write(dir + "/second.glb");
+  const Scene s = parse_with_meshes(R"({"materials": [], "meshes": [{"file": "first.glb"}, {"file": "second.glb"}]})");
+  ASSERT_EQ(s.textures.size(), 2u);
+  const Material& m = s.materials.back();
+  EXPECT_EQ(m.base_color_texture, 1u);
+  EXPECT_EQ(m.metallic_roughness_texture, 1u);
+  EXPECT_EQ(m.emission_texture, 1u);
+  EXPECT_EQ(m.normal_texture, 1u);
+}
+
 // References to the same file with the same scene and material override
 // load it once: its meshes and materials are shared and the later references
 // add instances only, with the transforms two loads would give, bit for bit.
