@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 #include <map>
+#include <memory>
 #include <optional>
 
 #include "io/file.h"
@@ -85,15 +86,31 @@ void print_header(const VulkanContext& ctx, const RenderSettings& settings, uint
               settings.height, settings.spp, settings.bounce_limit, repeat, more);
 }
 
-// Device times of `repeat` renders of s.spp passes, after one warm-up.
-std::vector<double> timed_runs(PathTracer& tracer, const Scene& scene, const RenderSettings& s, uint32_t repeat) {
+// One configuration of a bench: its tracer (set up with `accel` and
+// `precision`; a warning where a software device's loop limit cuts paths)
+// and the device times of `repeat` renders of s.spp passes, after a warm-up.
+struct TimedRuns {
+  std::unique_ptr<PathTracer> tracer;
   std::vector<double> times;
+  double median_ms = 0, min_ms = 0, max_ms = 0;
+};
+
+TimedRuns timed_runs(const VulkanContext& ctx, const Scene& scene, RenderSettings s, Accel accel,
+                     Precision precision, uint32_t repeat) {
+  s.accel = accel;
+  s.precision = precision;
+  if (std::string w = software_loop_limit_warning(ctx.info, scene, s); !w.empty()) print_warning(w);
+  TimedRuns t;
+  t.tracer = std::make_unique<PathTracer>(ctx, scene, s);
   for (uint32_t rep = 0; rep <= repeat; ++rep) {
-    tracer.reset();
-    const double ms = tracer.run_passes(pass_settings(scene, s), 0, s.spp);
-    if (rep > 0) times.push_back(ms);
+    t.tracer->reset();
+    const double ms = t.tracer->run_passes(pass_settings(scene, s), 0, s.spp);
+    if (rep > 0) t.times.push_back(ms);
   }
-  return times;
+  t.median_ms = median(t.times);
+  t.min_ms = *std::min_element(t.times.begin(), t.times.end());
+  t.max_ms = *std::max_element(t.times.begin(), t.times.end());
+  return t;
 }
 
 std::string fmt(const char* f, double v) {
@@ -190,23 +207,18 @@ int run_scene_bench(const VulkanContext& ctx, const BenchOptions& o, const Rende
   for (const auto& [name, scene] : o.scenes) {
     for (Precision precision : o.precisions) {
       for (Accel accel : o.accels) {
-        RenderSettings s = settings;
-        s.accel = accel;
-        s.precision = precision;
-        if (std::string w = software_loop_limit_warning(ctx.info, scene, s); !w.empty()) print_warning(w);
-        PathTracer tracer(ctx, scene, s);
-        const std::vector<double> times = timed_runs(tracer, scene, s, o.repeat);
+        TimedRuns t = timed_runs(ctx, scene, settings, accel, precision, o.repeat);
         SceneRow row{name, scene.spheres.size(), instanced_triangle_count(scene), accel, precision};
-        row.median_ms = median(times);
-        row.min_ms = *std::min_element(times.begin(), times.end());
-        row.max_ms = *std::max_element(times.begin(), times.end());
-        row.build_ms = tracer.setup_timings().accel_build_ms;
-        row.bytes_per_primitive = tracer.octree_stats().bytes_per_primitive;
+        row.median_ms = t.median_ms;
+        row.min_ms = t.min_ms;
+        row.max_ms = t.max_ms;
+        row.build_ms = t.tracer->setup_timings().accel_build_ms;
+        row.bytes_per_primitive = t.tracer->octree_stats().bytes_per_primitive;
         // The last run's rays: the accumulation holds exactly its passes.
-        const RenderResult last = tracer.read_result();
-        const double paths = double(s.width) * s.height * s.spp;
-        row.paths_per_s = paths / (times.back() / 1000.0);
-        row.rays_per_s = double(last.rays) / (times.back() / 1000.0);
+        const RenderResult last = t.tracer->read_result();
+        const double paths = double(settings.width) * settings.height * settings.spp;
+        row.paths_per_s = paths / (t.times.back() / 1000.0);
+        row.rays_per_s = double(last.rays) / (t.times.back() / 1000.0);
         if (!o.quiet)
           std::fprintf(stderr, "  %-24s %-6s %-8s %.2f ms, %.3g rays/s\n", name.c_str(), accel_name(accel),
                        precision_name(precision), row.median_ms, row.rays_per_s);
@@ -285,18 +297,13 @@ int run_bench(const BenchOptions& o) {
               continue;
             }
           }
-          RenderSettings s = settings;
-          s.accel = accel;
-          s.precision = precision;
-          if (std::string w = software_loop_limit_warning(ctx.info, scene, s); !w.empty()) print_warning(w);
-          PathTracer tracer(ctx, scene, s);
-          const std::vector<double> times = timed_runs(tracer, scene, s, o.repeat);
-          row.median_ms = median(times);
-          row.min_ms = *std::min_element(times.begin(), times.end());
-          row.max_ms = *std::max_element(times.begin(), times.end());
-          row.build_ms = tracer.setup_timings().accel_build_ms;
-          row.bytes_per_sphere = tracer.octree_stats().bytes_per_primitive;
-          row.refs_per_sphere = tracer.octree_stats().refs_per_primitive;
+          const TimedRuns t = timed_runs(ctx, scene, settings, accel, precision, o.repeat);
+          row.median_ms = t.median_ms;
+          row.min_ms = t.min_ms;
+          row.max_ms = t.max_ms;
+          row.build_ms = t.tracer->setup_timings().accel_build_ms;
+          row.bytes_per_sphere = t.tracer->octree_stats().bytes_per_primitive;
+          row.refs_per_sphere = t.tracer->octree_stats().refs_per_primitive;
           last[key] = {n, row.median_ms};
           if (!o.quiet)
             std::fprintf(stderr, "  %8llu spheres r=%g %-6s %s: %.2f ms (min %.2f, max %.2f)\n",

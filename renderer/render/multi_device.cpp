@@ -59,7 +59,7 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
   const size_t devices = contexts.size();
   shares.assign(devices, {});
   std::vector<Accumulation> parts(devices);
-  std::vector<RenderResult> first_result(1);
+  RenderResult r;  // device 0's set-up timings, octree and features; the merged state
   std::vector<uint64_t> nonfinite(devices, 0);
   std::atomic<uint32_t> next{0};  // the next sample offset to hand out
   std::atomic<uint32_t> done{0};
@@ -117,9 +117,9 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
       parts[d] = tracer.read_accumulation();
       nonfinite[d] = tracer.nonfinite_samples();
       if (d == 0) {
-        first_result[0].timings = tracer.setup_timings();
-        first_result[0].octree = tracer.octree_stats();
-        first_result[0].features = tracer.features();
+        r.timings = tracer.setup_timings();
+        r.octree = tracer.octree_stats();
+        r.features = tracer.features();
       }
     } catch (...) {
       failed = true;
@@ -139,7 +139,6 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
   for (std::thread& t : threads) t.join();
   if (error) std::rethrow_exception(error);
 
-  RenderResult r = std::move(first_result[0]);
   auto merge_start = Clock::now();
   resolve_accumulation(merge_accumulations(parts), r);
   r.timings.readback_ms = ms_since(merge_start);

@@ -300,29 +300,24 @@ void PathTracer::write_accumulation(const Accumulation& a) {
 uint64_t PathTracer::scene_hash() const { return state_->scene.content_hash; }
 
 void resolve_accumulation(const Accumulation& a, RenderResult& r) {
+  // The mean and count as a checkpoint's state has them (render_state.h) ...
+  RenderState state = state_of(a);
+  r.mean = std::move(state.mean);
+  r.count = std::move(state.count);
+  // ... and the variance of the mean, the smallest count and the rays.
   const uint64_t pixels = a.sum.size();
-  r.mean.width = r.variance_of_mean.width = a.width;
-  r.mean.height = r.variance_of_mean.height = a.height;
-  r.mean.rgb.assign(pixels * 3, 0.0f);
-  r.variance_of_mean.rgb.assign(pixels * 3, 0.0f);
-  r.count.resize(pixels);
-  r.min_samples = UINT32_MAX;
+  r.variance_of_mean = Image{a.width, a.height, std::vector<float>(pixels * 3, 0.0f)};
+  r.min_samples = pixels ? UINT32_MAX : 0;
   r.rays = 0;
   for (uint64_t i = 0; i < pixels; ++i) {
-    double n = a.sum[i].w;
+    const double n = a.sum[i].w;
     r.min_samples = std::min(r.min_samples, uint32_t(n));
-    r.count[i] = float(n);
     r.rays += std::bit_cast<uint32_t>(a.sq[i].w);
     for (int c = 0; c < 3; ++c) {
-      // The Kahan sum is sum - comp (comp holds what the float sum overshot).
-      double total = double(a.sum[i][c]) - double(a.comp[i][c]);
-      double mean = n > 0 ? total / n : 0.0;
-      double var = n > 1 ? double(a.sq[i][c]) / (n - 1) : 0.0;
-      r.mean.rgb[3 * i + c] = float(mean);
+      const double var = n > 1 ? double(a.sq[i][c]) / (n - 1) : 0.0;
       r.variance_of_mean.rgb[3 * i + c] = n > 0 ? float(var / n) : 0.0f;
     }
   }
-  if (pixels == 0) r.min_samples = 0;
 }
 
 uint64_t PathTracer::nonfinite_samples() {

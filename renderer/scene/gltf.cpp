@@ -1147,7 +1147,10 @@ void emit_warnings(const GltfOptions& opts, const std::vector<std::string>& warn
   for (const std::string& w : warnings) opts.warn(w);
 }
 
-void append(Scene& scene, const Loaded& file, std::optional<uint32_t> material_override, const glm::mat4& transform) {
+// Adds the file's materials (unless overridden), textures, meshes and
+// instances; returns the placement, for place_again.
+GltfPlacement append(Scene& scene, const Loaded& file, std::optional<uint32_t> material_override,
+                     const glm::mat4& transform) {
   const auto mesh_base = uint32_t(scene.meshes.size());
   const auto material_base = uint32_t(scene.materials.size());
   if (!material_override) {
@@ -1165,9 +1168,11 @@ void append(Scene& scene, const Loaded& file, std::optional<uint32_t> material_o
     for (uint32_t& material : scene.meshes.back().materials)
       material = material_override ? *material_override : material_base + material;
   }
-  const glm::dmat4 t(transform);
-  for (const Instance& i : file.instances)
-    scene.instances.push_back({mesh_base + i.mesh, glm::mat4(t * glm::dmat4(i.transform))});
+  GltfPlacement placement;
+  placement.mesh_base = mesh_base;
+  for (const Instance& i : file.instances) placement.nodes.emplace_back(i.mesh, glm::dmat4(i.transform));
+  place_again(scene, placement, transform);
+  return placement;
 }
 
 // ---------------------------------------------------------------------------
@@ -1235,17 +1240,14 @@ GltfPlacement append_gltf(Scene& scene, const std::string& path, std::optional<u
     throw InputError(path + ": material " + std::to_string(*material_override) + " out of range (" +
                      plural(scene.materials.size(), "material") + ")");
   const Loaded file = read_gltf(read_file(path), path, opts.scene, !material_override);
-  GltfPlacement placement;
-  placement.mesh_base = uint32_t(scene.meshes.size());
-  for (const Instance& i : file.instances) placement.nodes.emplace_back(i.mesh, glm::dmat4(i.transform));
-  append(scene, file, material_override, transform);
+  const GltfPlacement placement = append(scene, file, material_override, transform);
   emit_warnings(opts, file.warnings);
   return placement;
 }
 
 void place_again(Scene& scene, const GltfPlacement& placement, const glm::mat4& transform) {
-  // The same arithmetic as append(): a file placed twice this way gives the
-  // instances of loading it twice.
+  // append() places a file's instances through here too, so a file placed
+  // again gives the instances of loading it again.
   const glm::dmat4 t(transform);
   for (const auto& [mesh, node] : placement.nodes)
     scene.instances.push_back({placement.mesh_base + mesh, glm::mat4(t * node)});

@@ -65,6 +65,20 @@ void expect_near(glm::vec3 got, glm::dvec3 want, float tol, const std::string& w
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], tol) << what << ", channel " << c;
 }
 
+// Renders the unit quad of `s` (framed 1 x 1) in every precision and checks
+// the colour seen near each corner: top left, top right, bottom left,
+// bottom right.
+void expect_corners(const Scene& s, const glm::dvec3 (&want)[4]) {
+  for (Precision p : kPrecisions) {
+    const RenderResult r = render_framed(s, 1, 1, p);
+    const std::string name = precision_name(p);
+    expect_near(at(r, 0.1f, 0.9f), want[0], tolerance(p), name + " top left");
+    expect_near(at(r, 0.9f, 0.9f), want[1], tolerance(p), name + " top right");
+    expect_near(at(r, 0.1f, 0.1f), want[2], tolerance(p), name + " bottom left");
+    expect_near(at(r, 0.9f, 0.1f), want[3], tolerance(p), name + " bottom right");
+  }
+}
+
 Scene uniform_sky() {
   Scene s;
   s.sky.type = SkyType::Uniform;
@@ -108,14 +122,7 @@ TEST_F(TextureTest, UvOriginIsTheImagesTopLeft) {
   Scene s = as_lambertian(load_gltf_scene(path));
   s.sky = uniform_sky().sky;
   frame(s, 1, 1);
-  for (Precision p : kPrecisions) {
-    const RenderResult r = render_framed(s, 1, 1, p);
-    const std::string name = precision_name(p);
-    expect_near(at(r, 0.1f, 0.9f), {1, 0, 0}, tolerance(p), name + " top left");
-    expect_near(at(r, 0.9f, 0.9f), {0, 1, 0}, tolerance(p), name + " top right");
-    expect_near(at(r, 0.1f, 0.1f), {0, 0, 1}, tolerance(p), name + " bottom left");
-    expect_near(at(r, 0.9f, 0.1f), {1, 1, 1}, tolerance(p), name + " bottom right");
-  }
+  expect_corners(s, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}});
 }
 
 // KHR_texture_transform on the same quad and image: offset (1, -1), rotation
@@ -141,14 +148,7 @@ TEST_F(TextureTest, TextureTransformOffsetsRotatesAndScalesTheUvs) {
   EXPECT_TRUE(warnings.empty()) << warnings.front();
   s.sky = uniform_sky().sky;
   frame(s, 1, 1);
-  for (Precision p : kPrecisions) {
-    const RenderResult r = render_framed(s, 1, 1, p);
-    const std::string name = precision_name(p);
-    expect_near(at(r, 0.1f, 0.9f), {0, 1, 0}, tolerance(p), name + " top left");
-    expect_near(at(r, 0.9f, 0.9f), {1, 1, 1}, tolerance(p), name + " top right");
-    expect_near(at(r, 0.1f, 0.1f), {1, 0, 0}, tolerance(p), name + " bottom left");
-    expect_near(at(r, 0.9f, 0.1f), {0, 0, 1}, tolerance(p), name + " bottom right");
-  }
+  expect_corners(s, {{0, 1, 0}, {1, 1, 1}, {1, 0, 0}, {0, 0, 1}});
 }
 
 // A normal map tilts the shading normal. The quad (facing +z, u along +x, v
