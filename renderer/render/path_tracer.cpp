@@ -328,10 +328,19 @@ uint64_t PathTracer::nonfinite_samples() {
 }
 
 RenderResult PathTracer::read_result() {
+  auto start = Clock::now();
+  const Accumulation acc = read_accumulation();
+  const double download_ms = ms_since(start);
+  RenderResult r = read_result(acc);
+  state_->timings.readback_ms = r.timings.readback_ms += download_ms;
+  return r;
+}
+
+RenderResult PathTracer::read_result(const Accumulation& acc) {
   State& s = *state_;
   auto start = Clock::now();
   RenderResult r;
-  resolve_accumulation(read_accumulation(), r);
+  resolve_accumulation(acc, r);
   r.nonfinite_samples = nonfinite_samples();
   s.timings.readback_ms = ms_since(start);
   r.timings = s.timings;
@@ -396,8 +405,13 @@ RenderResult render(const VulkanContext& ctx, const Scene& scene, const RenderSe
       throw_vk_error(VK_ERROR_DEVICE_LOST, "vkQueueSubmit");
   }
   double wall_ms = ms_since(start);
-  if (control.checkpoint) control.checkpoint(tracer.read_accumulation(), done, tracer.scene_hash());  // the final state
-  RenderResult r = tracer.read_result();
+  // Read back once: the final checkpoint and the result share it.
+  auto readback_start = Clock::now();
+  const Accumulation acc = tracer.read_accumulation();
+  const double download_ms = ms_since(readback_start);
+  if (control.checkpoint) control.checkpoint(acc, done, tracer.scene_hash());  // the final state
+  RenderResult r = tracer.read_result(acc);
+  r.timings.readback_ms += download_ms;
   r.timings.render_device_ms = device_ms;
   r.timings.render_wall_ms = wall_ms;
   r.samples = done;

@@ -99,6 +99,8 @@ class PathTracer {
   // resize and reconfigure).
   const RenderSettings& settings() const;
   RenderResult read_result();
+  // The same from an accumulation already read back (read_accumulation).
+  RenderResult read_result(const Accumulation& acc);
   // NaN/Inf samples rejected since the last reset.
   uint64_t nonfinite_samples();
   // The raw accumulation buffers, and a state to continue from (a
