@@ -195,7 +195,9 @@ TEST(ImageIo, UnknownExtensionIsAnInputError) {
   std::string expected = path + ": unknown image format \".jpg\" (expected .png, .pfm or .exr)";
   EXPECT_EQ(message_of<InputError>([&] { check_image_path(path); }), expected);
   EXPECT_EQ(message_of<InputError>([&] { write_image(ramp(4, 4), path); }), expected);
-  EXPECT_EQ(message_of<InputError>([&] { read_image(path); }), expected);
+  // Reading also knows Radiance .hdr (environment maps), which is never written.
+  EXPECT_EQ(message_of<InputError>([&] { read_image(path); }),
+            path + ": unknown image format \".jpg\" (expected .png, .pfm, .exr or .hdr)");
   EXPECT_TRUE(files_in(fs::path(path).parent_path()).empty());
 }
 
