@@ -59,7 +59,7 @@ glm::vec3 envmap_direction(glm::vec2 uv, float rotate_degrees) {
 glm::vec2 envmap_uv(glm::vec3 dir, float rotate_degrees) {
   float u = std::atan2(-dir.x, dir.z) / (2.0f * kPi) + rotate_degrees / 360.0f;
   u -= std::floor(u);
-  return {u, std::acos(std::clamp(dir.y, -1.0f, 1.0f)) / kPi};
+  return {u, std::atan2(std::sqrt(dir.x * dir.x + dir.z * dir.z), dir.y) / kPi};
 }
 
 glm::uvec2 envmap_texel(glm::vec2 uv, uint32_t width, uint32_t height) {

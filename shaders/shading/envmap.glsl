@@ -23,9 +23,13 @@ vec3 envmap_direction(vec2 uv) {
   return vec3(-sin_theta * sin(phi), cos(theta), sin_theta * cos(phi));
 }
 
+// theta by atan(sin, cos), not acos(y): lavapipe's acos is off by up to
+// 1.6e-4 rad (measured by tests/render/envmap_render_test.cpp), which moves a
+// direction into the neighbouring row of a 2k map one time in ten; atan's
+// error is below 3e-6 rad, and it keeps its precision near the poles.
 vec2 envmap_uv(vec3 dir) {
   float u = atan(-dir.x, dir.z) / (2.0 * ENVMAP_PI) + scene.sky_b.x;
-  return vec2(u - floor(u), acos(clamp(dir.y, -1.0, 1.0)) / ENVMAP_PI);
+  return vec2(u - floor(u), atan(length(dir.xz), dir.y) / ENVMAP_PI);
 }
 
 // The texel map coordinate uv falls in (clamped to the image).
