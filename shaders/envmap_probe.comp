@@ -4,7 +4,9 @@
 // the shared RNG (shared/rng.h, seed 11, pixel i) and writes
 //   out[3i]     = (dir, pdf) from envmap_sample,
 //   out[3i + 1] = (envmap_pdf(dir), 1 if envmap_sample found a sample, envmap_uv(dir)),
-//   out[3i + 2] = (envmap_radiance(dir), 0).
+//   out[3i + 2] = (envmap_radiance(dir), 0);
+// invocation 0 also writes, for the poles (0, 1, 0) and (0, -1, 0),
+//   out[3n + j] = (envmap_radiance(pole), envmap_pdf(pole)), n invocations.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -32,4 +34,9 @@ void main() {
   probe_out[3u * i] = vec4(dir, pdf);
   probe_out[3u * i + 1u] = vec4(envmap_pdf(dir), ok ? 1.0 : 0.0, envmap_uv(dir));
   probe_out[3u * i + 2u] = vec4(envmap_radiance(dir), 0.0);
+  if (i == 0u) {
+    uint n = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+    probe_out[3u * n] = vec4(envmap_radiance(vec3(0.0, 1.0, 0.0)), envmap_pdf(vec3(0.0, 1.0, 0.0)));
+    probe_out[3u * n + 1u] = vec4(envmap_radiance(vec3(0.0, -1.0, 0.0)), envmap_pdf(vec3(0.0, -1.0, 0.0)));
+  }
 }

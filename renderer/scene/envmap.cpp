@@ -57,7 +57,9 @@ glm::vec3 envmap_direction(glm::vec2 uv, float rotate_degrees) {
 }
 
 glm::vec2 envmap_uv(glm::vec3 dir, float rotate_degrees) {
-  float u = std::atan2(-dir.x, dir.z) / (2.0f * kPi) + rotate_degrees / 360.0f;
+  // At the poles (x = z = 0) u is 0, as in the shader (GLSL's atan(0, 0) is undefined).
+  const bool pole = dir.x == 0.0f && dir.z == 0.0f;
+  float u = (pole ? 0.0f : std::atan2(-dir.x, dir.z) / (2.0f * kPi)) + rotate_degrees / 360.0f;
   u -= std::floor(u);
   return {u, std::atan2(std::sqrt(dir.x * dir.x + dir.z * dir.z), dir.y) / kPi};
 }

@@ -27,8 +27,10 @@ vec3 envmap_direction(vec2 uv) {
 // 1.6e-4 rad (measured by tests/render/envmap_render_test.cpp), which moves a
 // direction into the neighbouring row of a 2k map one time in ten; atan's
 // error is below 3e-6 rad, and it keeps its precision near the poles.
+// At the poles (x = z = 0) atan(0, 0) is undefined in GLSL: u is 0 there.
 vec2 envmap_uv(vec3 dir) {
-  float u = atan(-dir.x, dir.z) / (2.0 * ENVMAP_PI) + scene.sky_b.x;
+  bool pole = dir.x == 0.0 && dir.z == 0.0;
+  float u = (pole ? 0.0 : atan(-dir.x, dir.z) / (2.0 * ENVMAP_PI)) + scene.sky_b.x;
   return vec2(u - floor(u), atan(length(dir.xz), dir.y) / ENVMAP_PI);
 }
 

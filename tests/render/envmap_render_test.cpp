@@ -53,7 +53,8 @@ RenderSettings small(int w, int h, uint32_t spp, uint32_t depth = 50) {
 // not libm's, a few ulp); so do the map coordinates of the device's
 // direction, to 1e-5. envmap_pdf and the radiance of the device's
 // direction are compared away from texel edges (1e-3 texel), where such an
-// ulp can pick the neighbour.
+// ulp can pick the neighbour. The poles, where the azimuth is undefined,
+// read a defined texel and have density 0.
 TEST_F(EnvmapRenderTest, ShaderSamplingAgreesWithTheHost) {
   VulkanContext& ctx = test::shared_context();
   Scene scene;
@@ -68,7 +69,7 @@ TEST_F(EnvmapRenderTest, ShaderSamplingAgreesWithTheHost) {
   upload_scene(g, ctx, scene, Accel::Brute, {});
   constexpr uint32_t kN = 4096;
   Buffer out;
-  create_buffer(out, ctx, kN * 3 * sizeof(glm::vec4), false, "probe output");
+  create_buffer(out, ctx, (kN * 3 + 2) * sizeof(glm::vec4), false, "probe output");
   ComputePipeline p;
   create_compute_pipeline(p, ctx, envmap_probe_spv, sizeof(envmap_probe_spv), 5, 0);
   bind_buffers(p, {{0, &g.params}, {1, &g.envmap_texels}, {2, &g.envmap_marginal}, {3, &g.envmap_conditional}, {4, &out}});
@@ -78,7 +79,7 @@ TEST_F(EnvmapRenderTest, ShaderSamplingAgreesWithTheHost) {
     vkCmdDispatch(cmd, kN / 64, 1, 1);
     compute_barrier(cmd);
   });
-  std::vector<glm::vec4> gpu(kN * 3);
+  std::vector<glm::vec4> gpu(kN * 3 + 2);
   download_buffer(ctx, out, gpu.data(), gpu.size() * sizeof(glm::vec4));
 
   const Sky& sky = scene.sky;
@@ -117,6 +118,16 @@ TEST_F(EnvmapRenderTest, ShaderSamplingAgreesWithTheHost) {
       EXPECT_EQ(gpu[3 * i + 2][k], sky.strength * sky.image.rgb[3 * (t.y * 48 + t.x) + k]) << "draw " << i;
   }
   EXPECT_EQ(sampled, int(kN));
+  // The poles: u is 0 there (atan(0, 0) is undefined), the radiance that of
+  // the top or bottom row's texel at u = rotate / 360, the pdf 0 (sin theta = 0).
+  const uint32_t pole_x = uint32_t(sky.rotate / 360.0f * 48.0f);
+  for (int j = 0; j < 2; ++j) {
+    const glm::vec4 pole = gpu[3 * kN + j];
+    const uint32_t row = j == 0 ? 0 : 23;
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(pole[k], sky.strength * sky.image.rgb[3 * (row * 48 + pole_x) + k]) << "pole " << j;
+    EXPECT_EQ(pole.w, 0.0f) << "pole " << j;
+  }
   EXPECT_GT(away_from_edges, int(kN * 95 / 100));
 }
 
@@ -205,6 +216,36 @@ TEST_F(EnvmapRenderTest, CameraRaysSeeTheHostsPrediction) {
         }
     }
   EXPECT_LE(differing, kW * kH / 100);
+}
+
+// A map whose texels do not fit one storage buffer is an input error naming
+// the file and the sizes, raised before anything is rendered (the CLI prints
+// it as one line and exits 2). lavapipe allows 128 MiB: 4800 x 2400 texels of
+// 12 bytes are 132 MiB. Devices with a larger limit would need a map of
+// gigabytes: skipped there.
+TEST_F(EnvmapRenderTest, AMapLargerThanAStorageBufferIsAnInputError) {
+  VulkanContext& ctx = test::shared_context();
+  if (ctx.limits.maxStorageBufferRange > (256u << 20)) GTEST_SKIP() << "the device allows more than 256 MiB per buffer";
+  const uint32_t w = 4800, h = 2400;
+  ASSERT_GT(uint64_t(w) * h * 12, ctx.limits.maxStorageBufferRange);
+  Scene s;
+  s.sky = test::envmap_sky(EnvmapImage{w, h, std::vector<float>(size_t(w) * h * 3, 0.5f)});
+  GpuScene g;
+  EXPECT_EQ(test::input_error([&] { upload_scene(g, ctx, s, Accel::Brute, {}); }),
+            "test.exr: the environment map's 4800x2400 texels need 132 MiB, the device allows 128 MiB per buffer");
+}
+
+// The fp16 variants carry the sky's radiance in half: a map whose strength x
+// brightest texel exceeds 65504 is refused for them, by name; fp32 takes it.
+TEST(Envmap, Fp16RefusesAMapBeyondHalf) {
+  Scene s;
+  s.sky = test::envmap_sky(test::test_envmap(8, 4, 40000.0f), 2.0f);
+  EXPECT_EQ(test::input_error([&] { check_precision(s, Precision::FP16); }),
+            "precision fp16: sky: test.exr: strength x brightest texel = 80000 is above 65504 and does not fit half "
+            "(use --precision fp32)");
+  EXPECT_NO_THROW(check_precision(s, Precision::FP32));
+  s.sky.strength = 1.0f;
+  EXPECT_NO_THROW(check_precision(s, Precision::FP16All));
 }
 
 }  // namespace

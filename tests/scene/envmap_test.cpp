@@ -251,6 +251,7 @@ TEST(Envmap, PoleTexelsGiveFiniteDensities) {
   EXPECT_FALSE(envmap_sample(map, t, 0.0f, {0.5f, 0.0f}, dir, pdf));
   EXPECT_EQ(pdf, 0.0f);
   EXPECT_EQ(envmap_pdf(map, t, 0.0f, {0, 1, 0}), 0.0f);
+  EXPECT_EQ(envmap_uv({0, 1, 0}, 90.0f), glm::vec2(0.25f, 0.0f));  // u = rotate / 360 at a pole
   EXPECT_EQ(envmap_pdf(map, t, 0.0f, {0, -1, 0}), 0.0f);
 }
 
