@@ -272,6 +272,22 @@ void check_exr_tables(const EXRHeader& header, size_t size, const Invalid& inval
                   std::to_string(size) + " bytes");
 }
 
+// The name of the compression an EXR header declares (OpenEXR file layout:
+// attribute "compression", type "compression", size 4, one byte: 0 none ...
+// 9 DWAB), or "" if the bytes hold no such attribute. For the message when
+// tinyexr refuses a method (Blender's HDRIs are DWAB).
+std::string exr_compression_name(const Bytes& bytes) {
+  static constexpr char kAttribute[] = "compression\0compression\0\x01\0\0\0";
+  constexpr size_t kLength = sizeof kAttribute - 1;
+  static constexpr const char* kNames[] = {"none", "RLE", "ZIPS", "ZIP", "PIZ", "PXR24", "B44", "B44A", "DWAA", "DWAB"};
+  const auto* begin = reinterpret_cast<const char*>(bytes.data());
+  const std::string_view text(begin, bytes.size());
+  const size_t at = text.find(std::string_view(kAttribute, kLength));
+  if (at == std::string_view::npos || at + kLength >= text.size()) return "";
+  const unsigned value = static_cast<unsigned char>(text[at + kLength]);
+  return value < std::size(kNames) ? kNames[value] : "number " + std::to_string(value);
+}
+
 // Read in tinyexr's steps (version, header, image) rather than with its
 // LoadEXRFromMemory, which does the same but does not free the header when a
 // step fails (tinyexr 1.0.1: a leak found by tests/fuzz/fuzz_image.cpp): here
@@ -296,8 +312,13 @@ Image decode_exr(const std::string& path, const Bytes& bytes) {
   if (int ret = ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size()); ret != TINYEXR_SUCCESS)
     throw invalid("Failed to parse EXR version. code(" + std::to_string(ret) + ")");
   const char* err = nullptr;
-  if (ParseEXRHeaderFromMemory(&exr.header, &version, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS)
-    throw invalid(take_exr_error(err));
+  if (ParseEXRHeaderFromMemory(&exr.header, &version, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS) {
+    const std::string why = take_exr_error(err);
+    if (const std::string method = exr_compression_name(bytes); !method.empty() && why.find("compression") != std::string::npos)
+      throw invalid("compression " + method + " is not supported (tinyexr reads none, RLE, ZIPS, ZIP and PIZ): re-save it "
+                    "with ZIP or PIZ, e.g. exrmaketiled -z zip IN.exr OUT.exr (Debian: openexr)");
+    throw invalid(why);
+  }
   check_exr_tables(exr.header, bytes.size(), invalid);
   for (int c = 0; c < exr.header.num_channels; ++c)
     if (exr.header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF)

@@ -307,10 +307,10 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
     p.sky_b = glm::vec3(sky.rotate / 360.0f, 0.0f, 0.0f);
     p.envmap_width = sky.image.width;
     p.envmap_height = sky.image.height;
-    const std::string what = sky.file + ": the environment map's " + std::to_string(sky.image.width) + "x" +
-                             std::to_string(sky.image.height) + " texels";
-    check_fits(ctx, sky.image.rgb.size() * sizeof(float), what);
-    check_fits(ctx, uint64_t(sky.image.height) * (sky.image.width + 1) * sizeof(float), what + "' sampling table");
+    const std::string size = std::to_string(sky.image.width) + "x" + std::to_string(sky.image.height);
+    check_fits(ctx, sky.image.rgb.size() * sizeof(float), sky.file + ": the environment map's " + size + " texels");
+    check_fits(ctx, uint64_t(sky.image.height) * (sky.image.width + 1) * sizeof(float),
+               sky.file + ": the sampling table of the " + size + " environment map");
     envmap_tables = build_envmap_tables(sky.image);
   }
   const std::vector<float>& envmap_texels = sky.image.rgb;

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "core/errors.h"
+#include "core/text.h"
 #include "io/image.h"
 
 namespace octrace {
@@ -73,17 +74,30 @@ float envmap_luminance(const float* rgb) { return 0.2126f * rgb[0] + 0.7152f * r
 
 EnvmapImage load_envmap(const std::string& path) {
   const Image image = read_image(path);
+  // The first bad texel names the problem; for negative ones (lossy
+  // compression rings below 0: every HDRI in Debian's blender-data has some)
+  // also how many there are and how far below 0 they go.
+  size_t first = image.rgb.size(), negative = 0;
+  float least = 0.0f;
   for (size_t i = 0; i < image.rgb.size(); ++i) {
     const float c = image.rgb[i];
-    if (!(std::isfinite(c) && c >= 0.0f)) {
-      const size_t texel = i / 3;
-      throw InputError(path + ": texel (" + std::to_string(texel % size_t(image.width)) + ", " +
-                       std::to_string(texel / size_t(image.width)) + ") is " +
-                       (std::isnan(c) ? "NaN" : std::isinf(c) ? "infinite" : "negative") +
-                       " (an environment map needs finite radiance >= 0)");
-    }
+    if (std::isfinite(c) && c >= 0.0f) continue;
+    if (first == image.rgb.size()) first = i;
+    if (!std::isfinite(c)) break;
+    ++negative;
+    least = std::min(least, c);
   }
-  return {uint32_t(image.width), uint32_t(image.height), image.rgb};
+  if (first == image.rgb.size()) return {uint32_t(image.width), uint32_t(image.height), image.rgb};
+  const size_t texel = first / 3;
+  const std::string where = "(" + std::to_string(texel % size_t(image.width)) + ", " +
+                            std::to_string(texel / size_t(image.width)) + ")";
+  const float c = image.rgb[first];
+  if (!std::isfinite(c))
+    throw InputError(path + ": texel " + where + " is " + (std::isnan(c) ? "NaN" : "infinite") +
+                     " (an environment map needs finite radiance >= 0)");
+  throw InputError(path + ": " + std::to_string(negative) + " texel channel" + (negative == 1 ? " is" : "s are") +
+                   " negative, the first at texel " + where + ", the lowest " + float_string(least) +
+                   " (an environment map needs finite radiance >= 0)");
 }
 
 EnvmapTables build_envmap_tables(const EnvmapImage& image) {

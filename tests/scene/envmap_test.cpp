@@ -281,14 +281,20 @@ TEST(Envmap, LoadsExrAndHdr) {
 TEST(Envmap, BadFilesAreOneLineErrorsNamingTheFile) {
   const std::string folder = fresh_folder();
   EXPECT_EQ(test::input_error([&] { load_envmap(folder + "/missing.exr"); }).rfind(folder + "/missing.exr: ", 0), 0u);
-  for (auto [value, what] : {std::pair{std::nanf(""), "NaN"}, std::pair{-1.0f, "negative"},
-                             std::pair{INFINITY, "infinite"}}) {
+  for (auto [value, what] : {std::pair{std::nanf(""), "NaN"}, std::pair{INFINITY, "infinite"}}) {
     EnvmapImage m = one_texel(4, 2, 1, 1, 1.0f);
     m.rgb[3 * 6 + 1] = value;  // texel (2, 1), green
     write_image(to_image(m), folder + "/bad.exr");
     EXPECT_EQ(test::input_error([&] { load_envmap(folder + "/bad.exr"); }),
               folder + "/bad.exr: texel (2, 1) is " + what + " (an environment map needs finite radiance >= 0)");
   }
+  EnvmapImage m = one_texel(4, 2, 1, 1, 1.0f);
+  m.rgb[3 * 6 + 1] = -0.25f;  // texel (2, 1), green
+  m.rgb[3 * 7 + 2] = -0.5f;   // texel (3, 1), blue
+  write_image(to_image(m), folder + "/bad.exr");
+  EXPECT_EQ(test::input_error([&] { load_envmap(folder + "/bad.exr"); }),
+            folder + "/bad.exr: 2 texel channels are negative, the first at texel (2, 1), the lowest -0.5 (an "
+                     "environment map needs finite radiance >= 0)");
   // A truncated EXR and truncated or malformed .hdr files.
   write_image(to_image(test_map()), folder + "/whole.exr");
   std::string bytes;
