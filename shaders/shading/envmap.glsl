@@ -24,9 +24,10 @@ vec3 envmap_direction(vec2 uv) {
 }
 
 // theta by atan(sin, cos), not acos(y): lavapipe's acos is off by up to
-// 1.6e-4 rad (measured by tests/render/envmap_render_test.cpp), which moves a
-// direction into the neighbouring row of a 2k map one time in ten; atan's
-// error is below 3e-6 rad, and it keeps its precision near the poles.
+// 1.6e-4 rad (measured by tests/render/envmap_render_test.cpp), a tenth of a
+// row of a 2k map (1.5e-3 rad): directions that near a row's edge would read
+// the neighbouring row; atan's error is below 3e-6 rad, and it keeps its
+// precision near the poles.
 // At the poles (x = z = 0) atan(0, 0) is undefined in GLSL: u is 0 there.
 vec2 envmap_uv(vec3 dir) {
   bool pole = dir.x == 0.0 && dir.z == 0.0;
@@ -86,7 +87,9 @@ uint envmap_find_interval(bool row, uint first, uint n, float u) {
 // Maps two uniform numbers in [0, 1) to a direction, by the marginal CDF
 // (a row) and the row's conditional CDF (a texel), continuous within the
 // texel; pdf is its density in solid angle (envmap_pdf's). false, with pdf
-// 0, when the map cannot be sampled (black: no sample, no NaN).
+// 0, when the map cannot be sampled (black: no sample, no NaN). The light
+// the direction brings is envmap_radiance(dir): the same texel, but for a
+// direction within rounding (~1e-6) of the texel's edge.
 bool envmap_sample(vec2 u, out vec3 dir, out float pdf) {
   uint w = scene.envmap_width, h = scene.envmap_height;
   dir = vec3(0.0, 1.0, 0.0);
