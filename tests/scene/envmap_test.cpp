@@ -98,7 +98,7 @@ TEST(Envmap, UvIsTheInverseOfDirection) {
 // The density integrates to 1 over the sphere: the midpoint rule in
 // (theta, phi) with the solid-angle measure d omega = sin theta d theta d phi,
 // which does not go through the (u, v) parametrisation that the functions
-// use. 2048 x 2048 cells, 128 rows of cells per texel row: the integrand
+// use. 1024 x 1024 cells, 64 rows of cells per texel row: the integrand
 // pdf x sin theta is constant within a texel (sin theta cancels), so the
 // result is 1 to float rounding (bound 1e-4); a wrong Jacobian, a wrong scale
 // or texels read from the wrong place are off by percents.
@@ -118,10 +118,10 @@ double integral_over_sphere(const EnvmapImage& map, const EnvmapTables& t, float
 }
 
 TEST(Envmap, PdfIntegratesToOneOverTheSphere) {
-  for (float rotate : {0.0f, 45.0f, 100.0f}) {
+  for (float rotate : {0.0f, 100.0f}) {
     const EnvmapImage map = test_map();
     const EnvmapTables t = build_envmap_tables(map);
-    EXPECT_NEAR(integral_over_sphere(map, t, rotate, 0.0, kPi, 0.0, 2.0 * kPi, 2048), 1.0, 1e-4) << "rotate " << rotate;
+    EXPECT_NEAR(integral_over_sphere(map, t, rotate, 0.0, kPi, 0.0, 2.0 * kPi, 1024), 1.0, 1e-4) << "rotate " << rotate;
   }
 }
 
