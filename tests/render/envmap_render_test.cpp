@@ -182,6 +182,73 @@ TEST_F(EnvmapRenderTest, UpIsUpForDiffuseLight) {
   EXPECT_LT(bottom, 0.1);
 }
 
+// Light from the map, against physics: a lambertian sphere (albedo 0.5)
+// under test::test_envmap (turned by 30 degrees), at depth 2 (a path hits
+// the convex sphere once and escapes), reflects albedo / pi x the irradiance
+// E(n) = integral of L(w) max(0, n.w) dw. The host integrates E over the map
+// (8 x 8 points per texel, dw = sin theta dtheta dphi) at 4 x 4 points of
+// each pixel wholly on the sphere (the camera's jitter is uniform over the
+// pixel); the image mean over those pixels must match within 5 standard
+// errors of the render's mean (from its per-pixel variances) plus 2e-3 of
+// the value for the quadrature. A mirrored or misplaced lookup of bounced
+// rays, or a wrong strength, is off by percents (the map is brighter and
+// bluer above, with a ripple in u).
+TEST_F(EnvmapRenderTest, DiffuseSphereReflectsTheMapsIrradiance) {
+  const Sky sky = test::envmap_sky(test::test_envmap(16, 8), 1.5f, 30.0f);
+  Scene s = sky_only(sky, {0, 0, 0}, 14.0f);
+  s.camera.lookfrom = {2, 3, 9};
+  s.materials = {test::lambertian(0.5f)};
+  s.spheres = {{{0, 0, 0}, 1, 0}};
+  constexpr int kSize = 32, kSub = 4, kTexelSub = 8;
+  const RenderResult r = render(test::shared_context(), s, small(kSize, kSize, 256, 2));
+  // The map as directions with radiance x solid angle.
+  std::vector<std::pair<glm::dvec3, glm::dvec3>> light;
+  for (int y = 0; y < 8 * kTexelSub; ++y)
+    for (int x = 0; x < 16 * kTexelSub; ++x) {
+      const glm::vec2 uv((x + 0.5f) / (16 * kTexelSub), (y + 0.5f) / (8 * kTexelSub));
+      const glm::dvec3 w(envmap_direction(uv, sky.rotate));
+      const double dw = (2.0 * kPi / (16 * kTexelSub)) * (kPi / (8 * kTexelSub)) * std::sin(kPi * uv.y);
+      const glm::uvec2 t = envmap_texel(uv, 16, 8);
+      light.push_back({w, dw * double(sky.strength) * glm::dvec3(glm::make_vec3(&sky.image.rgb[3 * (t.y * 16 + t.x)]))});
+    }
+  const CameraFrame frame = camera_frame(s.camera, kSize, kSize);
+  const glm::dvec3 o(s.camera.lookfrom);
+  auto normal_at = [&](double x, double y, glm::dvec3& n) {
+    const glm::dvec3 d = glm::normalize(frame.dir(x, y));
+    const double t = test::ray_sphere(o, d, glm::dvec3(0.0), 1.0);
+    if (!std::isfinite(t)) return false;
+    n = glm::normalize(o + t * d);
+    return true;
+  };
+  glm::dvec3 expected(0.0), measured(0.0), variance(0.0);
+  int pixels = 0;
+  for (int py = 0; py < kSize; ++py)
+    for (int px = 0; px < kSize; ++px) {
+      glm::dvec3 n;
+      bool inside = true;
+      for (int corner = 0; corner < 4; ++corner) inside &= normal_at(px + (corner & 1), py + (corner >> 1), n);
+      if (!inside) continue;
+      ++pixels;
+      for (int j = 0; j < kSub; ++j)
+        for (int i = 0; i < kSub; ++i) {
+          normal_at(px + (i + 0.5) / kSub, py + (j + 0.5) / kSub, n);
+          glm::dvec3 e(0.0);
+          for (const auto& [w, l] : light) e += l * std::max(0.0, glm::dot(n, w));
+          expected += 0.5 / kPi * e / double(kSub * kSub);
+        }
+      for (int c = 0; c < 3; ++c) {
+        measured[c] += r.mean.pixel(px, py)[c];
+        variance[c] += r.variance_of_mean.pixel(px, py)[c];
+      }
+    }
+  ASSERT_GT(pixels, 300);
+  for (int c = 0; c < 3; ++c) {
+    const double e = expected[c] / pixels, m = measured[c] / pixels, sigma = std::sqrt(variance[c]) / pixels;
+    EXPECT_LE(std::abs(m - e), 5.0 * sigma + 2e-3 * e) << "channel " << c << ": measured " << m << ", expected " << e
+                                                       << ", sigma " << sigma;
+  }
+}
+
 // Camera rays see exactly the host's prediction: the shader's camera jitter
 // is replayed on the host (shared/rng.h, render/camera.h), each ray's
 // direction looked up in the map by the host's convention (scene/envmap.h),
