@@ -36,8 +36,8 @@ void main() {
   scene.instance_count = 12;
   scene.triangle_uvs = 13;
   scene.pad0 = 14;
-  scene.pad1 = 15;
-  scene.pad2 = 16;
+  scene.envmap_width = 15;
+  scene.envmap_height = 16;
 
   pass.cam_origin = vec3(1, 2, 3);
   pass.lens_radius = 4;

@@ -33,6 +33,9 @@ layout(std430, binding = BINDING_TEXTURES) readonly buffer TextureBuf { GpuTextu
 layout(std430, binding = BINDING_TEXELS) readonly buffer TexelBuf { uint texels[]; };
 layout(std430, binding = BINDING_TRIANGLE_UVS) readonly buffer TriangleUvBuf { GpuTriangleUvs triangle_uvs[]; };
 layout(std430, binding = BINDING_TEXTURE_TRANSFORMS) readonly buffer TextureTransformBuf { GpuUvTransform texture_transforms[]; };
+layout(std430, binding = BINDING_ENVMAP_TEXELS) readonly buffer EnvmapTexelBuf { float envmap_texels[]; };
+layout(std430, binding = BINDING_ENVMAP_MARGINAL) readonly buffer EnvmapMarginalBuf { float envmap_marginal[]; };
+layout(std430, binding = BINDING_ENVMAP_CONDITIONAL) readonly buffer EnvmapConditionalBuf { float envmap_conditional[]; };
 
 layout(push_constant) uniform Push { PassParams pass; };
 

@@ -186,6 +186,37 @@ inline void place(Scene& s, Mesh mesh, const glm::mat4& transform = glm::mat4(1.
 }
 
 // A scene of `spheres` under a uniform sky, camera looking at the origin.
+// An environment map built in code (the tests write no files unless they test
+// loading): w x h texels of a smooth sky, brighter and bluer towards +y with
+// a warm band at the horizon, and, if `sun` > 0, one texel of that value at
+// (3w/8, h/4) (45 degrees up, towards -x and -z).
+inline EnvmapImage test_envmap(uint32_t w, uint32_t h, float sun = 0.0f) {
+  EnvmapImage m{w, h, std::vector<float>(size_t(w) * h * 3)};
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      const float up = 1.0f - (float(y) + 0.5f) / float(h);                 // 1 at +y, 0 at -y
+      const float band = std::exp(-40.0f * (up - 0.5f) * (up - 0.5f));      // the horizon
+      const float ripple = 0.2f * (1.0f + std::sin(6.2831853f * float(x) / float(w)));
+      float* c = &m.rgb[3 * (size_t(y) * w + x)];
+      c[0] = 0.2f + 0.4f * up + 0.8f * band + ripple;
+      c[1] = 0.2f + 0.6f * up + 0.4f * band + ripple;
+      c[2] = 0.3f + 1.2f * up + 0.1f * band;
+    }
+  if (sun > 0.0f)
+    for (int k = 0; k < 3; ++k) m.rgb[3 * (size_t(h / 4) * w + 3 * w / 8) + k] = sun;
+  return m;
+}
+
+inline Sky envmap_sky(EnvmapImage image, float strength = 1.0f, float rotate = 0.0f) {
+  Sky sky;
+  sky.type = SkyType::Envmap;
+  sky.file = "test.exr";
+  sky.strength = strength;
+  sky.rotate = rotate;
+  sky.image = std::move(image);
+  return sky;
+}
+
 inline Scene furnace_scene() {
   Scene s;
   s.sky.type = SkyType::Uniform;

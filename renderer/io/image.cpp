@@ -19,6 +19,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <string_view>
 
 #include "io/file.h"
 #include "core/errors.h"
@@ -27,9 +28,10 @@ namespace octrace {
 
 namespace {
 
-enum class ImageFormat { png, pfm, exr };
+enum class ImageFormat { png, pfm, exr, hdr };
 
-ImageFormat image_format(const std::string& path) {
+// .hdr (Radiance) is read, never written.
+ImageFormat image_format(const std::string& path, bool reading = false) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::string lower = ext;
   std::transform(lower.begin(), lower.end(), lower.begin(),
@@ -37,8 +39,9 @@ ImageFormat image_format(const std::string& path) {
   if (lower == ".png") return ImageFormat::png;
   if (lower == ".pfm") return ImageFormat::pfm;
   if (lower == ".exr") return ImageFormat::exr;
-  throw InputError(path + ": unknown image format \"" + ext +
-                   "\" (expected .png, .pfm or .exr)");
+  if (lower == ".hdr" && reading) return ImageFormat::hdr;
+  const char* expected = reading ? ".png, .pfm, .exr or .hdr" : ".png, .pfm or .exr";
+  throw InputError(path + ": unknown image format \"" + ext + "\" (expected " + expected + ")");
 }
 
 // --- Encoding to bytes. Each format is encoded in memory first so that one
@@ -269,6 +272,22 @@ void check_exr_tables(const EXRHeader& header, size_t size, const Invalid& inval
                   std::to_string(size) + " bytes");
 }
 
+// The name of the compression an EXR header declares (OpenEXR file layout:
+// attribute "compression", type "compression", size 4, one byte: 0 none ...
+// 9 DWAB), or "" if the bytes hold no such attribute. For the message when
+// tinyexr refuses a method (Blender's HDRIs are DWAB).
+std::string exr_compression_name(const Bytes& bytes) {
+  static constexpr char kAttribute[] = "compression\0compression\0\x01\0\0\0";
+  constexpr size_t kLength = sizeof kAttribute - 1;
+  static constexpr const char* kNames[] = {"none", "RLE", "ZIPS", "ZIP", "PIZ", "PXR24", "B44", "B44A", "DWAA", "DWAB"};
+  const auto* begin = reinterpret_cast<const char*>(bytes.data());
+  const std::string_view text(begin, bytes.size());
+  const size_t at = text.find(std::string_view(kAttribute, kLength));
+  if (at == std::string_view::npos || at + kLength >= text.size()) return "";
+  const unsigned value = static_cast<unsigned char>(text[at + kLength]);
+  return value < std::size(kNames) ? kNames[value] : "number " + std::to_string(value);
+}
+
 // Read in tinyexr's steps (version, header, image) rather than with its
 // LoadEXRFromMemory, which does the same but does not free the header when a
 // step fails (tinyexr 1.0.1: a leak found by tests/fuzz/fuzz_image.cpp): here
@@ -293,8 +312,13 @@ Image decode_exr(const std::string& path, const Bytes& bytes) {
   if (int ret = ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size()); ret != TINYEXR_SUCCESS)
     throw invalid("Failed to parse EXR version. code(" + std::to_string(ret) + ")");
   const char* err = nullptr;
-  if (ParseEXRHeaderFromMemory(&exr.header, &version, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS)
-    throw invalid(take_exr_error(err));
+  if (ParseEXRHeaderFromMemory(&exr.header, &version, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS) {
+    const std::string why = take_exr_error(err);
+    if (const std::string method = exr_compression_name(bytes); !method.empty() && why.find("compression") != std::string::npos)
+      throw invalid("compression " + method + " is not supported (tinyexr reads none, RLE, ZIPS, ZIP and PIZ): re-save it "
+                    "with ZIP or PIZ, e.g. exrmaketiled -z zip IN.exr OUT.exr (Debian: openexr)");
+    throw invalid(why);
+  }
   check_exr_tables(exr.header, bytes.size(), invalid);
   for (int c = 0; c < exr.header.num_channels; ++c)
     if (exr.header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF)
@@ -339,6 +363,88 @@ Image decode_exr(const std::string& path, const Bytes& bytes) {
   } else {
     copy(exr.image.images, 0, 0, width, height);
   }
+  return image;
+}
+
+// Radiance RGBE (.hdr; Greg Ward, "Real Pixels", Graphics Gems II, 1991, and
+// the Radiance file format notes): a text header ("#?RADIANCE" or "#?RGBE",
+// lines up to an empty one, FORMAT=32-bit_rle_rgbe), the resolution line
+// "-Y height +X width" (rows top to bottom), then scanlines of 4-byte RGBE
+// pixels, flat or in the "new" run-length encoding (2, 2, width as two bytes,
+// then each of the four components in runs). stb_image decodes it, but it
+// reads zeros past the end of the data and trusts the header's size, so the
+// structure is walked here first: every scanline must be complete.
+std::string hdr_structure_error(const Bytes& bytes, int& width, int& height) {
+  const auto* begin = reinterpret_cast<const char*>(bytes.data());
+  const std::string_view text(begin, bytes.size());
+  size_t pos = 0;
+  auto line = [&](std::string_view& out) {
+    const size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) return false;
+    out = text.substr(pos, end - pos);
+    pos = end + 1;
+    return true;
+  };
+  std::string_view l;
+  if (!line(l) || (l != "#?RADIANCE" && l != "#?RGBE")) return "does not start with \"#?RADIANCE\" or \"#?RGBE\"";
+  bool rgbe = false;
+  for (;;) {
+    if (!line(l)) return "header does not end";
+    if (l.empty()) break;
+    rgbe |= l == "FORMAT=32-bit_rle_rgbe";
+  }
+  if (!rgbe) return "no FORMAT=32-bit_rle_rgbe in header";
+  if (!line(l) || l.substr(0, 3) != "-Y ") return "resolution line is not \"-Y height +X width\"";
+  const char* p = l.data() + 3;
+  const char* end = l.data() + l.size();
+  auto [after_h, ec_h] = std::from_chars(p, end, height);
+  if (ec_h != std::errc() || std::string_view(after_h, end - after_h).substr(0, 4) != " +X ")
+    return "resolution line is not \"-Y height +X width\"";
+  auto [after_w, ec_w] = std::from_chars(after_h + 4, end, width);
+  if (ec_w != std::errc() || after_w != end) return "resolution line is not \"-Y height +X width\"";
+  constexpr int kMaxSide = 1 << 24;  // stb_image's STBI_MAX_DIMENSIONS
+  if (width < 1 || height < 1 || width > kMaxSide || height > kMaxSide)
+    return "bad size " + std::to_string(width) + "x" + std::to_string(height);
+  const uint64_t flat = 4 * uint64_t(width) * uint64_t(height);
+  // Flat pixels: stb_image reads scanlines of these widths flat.
+  if (width < 8 || width >= 32768)
+    return bytes.size() - pos >= flat ? "" : "truncated pixel data (expected " + std::to_string(flat) + " bytes)";
+  const unsigned char* d = bytes.data();
+  const size_t size = bytes.size();
+  for (int y = 0; y < height; ++y) {
+    const std::string at = " at scanline " + std::to_string(y);
+    if (size - pos < 4) return "truncated" + at;
+    if (d[pos] != 2 || d[pos + 1] != 2 || (d[pos + 2] & 0x80)) {
+      if (y == 0 && size - pos >= flat) return "";  // a flat file
+      return y == 0 ? "truncated pixel data (expected " + std::to_string(flat) + " bytes)"
+                    : "flat scanline among run-length encoded ones" + at;
+    }
+    if ((d[pos + 2] << 8 | d[pos + 3]) != width) return "scanline length is not the width" + at;
+    pos += 4;
+    for (int c = 0; c < 4; ++c)
+      for (int x = 0; x < width;) {
+        if (pos >= size) return "truncated" + at;
+        const int count = d[pos++];
+        const int n = count > 128 ? count - 128 : count;
+        if (n == 0 || n > width - x) return "bad run length" + at;
+        const size_t data = count > 128 ? 1 : size_t(n);
+        if (size - pos < data) return "truncated" + at;
+        pos += data;
+        x += n;
+      }
+  }
+  return "";
+}
+
+Image decode_hdr(const std::string& path, const Bytes& bytes) {
+  int width = 0, height = 0;
+  if (std::string why = hdr_structure_error(bytes, width, height); !why.empty())
+    throw InputError(path + ": not a valid Radiance HDR file: " + why);
+  int w = 0, h = 0, channels = 0;
+  float* data = stbi_loadf_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels, 3);
+  if (!data) throw InputError(path + ": not a valid Radiance HDR file: " + stbi_failure_reason());
+  Image image{w, h, std::vector<float>(data, data + size_t(w) * h * 3)};
+  stbi_image_free(data);
   return image;
 }
 
@@ -448,15 +554,16 @@ void write_image(const Image& image, const std::string& path) {
 }
 
 Image read_image(const std::string& path) {
-  image_format(path);  // an unknown extension is named before the file is read
+  image_format(path, true);  // an unknown extension is named before the file is read
   return decode_image(read_file(path), path);
 }
 
 Image decode_image(const std::string& file_bytes, const std::string& path) {
-  ImageFormat format = image_format(path);
+  ImageFormat format = image_format(path, true);
   const Bytes bytes(file_bytes.begin(), file_bytes.end());
   return format == ImageFormat::png   ? decode_png(path, bytes)
          : format == ImageFormat::pfm ? decode_pfm(path, bytes)
+         : format == ImageFormat::hdr ? decode_hdr(path, bytes)
                                       : decode_exr(path, bytes);
 }
 

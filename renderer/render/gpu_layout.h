@@ -92,8 +92,8 @@ static_assert(offsetof(SceneParams, vertex_normals) == 40);
 static_assert(offsetof(SceneParams, instance_count) == 44);
 static_assert(offsetof(SceneParams, triangle_uvs) == 48);
 static_assert(offsetof(SceneParams, pad0) == 52);
-static_assert(offsetof(SceneParams, pad1) == 56);
-static_assert(offsetof(SceneParams, pad2) == 60);
+static_assert(offsetof(SceneParams, envmap_width) == 56);
+static_assert(offsetof(SceneParams, envmap_height) == 60);
 
 static_assert(sizeof(GpuInstance) == 64);
 static_assert(offsetof(GpuInstance, to_object1) == 16);
@@ -141,6 +141,7 @@ static_assert(uint32_t(MaterialType::Pbr) == MAT_PBR);
 static_assert(uint32_t(SkyType::Gradient) == SKY_GRADIENT);
 static_assert(uint32_t(SkyType::Uniform) == SKY_UNIFORM);
 static_assert(uint32_t(SkyType::None) == SKY_NONE);
+static_assert(uint32_t(SkyType::Envmap) == SKY_ENVMAP);
 static_assert(uint32_t(Wrap::Repeat) == WRAP_REPEAT);
 static_assert(uint32_t(Wrap::ClampToEdge) == WRAP_CLAMP_TO_EDGE);
 static_assert(uint32_t(Wrap::MirroredRepeat) == WRAP_MIRRORED_REPEAT);

@@ -14,6 +14,7 @@
 #include "core/errors.h"
 #include "core/text.h"
 #include "render/gpu_layout.h"
+#include "scene/envmap.h"
 
 namespace octrace {
 
@@ -299,6 +300,20 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   p.sky_type = uint32_t(sky.type);
   p.sky_a = sky.type == SkyType::Uniform ? sky.radiance : sky.down;
   p.sky_b = sky.up;
+  // The envmap: strength, rotation in turns, and its tables (scene/envmap.h).
+  EnvmapTables envmap_tables;
+  if (sky.type == SkyType::Envmap) {
+    p.sky_a = glm::vec3(sky.strength);
+    p.sky_b = glm::vec3(sky.rotate / 360.0f, 0.0f, 0.0f);
+    p.envmap_width = sky.image.width;
+    p.envmap_height = sky.image.height;
+    const std::string size = std::to_string(sky.image.width) + "x" + std::to_string(sky.image.height);
+    check_fits(ctx, sky.image.rgb.size() * sizeof(float), sky.file + ": the environment map's " + size + " texels");
+    check_fits(ctx, uint64_t(sky.image.height) * (sky.image.width + 1) * sizeof(float),
+               sky.file + ": the sampling table of the " + size + " environment map");
+    envmap_tables = build_envmap_tables(sky.image);
+  }
+  const std::vector<float>& envmap_texels = sky.image.rgb;
   p.sphere_count = uint32_t(scene.spheres.size());
 
   const std::vector<gpu::GpuTriangle> triangles = object_triangles(scene);
@@ -323,6 +338,8 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   Hash64 hash;
   // Scenes without textures keep the hash they had before transforms existed (checkpoints).
   if (!uv_transforms.empty()) hash.add_vector(uv_transforms);
+  // Nor do scenes without an envmap (its tables follow from its texels).
+  if (!envmap_texels.empty()) hash.add_vector(envmap_texels);
   g.content_hash = hash.add(&p, sizeof p)
                       .add_vector(triangles)
                       .add_vector(normals)
@@ -360,6 +377,13 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   create_buffer(g.texture_transforms, ctx, uv_transforms.size() * sizeof(gpu::GpuUvTransform), false,
                 "texture transform buffer");
   upload_buffer(ctx, g.texture_transforms, uv_transforms.data(), uv_transforms.size() * sizeof(gpu::GpuUvTransform));
+  create_buffer(g.envmap_texels, ctx, envmap_texels.size() * sizeof(float), false, "envmap texel buffer");
+  create_buffer(g.envmap_marginal, ctx, envmap_tables.marginal.size() * sizeof(float), false, "envmap table");
+  create_buffer(g.envmap_conditional, ctx, envmap_tables.conditional.size() * sizeof(float), false, "envmap table");
+  upload_buffer(ctx, g.envmap_texels, envmap_texels.data(), envmap_texels.size() * sizeof(float));
+  upload_buffer(ctx, g.envmap_marginal, envmap_tables.marginal.data(), envmap_tables.marginal.size() * sizeof(float));
+  upload_buffer(ctx, g.envmap_conditional, envmap_tables.conditional.data(),
+                envmap_tables.conditional.size() * sizeof(float));
   create_buffer(g.nodes, ctx, 0, false, "octree node buffer");
   create_buffer(g.refs, ctx, 0, false, "octree reference buffer");
   upload_buffer(ctx, g.params, &p, sizeof p);
@@ -456,6 +480,15 @@ void check_precision(const Scene& scene, Precision precision) {
       if (std::max({c.r, c.g, c.b}) > kHalfMax)
         throw SettingError("precision", std::string(" ") + precision_name(precision) + ": materials[" +
                                             std::to_string(i) + "]: " + name + " above 65504 does not fit half");
+  }
+  if (scene.sky.type == SkyType::Envmap) {
+    const std::vector<float>& rgb = scene.sky.image.rgb;
+    const float brightest = rgb.empty() ? 0.0f : *std::max_element(rgb.begin(), rgb.end());
+    if (double(brightest) * scene.sky.strength > kHalfMax)
+      throw SettingError("precision", std::string(" ") + precision_name(precision) + ": sky: " + scene.sky.file +
+                                          ": strength x brightest texel = " +
+                                          float_string(float(double(brightest) * scene.sky.strength)) +
+                                          " is above 65504 and does not fit half (use --precision fp32)");
   }
 }
 

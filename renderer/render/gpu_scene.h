@@ -30,6 +30,9 @@ struct GpuScene {
   Buffer triangle_uvs;      // GpuTriangleUvs per triangle (placeholder without textures)
   Buffer texture_transforms;  // GpuUvTransform per material and texture slot (placeholder without textures)
   Buffer nodes, refs;       // the octree (16-byte placeholders without one)
+  // The environment map's texels (3 floats each) and sampling tables
+  // (scene/envmap.h; placeholders without an envmap).
+  Buffer envmap_texels, envmap_marginal, envmap_conditional;
   // A hash of every array above but the octree, as uploaded (spheres,
   // materials, triangles, instances, textures, sky): the scene a checkpoint
   // belongs to.
@@ -81,7 +84,10 @@ void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Acc
 void upload_octree(GpuScene& g, const VulkanContext& ctx, const Scene& scene, const OctreeParams& params);
 
 // Throws InputError when a value of the scene does not fit the precision
-// (a radiance or emission beyond half's largest value, 65504, would be inf in fp16).
+// (a radiance or emission beyond half's largest value, 65504, would be inf in
+// fp16; so would an envmap texel whose strength x value exceeds it: the fp16
+// variants carry the sky's radiance in half, while the texels and the
+// sampling tables stay fp32).
 void check_precision(const Scene& scene, Precision precision);
 
 }  // namespace octrace

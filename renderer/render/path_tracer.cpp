@@ -130,7 +130,10 @@ void PathTracer::State::create_pipeline() {
                    {gpu::BINDING_TEXTURES, &g.textures},
                    {gpu::BINDING_TEXELS, &g.texels},
                    {gpu::BINDING_TRIANGLE_UVS, &g.triangle_uvs},
-                   {gpu::BINDING_TEXTURE_TRANSFORMS, &g.texture_transforms}});
+                   {gpu::BINDING_TEXTURE_TRANSFORMS, &g.texture_transforms},
+                   {gpu::BINDING_ENVMAP_TEXELS, &g.envmap_texels},
+                   {gpu::BINDING_ENVMAP_MARGINAL, &g.envmap_marginal},
+                   {gpu::BINDING_ENVMAP_CONDITIONAL, &g.envmap_conditional}});
   bind_accumulation();
   s.timings.pipeline_ms = ms_since(start);
 }

@@ -1,5 +1,7 @@
 #include "scene/features.h"
 
+#include <algorithm>
+
 namespace octrace {
 
 namespace {
@@ -58,6 +60,10 @@ SceneFeatures scene_features(const Scene& scene) {
     case SkyType::None: f.sky_black = true; break;
     case SkyType::Uniform: f.sky_black = is_black(scene.sky.radiance); break;
     case SkyType::Gradient: f.sky_black = is_black(scene.sky.down) && is_black(scene.sky.up); break;
+    case SkyType::Envmap:
+      f.sky_black = scene.sky.strength == 0.0f ||
+                    std::all_of(scene.sky.image.rgb.begin(), scene.sky.image.rgb.end(), [](float c) { return c == 0.0f; });
+      break;
   }
   f.any_light = f.emissive || f.surface_emission || !f.sky_black;
   f.spheres = !scene.spheres.empty();
@@ -92,7 +98,8 @@ std::vector<std::string> feature_names(const SceneFeatures& f) {
   if (f.normal_maps) names.push_back("normal_maps");
   if (f.alpha) names.push_back("alpha");
   if (f.single_sided) names.push_back("single_sided");
-  names.push_back(f.sky == SkyType::Gradient ? "sky_gradient" : f.sky == SkyType::Uniform ? "sky_uniform" : "sky_none");
+  constexpr const char* kSkyNames[] = {"sky_gradient", "sky_uniform", "sky_none", "sky_envmap"};
+  names.push_back(kSkyNames[static_cast<uint32_t>(f.sky)]);
   if (f.sky_black) names.push_back("sky_black");
   if (!f.any_light) names.push_back("no_light");
   if (f.empty) names.push_back("empty");

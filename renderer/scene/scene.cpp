@@ -182,6 +182,18 @@ void validate_sky(const Sky& sky, const std::string& source) {
       return;
     case SkyType::None:
       return;
+    case SkyType::Envmap: {
+      if (!(std::isfinite(sky.strength) && sky.strength >= 0.0f))
+        invalid(source, "sky.strength", "must be a finite number >= 0, got " + format(sky.strength));
+      if (!std::isfinite(sky.rotate)) invalid(source, "sky.rotate", "must be a finite number, got " + format(sky.rotate));
+      const EnvmapImage& image = sky.image;
+      if (image.width == 0 || image.height == 0 || image.rgb.size() != size_t(image.width) * image.height * 3)
+        invalid(source, "sky.file", sky.file + ": an environment map needs an image of at least 1x1 texels");
+      for (float c : image.rgb)
+        if (!(std::isfinite(c) && c >= 0.0f))
+          invalid(source, "sky.file", sky.file + ": every texel must be finite and >= 0");
+      return;
+    }
   }
   invalid(source, "sky.type", "unknown sky type " + std::to_string(static_cast<uint32_t>(sky.type)));
 }

@@ -136,16 +136,39 @@ struct Camera {
 };
 
 // Values match the SKY_* constants in shaders/shared/shared.h (static_assert in render/gpu_layout.h).
-enum class SkyType : uint32_t { Gradient = 0, Uniform = 1, None = 2 };
+enum class SkyType : uint32_t { Gradient = 0, Uniform = 1, None = 2, Envmap = 3 };
+
+// An environment map's texels: linear RGB, 3 floats per texel, row y = 0 the
+// top (+y), texel (x, y) at rgb[3 * (y * width + x)]. Finite and >= 0.
+struct EnvmapImage {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<float> rgb;
+
+  bool operator==(const EnvmapImage&) const = default;
+};
 
 struct Sky {
   SkyType type = SkyType::Gradient;
   glm::vec3 down{1.0f, 1.0f, 1.0f};    // gradient: colour at dir.y = -1
   glm::vec3 up{0.5f, 0.7f, 1.0f};      // gradient: colour at dir.y = +1
   glm::vec3 radiance{1.0f};            // uniform
+  // Envmap: an equirectangular (latitude-longitude) image; the radiance
+  // from direction d is strength x the texel d falls in (nearest texel,
+  // piecewise constant). The convention (docs/design.md "Environment map"):
+  // +y up; v = 0 at the top (+y), v = 1 at the bottom (-y); the image
+  // centre (u = 0.5) faces -z, and u grows towards +x (clockwise seen from
+  // above: u = 0.25 faces -x, 0.75 faces +x, 0 and 1 face +z). `rotate`
+  // turns the map about +y by that many degrees, counter-clockwise seen from
+  // above (right-handed): with rotate 90 the image centre faces -x.
+  std::string file;         // as written in the scene file (relative to it)
+  float strength = 1.0f;    // finite, >= 0
+  float rotate = 0.0f;      // degrees, finite
+  EnvmapImage image;        // the file's texels
 
   bool operator==(const Sky&) const = default;
 };
+
 
 // A triangle mesh in its own (object) space, stored once however many times
 // it is placed. Triangle k is indices[3k..3k+2]; counter-clockwise seen from

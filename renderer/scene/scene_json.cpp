@@ -7,7 +7,10 @@
 //                 (the rtiow camera).
 //   sky           optional as a whole (default: the book's gradient); if given,
 //                 "type" is required; gradient "down"/"up" are optional (the
-//                 book's white and blue); uniform "radiance" is required.
+//                 book's white and blue); uniform "radiance" is required;
+//                 envmap "file" (relative to the scene file, read when the
+//                 scene loads) is required, "strength" (1) and "rotate" (0,
+//                 degrees) are optional.
 //   materials[i]  "type" is required; lambertian/metal "albedo" and emissive
 //                 "radiance" are required; metal "fuzz" is optional (0: a mirror),
 //                 dielectric "ior" is optional (1.5: glass); every pbr field
@@ -52,6 +55,7 @@
 
 #include "io/file.h"
 #include "core/errors.h"
+#include "scene/envmap.h"
 #include "scene/gltf.h"
 #include "scene/json_text.h"
 #include "scene/scene.h"
@@ -63,7 +67,7 @@ using Json = nlohmann::basic_json<std::map, std::vector, std::string, bool, std:
 
 // Indexed by the enum values.
 constexpr std::string_view kMaterialNames[] = {"lambertian", "metal", "dielectric", "emissive", "pbr"};
-constexpr std::string_view kSkyNames[] = {"gradient", "uniform", "none"};
+constexpr std::string_view kSkyNames[] = {"gradient", "uniform", "none", "envmap"};
 
 // ---------------------------------------------------------------------------
 // reading
@@ -195,6 +199,19 @@ Sky read_sky(const Node& n) {
     case SkyType::None:
       check_keys(n, {"type"});
       break;
+    case SkyType::Envmap: {
+      check_keys(n, {"type", "file", "strength", "rotate"});
+      const Node file = n.require("file");
+      if (!file.value->is_string() || file.value->get_ref<const std::string&>().empty())
+        file.fail("expected a file name (a non-empty string), got " + describe_json(*file.value));
+      sky.file = file.value->get_ref<const std::string&>();
+      read_optional(n, "strength", sky.strength);
+      read_optional(n, "rotate", sky.rotate);
+      // Relative to the scene file's folder, as mesh files are; the loader's
+      // errors name the image file.
+      sky.image = load_envmap((std::filesystem::path(*n.source).parent_path() / sky.file).string());
+      break;
+    }
   }
   return sky;
 }
@@ -386,6 +403,11 @@ void append(std::string& out, const Sky& sky) {
     append_field(out, "up", sky.up);
   } else if (sky.type == SkyType::Uniform) {
     append_field(out, "radiance", sky.radiance);
+  } else if (sky.type == SkyType::Envmap) {
+    out += ", \"file\": ";
+    out += Json(sky.file).dump();
+    append_field(out, "strength", sky.strength);
+    append_field(out, "rotate", sky.rotate);
   }
   out += '}';
 }

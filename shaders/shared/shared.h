@@ -38,6 +38,7 @@ OCT_CONST(uint, MAT_PBR, 4u);  // glTF's metallic-roughness material (shading/pb
 OCT_CONST(uint, SKY_GRADIENT, 0u);
 OCT_CONST(uint, SKY_UNIFORM, 1u);
 OCT_CONST(uint, SKY_NONE, 2u);
+OCT_CONST(uint, SKY_ENVMAP, 3u);  // an equirectangular image (shading/envmap.glsl)
 
 // Texture wrap modes (glTF's sampler wrapS / wrapT) and "no texture".
 OCT_CONST(uint, WRAP_REPEAT, 0u);
@@ -93,7 +94,15 @@ OCT_CONST(uint, BINDING_TEXTURES, 14u);
 OCT_CONST(uint, BINDING_TEXELS, 15u);
 OCT_CONST(uint, BINDING_TRIANGLE_UVS, 16u);
 OCT_CONST(uint, BINDING_TEXTURE_TRANSFORMS, 17u);
-OCT_CONST(uint, BINDING_COUNT, 18u);
+// The environment map (SKY_ENVMAP; renderer/scene/envmap.h): its texels, 3
+// floats (linear rgb, fp32) per texel, row 0 the top (+y); and the sampling
+// tables: the marginal CDF over rows (height + 1 floats, then the density
+// scale), the conditional CDFs (width + 1 floats per row). 16-byte
+// placeholders without an envmap.
+OCT_CONST(uint, BINDING_ENVMAP_TEXELS, 21u);
+OCT_CONST(uint, BINDING_ENVMAP_MARGINAL, 22u);
+OCT_CONST(uint, BINDING_ENVMAP_CONDITIONAL, 23u);
+OCT_CONST(uint, BINDING_COUNT, 24u);
 
 // Descriptor bindings of the resolve pipeline (resolve.comp).
 OCT_CONST(uint, RESOLVE_BINDING_ACCUM_SUM, 0u);
@@ -131,7 +140,7 @@ OCT_CONST(uint, SPEC_ALPHA, 17u);
 // the back-face test in the triangle hit test compiles out.
 OCT_CONST(uint, SPEC_SINGLE_SIDED, 18u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
-OCT_CONST(uint, SKY_RUNTIME, 3u);
+OCT_CONST(uint, SKY_RUNTIME, 255u);
 
 // Acceleration structures (specialization constant ACCEL).
 OCT_CONST(uint, ACCEL_BRUTE, 0u);
@@ -338,9 +347,9 @@ struct RenderStats {
 // 64 bytes. What the passes need of the scene besides its arrays; uploaded
 // once with the scene (a camera move or a new bounce limit does not touch it).
 struct SceneParams {
-  vec3 sky_a;         // gradient: down; uniform: radiance
+  vec3 sky_a;         // gradient: down; uniform: radiance; envmap: strength (all three)
   uint sky_type;      // SKY_*
-  vec3 sky_b;         // gradient: up
+  vec3 sky_b;         // gradient: up; envmap: x = rotate / 360 (a fraction of a turn)
   uint sphere_count;
   uint big_count;     // octree: refs[0, big_count) are primitives tested before traversal
   uint triangle_count;  // unique (object-space) triangles
@@ -348,8 +357,8 @@ struct SceneParams {
   uint instance_count;
   uint triangle_uvs;    // 1: triangle_uvs holds every triangle's uvs; 0: it is empty
   uint pad0;
-  uint pad1;
-  uint pad2;
+  uint envmap_width;    // envmap: texels per row (0 without one)
+  uint envmap_height;   // envmap: rows
 };
 
 // 112 bytes, the push constants of one dispatch of passes: everything that may change from

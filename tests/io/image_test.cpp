@@ -190,12 +190,31 @@ TEST(ImageIo, APngChunkPastTheEndIsAnInputError) {
             path + ": not a valid PNG file: chunk 2 claims 1862271002 bytes, past the end of the file (115 bytes)");
 }
 
+// An EXR compressed by a method tinyexr does not read (DWAA and DWAB: Debian's
+// blender-data HDRIs are DWAB) is named, with what to do about it. The file
+// is one of ours (ZIP) with its compression attribute set to DWAB.
+TEST(ImageIo, UnsupportedExrCompressionIsNamed) {
+  const std::string path = fresh_folder() + "/dwab.exr";
+  write_image(ramp(4, 4), path);
+  std::vector<unsigned char> bytes = file_bytes(path);
+  const std::string attribute("compression\0compression\0\x01\0\0\0", 28);
+  const auto at = std::search(bytes.begin(), bytes.end(), attribute.begin(), attribute.end());
+  ASSERT_NE(at, bytes.end());
+  *(at + ptrdiff_t(attribute.size())) = 9;  // DWAB
+  write_bytes(path, bytes);
+  EXPECT_EQ(message_of<InputError>([&] { read_image(path); }),
+            path + ": not a valid EXR file: compression DWAB is not supported (tinyexr reads none, RLE, ZIPS, ZIP and "
+                   "PIZ): re-save it with ZIP or PIZ, e.g. exrmaketiled -z zip IN.exr OUT.exr (Debian: openexr)");
+}
+
 TEST(ImageIo, UnknownExtensionIsAnInputError) {
   std::string path = fresh_folder() + "/out.jpg";
   std::string expected = path + ": unknown image format \".jpg\" (expected .png, .pfm or .exr)";
   EXPECT_EQ(message_of<InputError>([&] { check_image_path(path); }), expected);
   EXPECT_EQ(message_of<InputError>([&] { write_image(ramp(4, 4), path); }), expected);
-  EXPECT_EQ(message_of<InputError>([&] { read_image(path); }), expected);
+  // Reading also knows Radiance .hdr (environment maps), which is never written.
+  EXPECT_EQ(message_of<InputError>([&] { read_image(path); }),
+            path + ": unknown image format \".jpg\" (expected .png, .pfm, .exr or .hdr)");
   EXPECT_TRUE(files_in(fs::path(path).parent_path()).empty());
 }
 

@@ -164,6 +164,20 @@ const EffectsCase CASES[] = {
        return s;
      },
      {"lambertian", "pbr", "triangles", "textures", "alpha", "single_sided", "sky_gradient"}},
+    {"envmap_sky",
+     [] {
+       Scene s = family(metal({0.8f, 0.7f, 0.6f}, 0.2f));
+       s.sky = test::envmap_sky(test::test_envmap(32, 16, 500.0f), 1.5f, 30.0f);
+       return s;
+     },
+     {"metal", "fuzzy_metal", "sky_envmap"}},
+    {"envmap_strength_0",
+     [] {
+       Scene s = family(metal({0.8f, 0.7f, 0.6f}, 0.2f));
+       s.sky = test::envmap_sky(test::test_envmap(32, 16), 0.0f);
+       return s;
+     },
+     {"metal", "fuzzy_metal", "sky_envmap", "sky_black", "no_light"}},
 };
 
 class EffectsTest : public test::VulkanTest, public ::testing::WithParamInterface<EffectsCase> {};

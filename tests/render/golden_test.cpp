@@ -104,10 +104,21 @@ Scene engine() {
   return load_gltf_scene("/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb");
 }
 
+// The lambertian and fuzzy-metal spheres on a ground under an environment
+// map (test::test_envmap: smooth, no sun, so that 256 samples resolve it),
+// turned by 30 degrees.
+Scene envmap_sky() {
+  Scene s = single_material({MaterialType::Metal, {0.8f, 0.8f, 0.9f}, 0.2f});
+  s.materials.push_back({MaterialType::Lambertian, {0.8f, 0.3f, 0.2f}});
+  s.spheres[2].material = 2;
+  s.sky = test::envmap_sky(test::test_envmap(64, 32), 1.0f, 30.0f);
+  return s;
+}
+
 const GoldenCase CASES[] = {
     {"rtiow", rtiow_small},          {"lambertian", lambertian_only}, {"metal", metal_only},
     {"glass", glass_only},           {"emissive", emissive_black_sky}, {"pbr", pbr_spheres},
-    {"engine", engine},
+    {"engine", engine},              {"envmap", envmap_sky},
 };
 
 std::string golden_path(const std::string& name, const char* kind) {

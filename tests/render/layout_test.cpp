@@ -62,8 +62,8 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   EXPECT_EQ(sc.instance_count, 12u);
   EXPECT_EQ(sc.triangle_uvs, 13u);
   EXPECT_EQ(sc.pad0, 14u);
-  EXPECT_EQ(sc.pad1, 15u);
-  EXPECT_EQ(sc.pad2, 16u);
+  EXPECT_EQ(sc.envmap_width, 15u);
+  EXPECT_EQ(sc.envmap_height, 16u);
 
   gpu::PassParams f{};
   download_buffer(ctx, pass_buf, &f, sizeof f);

@@ -468,9 +468,9 @@ TEST(JsonErrors, UnknownTypes) {
                              "spheres": []})"),
             "scene.json: materials[1].type: unknown material type \"glas\" (expected lambertian, metal, dielectric, emissive, pbr)");
   EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "sky": {"type": "sunset"}})"),
-            "scene.json: sky.type: unknown sky type \"sunset\" (expected gradient, uniform, none)");
+            "scene.json: sky.type: unknown sky type \"sunset\" (expected gradient, uniform, none, envmap)");
   EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "sky": {"type": 1}})"),
-            "scene.json: sky.type: unknown sky type 1 (expected gradient, uniform, none)");
+            "scene.json: sky.type: unknown sky type 1 (expected gradient, uniform, none, envmap)");
 }
 
 TEST(JsonErrors, UnknownKeys) {
