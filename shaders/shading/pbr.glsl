@@ -18,8 +18,9 @@
 //                          specular_brdf, Fr)
 // specular_btdf is rough refraction through the same GGX microfacets: Walter
 // et al. 2007, "Microfacet Models for Refraction through Rough Surfaces"
-// (EGSR), eq. 21, with the generalized half vector (eq. 16) and the
-// refraction Jacobian (eq. 17). A surface is either the boundary of a closed
+// (EGSR), eq. 21, with the generalized half vector (eq. 16), the
+// refraction Jacobian (eq. 17) and the height-correlated G2 = 1 / (1 +
+// Lambda(wo) + Lambda(wi)) of the cosines' magnitudes. A surface is either the boundary of a closed
 // solid of index ior (rays refract in and out; inside, eta = ior and past
 // the critical angle the layer reflects everything: Fr = 1) or thin-walled
 // (glTF without KHR_materials_volume: a microfacet reflection mirrored
