@@ -174,15 +174,22 @@ bool sample_pbr(Material m, vec2 uv, vec3 n, vec3 to_viewer, bool front_face, in
   // lum(base)) w. A diffuse estimate of 0 means no diffuse reflection at all
   // (metallic 1 or a black base): then p_spec = 1. Transmission belongs to
   // the specular lobe (it is sampled through the same microfacet normal) and
-  // takes the share t of the diffuse one.
+  // takes the share t of the diffuse one; inside a solid past the critical
+  // angle the layer reflects everything. (Estimating Schlick's few percent
+  // there instead chose the specular lobe with p_spec ~ 0.25 while its
+  // weight was ~1: each reflection of a path held by TIR multiplied it by
+  // 1 / p_spec, and the fp16 variants saw Inf samples.) A diffuse estimate
+  // of 0 still leaves no direction unsampled: the VNDF covers the hemisphere.
   float w_view = pow5(1.0 - wo.z);
   float lum_base = dot(vec3(base), PBR_LUMINANCE);
   float fr_view = f0 + (1.0 - f0) * w_view;
   float spec_est = (1.0 - metallic) * fr_view + metallic * (lum_base + (1.0 - lum_base) * w_view);
   float diff_est = (1.0 - metallic) * (1.0 - fr_view) * lum_base;
   if (transmits) {
-    spec_est += (1.0 - metallic) * (1.0 - layer_fresnel(wo.z, f0, eta, thin)) * transmission * lum_base;
-    diff_est *= 1.0 - transmission;
+    float fr_layer = layer_fresnel(wo.z, f0, eta, thin);
+    spec_est = (1.0 - metallic) * (fr_layer + (1.0 - fr_layer) * transmission * lum_base) +
+               metallic * (lum_base + (1.0 - lum_base) * w_view);
+    diff_est = (1.0 - metallic) * (1.0 - fr_layer) * (1.0 - transmission) * lum_base;
   }
   float p_spec = diff_est > 0.0 ? spec_est / (spec_est + diff_est) : 1.0;
 
