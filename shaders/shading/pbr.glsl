@@ -22,7 +22,8 @@
 // refraction Jacobian (eq. 17) and the height-correlated G2 = 1 / (1 +
 // Lambda(wo) + Lambda(wi)) of the cosines' magnitudes. A surface is either the boundary of a closed
 // solid of index ior (rays refract in and out; inside, eta = ior and past
-// the critical angle the layer reflects everything: Fr = 1) or thin-walled
+// the critical angle the layer reflects everything: Fr = 1, and past it at
+// the macro normal no light reaches the diffuse base either) or thin-walled
 // (glTF without KHR_materials_volume: a microfacet reflection mirrored
 // through the macro surface, so a smooth surface passes light straight on and
 // a rough one blurs it; no bending, no total internal reflection).
@@ -245,7 +246,15 @@ bool sample_pbr(Material m, vec2 uv, vec3 n, vec3 to_viewer, bool front_face, in
     float refl = (1.0 - metallic) * fr + metallic * (lum_base + (1.0 - lum_base) * w);
     float trans = (1.0 - metallic) * (1.0 - fr) * transmission * lum_base;
     if (trans > 0.0) p_spec_here *= refl / (refl + trans);
-    diff_share = 1.0 - transmission;
+    // Inside a solid past the critical angle at the macro normal nothing
+    // reaches the diffuse base either (diff_est is 0 there, so it is never
+    // sampled). glTF's mix weighs the diffuse term by 1 - Fr at the pair's
+    // own half vector, which for a diffuse direction lies far from the
+    // normal, below the critical angle: it would add (1 - t) base to a
+    // reflection that already returns everything, so that a path held by
+    // TIR gained energy at every bounce, and the diffuse term, reached only
+    // through the specular lobe's pdf, weighed 1 / pdf_vndf (unbounded).
+    diff_share = layer_fresnel(wo.z, f0, eta, thin) == 1.0 ? 0.0 : 1.0 - transmission;
   }
   // pdf of wi by the VNDF: D_wo(h) / (4 wo.h) with D_wo(h) = G1(wo) (wo.h)
   // D(h) / zo (Heitz 2018 eq. 3 and the reflection Jacobian) = D / (2 (zo + so)).

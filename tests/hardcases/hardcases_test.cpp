@@ -1234,6 +1234,41 @@ void transmission_ior1(CaseRun& run) {
   }
 }
 
+// Paths held by total internal reflection in a solid that also diffuses:
+// the camera inside a white sphere (r 3, camera at 0.6 R from the centre, so
+// many camera rays meet the surface past the critical angle of ior 1.5)
+// with transmission 0.6 (the rest of the unreflected light diffused),
+// roughness 0 and 0.3, in the white furnace. Past the critical angle the
+// layer reflects everything and nothing reaches the diffuse base; the
+// sampler must know both. Two regressions this case caught (each on the way
+// to the present code, measured in fp32): estimating Schlick's few percent
+// there chose the specular lobe with p ~ 0.25 while each TIR reflection
+// returned ~1, so a path held for k reflections carried 4^k (pixels up to
+// 45.4; fp16: Inf samples); and weighing the diffuse term by 1 - Fr at the
+// pair's half vector there (glTF's mix, as outside) added energy at every
+// TIR bounce, reached only through the specular pdf (image mean 1.16, pixels
+// up to 85.6 at roughness 0.3). Now: every weight is a ratio of a lobe's
+// colour and its probability at close angles, and no bounce returns more
+// than it receives. Bounds: no pixel above 1.5 (measured 1.06; a few
+// samples above 1 remain where glTF's mix exceeds 1 below the critical
+// angle, as for the white dielectric), and the image mean at most 1.05
+// (measured 0.74 and 0.83: paths held by TIR until the depth limit are
+// lost).
+void transmission_tir_with_diffuse(CaseRun& run) {
+  for (float roughness : {0.0f, 0.3f}) {
+    Material m = clear_pbr(roughness, 1.5f, false);
+    m.transmission = 0.6f;
+    Scene s = furnace({m}, {{{0, 0, 0}, 3, 0}});
+    s.camera.lookfrom = {1.0f, 0.8f, 1.2f};  // |lookfrom| = 1.75 ~ 0.6 R
+    s.camera.lookat = {3, 1, -5};
+    s.camera.vfov = 70;
+    RenderResult r = run.render(s, settings(32, 24, 16));
+    const std::string what = "roughness " + CaseRun::fmt(roughness);
+    run.at_most(what + ": max pixel", max_value(r.mean), 1.5);
+    run.at_most(what + ": image mean", image_mean(r.mean), 1.05);
+  }
+}
+
 // Grazing views through transmissive surfaces: the grazing set-up of
 // pbr_grazing (a sphere tangent to the central row) with clear spheres at
 // roughness 0 and 1, solid (ior 2.4) and thin-walled (ior 1.5): no NaN/Inf
@@ -1313,6 +1348,7 @@ const HardCase CASES[] = {
     {"transmission_r0_vs_dielectric", transmission_vs_dielectric},
     {"transmission_ior1_invisible", transmission_ior1},
     {"transmission_grazing_views", transmission_grazing},
+    {"transmission_tir_with_diffuse", transmission_tir_with_diffuse},
 };
 
 class HardCaseTest : public test::VulkanTest,
