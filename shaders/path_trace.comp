@@ -61,6 +61,7 @@ layout(constant_id = SPEC_SURFACE_EMISSION) const bool HAS_SURFACE_EMISSION = tr
 layout(constant_id = SPEC_NORMAL_MAPS) const bool HAS_NORMAL_MAPS = true;
 layout(constant_id = SPEC_ALPHA) const bool HAS_ALPHA = true;
 layout(constant_id = SPEC_SINGLE_SIDED) const bool HAS_SINGLE_SIDED = true;
+layout(constant_id = SPEC_TRANSMISSION) const bool HAS_TRANSMISSION = true;
 layout(constant_id = SPEC_SAMPLE_LANES) const bool SAMPLE_LANES = true;
 
 #include "shared/rng.h"
@@ -146,9 +147,11 @@ vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments)
     } else if (HAS_PBR && m.type == MAT_PBR) {
       if (HAS_SURFACE_EMISSION) radiance += throughput * surface_emission(m, surf.uv);
       real3 weight;
-      // No direction: the view is exactly grazing, or the sample went below
-      // the surface, where the BRDF is 0.
-      if (!sample_pbr(m, surf.uv, n, -ray.dir, rng, dir, weight)) break;
+      // Transmission's choice to reflect or pass through has a stream of its own.
+      Rng layer = rng_init(pass.sample_seed, pixel_index, sample_index, bounce | TRANSMISSION_STREAM);
+      // No direction: the view is exactly grazing, or the sample went to a
+      // side where the BSDF is 0. A transmitted one leaves on the far side.
+      if (!sample_pbr(m, surf.uv, n, -ray.dir, front_face, rng, layer, dir, weight, refracted)) break;
       throughput *= weight;
     } else {
       break;  // not reached: the pipeline is specialised to the scene's materials

@@ -252,7 +252,8 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
     gpu::GpuMaterial& f = materials[i];
     f.type = uint32_t(m.type);
     f.color = m.type == MaterialType::Emissive ? m.radiance : m.albedo;
-    f.fuzz = m.fuzz;
+    // A pbr material's transmission sits in the fuzz slot, negated when thin-walled (shared.h).
+    f.fuzz = m.type != MaterialType::Pbr ? m.fuzz : m.thin_walled ? -m.transmission : m.transmission;
     f.ior = m.ior;
     f.base_color_texture = m.base_color_texture.value_or(gpu::NO_TEXTURE);
     f.emission_texture = m.emission_texture.value_or(gpu::NO_TEXTURE);

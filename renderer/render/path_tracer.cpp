@@ -115,7 +115,8 @@ void PathTracer::State::create_pipeline() {
                            {gpu::SPEC_SURFACE_EMISSION, f.surface_emission},
                            {gpu::SPEC_NORMAL_MAPS, f.normal_maps},
                            {gpu::SPEC_ALPHA, f.alpha},
-                           {gpu::SPEC_SINGLE_SIDED, f.single_sided}});
+                           {gpu::SPEC_SINGLE_SIDED, f.single_sided},
+                           {gpu::SPEC_TRANSMISSION, f.transmission}});
   const GpuScene& g = s.scene;
   bind_buffers(p, {{gpu::BINDING_SCENE, &g.params},
                    {gpu::BINDING_SPHERES, &g.spheres},

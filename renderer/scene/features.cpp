@@ -51,6 +51,7 @@ SceneFeatures scene_features(const Scene& scene) {
         f.textures |= has_texture(m);
         f.normal_maps |= m.normal_texture.has_value();
         f.surface_emission |= !is_black(m.emission);
+        f.transmission |= m.transmission > 0.0f;
         break;
     }
   }
@@ -79,6 +80,7 @@ SceneFeatures all_features(const Scene& scene) {
   f.any_light = true;
   f.empty = false;
   f.spheres = f.triangles = f.vertex_normals = f.textures = f.surface_emission = f.normal_maps = f.alpha = f.single_sided = true;
+  f.transmission = true;
   return f;
 }
 
@@ -98,6 +100,7 @@ std::vector<std::string> feature_names(const SceneFeatures& f) {
   if (f.normal_maps) names.push_back("normal_maps");
   if (f.alpha) names.push_back("alpha");
   if (f.single_sided) names.push_back("single_sided");
+  if (f.transmission) names.push_back("transmission");
   constexpr const char* kSkyNames[] = {"sky_gradient", "sky_uniform", "sky_none", "sky_envmap"};
   names.push_back(kSkyNames[static_cast<uint32_t>(f.sky)]);
   if (f.sky_black) names.push_back("sky_black");

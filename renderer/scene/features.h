@@ -33,6 +33,7 @@ struct SceneFeatures {
   bool normal_maps = false;       // some lambertian or pbr material on a mesh has a normal map
   bool alpha = false;             // some mesh material is not opaque (alpha MASK or BLEND)
   bool single_sided = false;      // some mesh material is single-sided (back faces not hit)
+  bool transmission = false;      // some pbr material transmits (refraction through a rough surface)
 
   bool operator==(const SceneFeatures&) const = default;
 };

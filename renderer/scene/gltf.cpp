@@ -101,8 +101,15 @@ constexpr Field kPbr[] = {{"baseColorFactor", Kind::Numbers, nullptr, 4}, {"base
                           {"metallicRoughnessTexture", Kind::Object, kTextureInfo}, {}};
 constexpr Field kEmissiveStrength[] = {{"emissiveStrength", Kind::Number}, {}};
 constexpr Field kIor[] = {{"ior", Kind::Number}, {}};
+constexpr Field kTransmission[] = {{"transmissionFactor", Kind::Number},
+                                   {"transmissionTexture", Kind::Object, kTextureInfo}, {}};
+constexpr Field kVolume[] = {{"thicknessFactor", Kind::Number}, {"thicknessTexture", Kind::Object, kTextureInfo},
+                             {"attenuationDistance", Kind::Number}, {"attenuationColor", Kind::Numbers, nullptr, 3},
+                             {}};
 constexpr Field kMaterialExtensions[] = {{"KHR_materials_emissive_strength", Kind::Object, kEmissiveStrength},
-                                         {"KHR_materials_ior", Kind::Object, kIor}, {}};
+                                         {"KHR_materials_ior", Kind::Object, kIor},
+                                         {"KHR_materials_transmission", Kind::Object, kTransmission},
+                                         {"KHR_materials_volume", Kind::Object, kVolume}, {}};
 constexpr Field kMaterial[] = {{"pbrMetallicRoughness", Kind::Object, kPbr}, {"normalTexture", Kind::Object, kTextureInfo},
                                {"occlusionTexture", Kind::Object, kTextureInfo},
                                {"emissiveTexture", Kind::Object, kTextureInfo},
@@ -259,7 +266,8 @@ struct SchemaCheck {
 
 // Extensions a file may require (extensionsRequired) that octrace reads.
 constexpr std::string_view kSupportedExtensions[] = {"KHR_mesh_quantization", "KHR_materials_emissive_strength",
-                                                     "KHR_materials_ior", "KHR_texture_transform"};
+                                                     "KHR_materials_ior", "KHR_materials_transmission",
+                                                     "KHR_materials_volume", "KHR_texture_transform"};
 
 void check_schema(const Json& doc, const std::string& file) {
   const Where root;
@@ -902,7 +910,11 @@ int texture_coordinate_set(const tinygltf::TextureInfo& t) {
 // normalTexture (3.9.4: tangent space, xy times its scale), each texture through its
 // KHR_texture_transform, and alpha = baseColorFactor.a x the base colour
 // texture's alpha with alphaMode and alphaCutoff (3.9.6; BLEND as a
-// stochastic cut-out) and doubleSided (false: back faces are not hit).
+// stochastic cut-out) and doubleSided (false: back faces are not hit), and
+// KHR_materials_transmission's transmissionFactor: thin-walled without
+// KHR_materials_volume, a closed solid of the material's ior with it
+// (thicknessFactor > 0; the thickness value itself and the attenuation are
+// not used: the solid is clear).
 Material read_material(const File& f, Textures& textures, size_t i) {
   const tinygltf::Material& gm = f.model.materials[i];
   const std::string at = item("materials", i);
@@ -944,6 +956,20 @@ Material read_material(const File& f, Textures& textures, size_t i) {
   if (!(ior >= 1.0 && std::isfinite(float(ior))))
     f.fail(at + ".extensions.KHR_materials_ior.ior", "must be a finite number >= 1, got " + float_string(float(ior)));
   m.ior = float(ior);
+  const std::string transmission_at = at + ".extensions.KHR_materials_transmission.transmissionFactor";
+  const double transmission = extension_number(gm, "KHR_materials_transmission", "transmissionFactor", 0.0);
+  if (!(transmission >= 0.0 && transmission <= 1.0))
+    f.fail(transmission_at, "must be a number in [0, 1], got " + float_string(float(transmission)));
+  m.transmission = float(transmission);
+  const double thickness = extension_number(gm, "KHR_materials_volume", "thicknessFactor", 0.0);
+  if (!(thickness >= 0.0 && std::isfinite(float(thickness))))
+    f.fail(at + ".extensions.KHR_materials_volume.thicknessFactor",
+           "must be a finite number >= 0, got " + float_string(float(thickness)));
+  m.thin_walled = !(thickness > 0.0);
+  // A ray leaves a closed solid through the back faces of its triangles:
+  // they are hit whatever doubleSided says (the volume extension requires a
+  // closed mesh; glTF's doubleSided defaults to false).
+  if (m.transmission > 0.0f && !m.thin_walled) m.double_sided = true;
 
   if (gm.normalTexture.index >= 0) {
     const std::string normal_at = at + ".normalTexture";
@@ -985,9 +1011,17 @@ std::vector<std::string> approximations(const tinygltf::Model& model) {
     for (const tinygltf::TextureInfo* t : {&pbr.baseColorTexture, &pbr.metallicRoughnessTexture, &m.emissiveTexture})
       if (t->index >= 0 && texture_coordinate_set(*t) != 0) note("texture coordinate sets other than 0");
     if (m.normalTexture.index >= 0 && m.normalTexture.texCoord != 0) note("texture coordinate sets other than 0");
+    if (const auto it = m.extensions.find("KHR_materials_transmission");
+        it != m.extensions.end() && it->second.Has("transmissionTexture"))
+      note("KHR_materials_transmission's transmissionTexture");
+    // A volume is rendered as a clear solid: its thickness only says that it is one.
+    if (const auto it = m.extensions.find("KHR_materials_volume");
+        it != m.extensions.end() && (it->second.Has("attenuationDistance") || it->second.Has("attenuationColor")))
+      note("KHR_materials_volume's attenuation (volumes render clear)");
   }
   for (const std::string& e : model.extensionsUsed)
-    if (e.rfind("KHR_materials_", 0) == 0 && e != "KHR_materials_emissive_strength" && e != "KHR_materials_ior")
+    if (e.rfind("KHR_materials_", 0) == 0 && e != "KHR_materials_emissive_strength" && e != "KHR_materials_ior" &&
+        e != "KHR_materials_transmission" && e != "KHR_materials_volume")
       note(e);
   return out;
 }

@@ -41,11 +41,18 @@ struct Material {
   glm::vec3 emission{0.0f};
   std::optional<uint32_t> emission_texture;    // index into Scene::textures
   // Pbr only, glTF's defaults. metallic and roughness in [0, 1] (alpha =
-  // roughness^2); transmission in [0, 1] is read and checked but not rendered
-  // yet (such a material renders opaque, with a warning).
+  // roughness^2); transmission in [0, 1] (KHR_materials_transmission): the
+  // share of the dielectric layer's unreflected light that passes through the
+  // surface (rough refraction, Walter et al. 2007) instead of being diffused.
   float metallic = 1.0f;
   float roughness = 1.0f;
   float transmission = 0.0f;
+  // Pbr with transmission only. false: the surface bounds a closed solid of
+  // index `ior` (a JSON pbr material; a glTF one with KHR_materials_volume,
+  // thickness > 0): rays refract in and out. true: glTF's thin-walled default
+  // (no KHR_materials_volume): light passes through without bending (the
+  // roughness still blurs it).
+  bool thin_walled = false;
   // Multiplies them: metallic x its blue, roughness x its green channel
   // (linear, not sRGB; glTF's metallicRoughnessTexture).
   std::optional<uint32_t> metallic_roughness_texture;  // index into Scene::textures

@@ -16,8 +16,8 @@
 //                 dielectric "ior" is optional (1.5: glass); every pbr field
 //                 is optional, with glTF's defaults: "base_color" [1, 1, 1],
 //                 "metallic" 1, "roughness" 1, "emission" [0, 0, 0],
-//                 "transmission" 0 (read, not rendered yet: a warning) and
-//                 "ior" 1.5.
+//                 "transmission" 0 (> 0: the material bounds a closed solid
+//                 of index "ior", on spheres and meshes alike) and "ior" 1.5.
 //   spheres[i]    "center", "radius" and "material" are all required.
 //   meshes[i]     a glTF file: "file" (relative to the scene file) is required;
 //                 "material" (overrides the file's materials), "scene" (which
@@ -578,12 +578,6 @@ Scene parse_scene_json(const std::string& text, const std::string& source) {
     for (size_t i = 0; i < refs.size(); ++i) append_mesh_ref(scene, refs[i], meshes->element(i), warnings, loaded);
   }
   validate_scene(scene, source);
-  std::string transmissive;
-  for (size_t i = 0; i < scene.materials.size() - scene.mesh_file_materials; ++i)
-    if (scene.materials[i].type == MaterialType::Pbr && scene.materials[i].transmission > 0.0f)
-      transmissive += (transmissive.empty() ? "" : ", ") + ("materials[" + std::to_string(i) + "]");
-  if (!transmissive.empty())
-    warnings.insert(warnings.begin(), source + ": transmission is not rendered yet: " + transmissive + " render opaque");
   // Only once the whole scene has loaded, so that an error stays the one line printed.
   for (const std::string& w : warnings) print_warning(w);
   return scene;

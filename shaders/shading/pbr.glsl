@@ -12,6 +12,28 @@
 //   material         = mix(dielectric_brdf, metal_brdf, metallic)
 // wo points to the viewer, wi to the light, h = normalize(wo + wi).
 //
+// Transmission (KHR_materials_transmission, factor t): the dielectric
+// layer's unreflected light is split, t through the surface, 1 - t diffused:
+//   dielectric_brdf  = mix(mix(base / pi, specular_btdf * base, t),
+//                          specular_brdf, Fr)
+// specular_btdf is rough refraction through the same GGX microfacets: Walter
+// et al. 2007, "Microfacet Models for Refraction through Rough Surfaces"
+// (EGSR), eq. 21, with the generalized half vector (eq. 16), the
+// refraction Jacobian (eq. 17) and the height-correlated G2 = 1 / (1 +
+// Lambda(wo) + Lambda(wi)) of the cosines' magnitudes. A surface is either the boundary of a closed
+// solid of index ior (rays refract in and out; inside, eta = ior and past
+// the critical angle the layer reflects everything: Fr = 1, and past it at
+// the macro normal no light reaches the diffuse base either) or thin-walled
+// (glTF without KHR_materials_volume: a microfacet reflection mirrored
+// through the macro surface, so a smooth surface passes light straight on and
+// a rough one blurs it; no bending, no total internal reflection).
+// Fr is Schlick's, at the microfacet normal, with F0 from ior: the one the
+// `dielectric` material uses at the macro normal, so that transmission 1,
+// roughness 0 renders as `dielectric` of the same ior. Radiance's (n1 / n2)^2
+// factor across a refraction (Veach 1997, sec. 5.2) is left out, as
+// `dielectric` leaves it out: it cancels on every path that leaves the solid
+// again, which is every path that reaches a light outside it.
+//
 // Sampling (one sample, either lobe): the specular lobe by the distribution of
 // visible normals (Heitz 2018, "Sampling the GGX Distribution of Visible
 // Normals", JCGT 7(4)), in the spherical-cap form of Dupuy & Benyoub 2023
@@ -21,7 +43,14 @@
 // sample is f(wo, wi) cos / (p_spec pdf_spec(wi) + p_diff pdf_diff(wi)): the
 // pdf of the direction under the mixture actually sampled (one-sample MIS
 // with the balance heuristic, Veach 1997 ch. 9), so the estimator is
-// unbiased whichever lobe produced wi.
+// unbiased whichever lobe produced wi. With transmission, the specular lobe's
+// microfacet normal h is sampled first, then reflection or transmission is
+// chosen with probability proportional to its weight at h (Fr against (1 -
+// Fr) t lum(base)); the chosen probability multiplies that direction's pdf.
+// Only transmission reaches the far side, so a transmitted direction's weight
+// is its colour times G2 / G1 over the probabilities of the two choices: D,
+// Walter's Jacobian and the BTDF's denominators cancel against the VNDF's
+// pdf (Heitz 2018 eq. 3).
 //
 // Precision: everything but the colours is fp32 in every variant (D spans
 // 1 / (pi alpha^2) = 3e5 at the smallest alpha, beyond half's 65504; the
@@ -97,16 +126,28 @@ float pow5(float x) {
   return x2 * x2 * x;
 }
 
+// The dielectric layer's reflectance at a microfacet seen at cos c = wo.h:
+// Schlick's with F0, and 1 past the critical angle of a solid (eta: index on
+// the viewer's side over the far side's; TIR as `dielectric` tests it).
+float layer_fresnel(float c, float f0, float eta, bool thin) {
+  if (!thin && eta * eta * (1.0 - c * c) > 1.0) return 1.0;
+  return f0 + (1.0 - f0) * pow5(1.0 - clamp(c, 0.0, 1.0));
+}
+
 // Samples a direction `dir` (world space) off a pbr surface with shading
 // normal n (on the viewer's side) seen from `to_viewer`, and its weight
-// f cos / pdf. False when there is none: the view is exactly grazing, or the
-// sample went below the surface (where f = 0: the path ends, as the integral
-// over the upper hemisphere says). Draws three numbers from `rng` whatever
-// happens.
-bool sample_pbr(Material m, vec2 uv, vec3 n, vec3 to_viewer, inout Rng rng, out vec3 dir, out real3 weight) {
+// f cos / pdf. front_face: the viewer is outside the surface (for a solid,
+// outside the solid). `transmitted`: dir passes to the far side. False when
+// there is none: the view is exactly grazing, or the sample went to a side
+// where f = 0 (below a reflection, above a transmission: the path ends, as
+// the integral says). Draws three numbers from `rng` whatever happens, and
+// one from `layer` when the material transmits (TRANSMISSION_STREAM).
+bool sample_pbr(Material m, vec2 uv, vec3 n, vec3 to_viewer, bool front_face, inout Rng rng, inout Rng layer,
+                out vec3 dir, out real3 weight, out bool transmitted) {
   float u0 = rng_next(rng), u1 = rng_next(rng), u2 = rng_next(rng);
   dir = n;
   weight = real3(0.0);
+  transmitted = false;
   real3 base = base_color(m, uv);
   float metallic = float(m.metallic), roughness = float(m.roughness);
   if (HAS_TEXTURES && m.metallic_roughness_texture != NO_TEXTURE) {
@@ -122,22 +163,67 @@ bool sample_pbr(Material m, vec2 uv, vec3 n, vec3 to_viewer, inout Rng rng, out 
   float ior = float(m.ior);
   float f0 = (ior - 1.0) / (ior + 1.0);
   f0 *= f0;
+  // Transmission t in the fuzz slot, negated when thin-walled (shared.h).
+  float transmission = HAS_TRANSMISSION ? abs(float(m.fuzz)) : 0.0;
+  bool transmits = HAS_TRANSMISSION && transmission > 0.0;
+  bool thin = transmits && float(m.fuzz) < 0.0;
+  float eta = thin ? 1.0 : front_face ? 1.0 / ior : ior;
 
   // Lobe choice: each lobe's weight estimated with Fresnel at the macro
   // normal (n.wo in place of h.wo), in luminance. The metal's Schlick colour
   // is linear in the base colour, so its luminance is lum(base) + (1 -
   // lum(base)) w. A diffuse estimate of 0 means no diffuse reflection at all
-  // (metallic 1 or a black base): then p_spec = 1.
+  // (metallic 1 or a black base): then p_spec = 1. Transmission belongs to
+  // the specular lobe (it is sampled through the same microfacet normal) and
+  // takes the share t of the diffuse one; inside a solid past the critical
+  // angle the layer reflects everything. (Estimating Schlick's few percent
+  // there instead chose the specular lobe with p_spec ~ 0.25 while its
+  // weight was ~1: each reflection of a path held by TIR multiplied it by
+  // 1 / p_spec, and the fp16 variants saw Inf samples.) A diffuse estimate
+  // of 0 still leaves no direction unsampled: the VNDF covers the hemisphere.
   float w_view = pow5(1.0 - wo.z);
   float lum_base = dot(vec3(base), PBR_LUMINANCE);
   float fr_view = f0 + (1.0 - f0) * w_view;
   float spec_est = (1.0 - metallic) * fr_view + metallic * (lum_base + (1.0 - lum_base) * w_view);
   float diff_est = (1.0 - metallic) * (1.0 - fr_view) * lum_base;
+  if (transmits) {
+    float fr_layer = layer_fresnel(wo.z, f0, eta, thin);
+    spec_est = (1.0 - metallic) * (fr_layer + (1.0 - fr_layer) * transmission * lum_base) +
+               metallic * (lum_base + (1.0 - lum_base) * w_view);
+    diff_est = (1.0 - metallic) * (1.0 - fr_layer) * (1.0 - transmission) * lum_base;
+  }
   float p_spec = diff_est > 0.0 ? spec_est / (spec_est + diff_est) : 1.0;
 
   vec3 wi;
   if (u0 < p_spec) {
-    wi = reflect(-wo, sample_ggx_vndf(wo, alpha, u1, u2));
+    vec3 h = sample_ggx_vndf(wo, alpha, u1, u2);
+    wi = reflect(-wo, h);
+    if (transmits) {
+      // Reflect or transmit at h, in proportion to the two weights there.
+      float c = dot(wo, h);
+      float fr = layer_fresnel(c, f0, eta, thin);
+      float w = pow5(1.0 - clamp(c, 0.0, 1.0));
+      float refl = (1.0 - metallic) * fr + metallic * (lum_base + (1.0 - lum_base) * w);
+      float trans = (1.0 - metallic) * (1.0 - fr) * transmission * lum_base;
+      float p_trans = trans > 0.0 ? trans / (refl + trans) : 0.0;
+      if (rng_next(layer) < p_trans) {
+        // The far side: a solid refracts about h (Walter eq. 40; no TIR
+        // here, where trans > 0 needs fr < 1); a thin wall mirrors the
+        // microfacet reflection through the macro surface.
+        wi = thin ? vec3(wi.xy, -wi.z) : refract(-wo, h, eta);
+        float zi = -wi.z;
+        if (!(zi > 0.0)) return false;
+        // f cos / pdf = (1 - metallic) (1 - Fr) t base G2 / G1 / (p_spec
+        // p_trans), G2 / G1 = zi (zo + so) / (so zi + si zo) (smith_s), and
+        // (1 - metallic) (1 - Fr) t / p_trans = (refl + trans) / lum(base).
+        float so = smith_s(wo.z, alpha), si = smith_s(zi, alpha);
+        float g2_g1 = zi * (wo.z + so) / (so * zi + si * wo.z);
+        weight = real3(vec3(base) * ((refl + trans) / lum_base * g2_g1 / p_spec));
+        dir = wi.x * t + wi.y * b + wi.z * n;
+        transmitted = true;
+        return true;
+      }
+    }
   } else {
     // Cosine-weighted (Malley's method): pdf cos / pi.
     float r = sqrt(u1), phi = 2.0 * PI * u2;
@@ -149,14 +235,34 @@ bool sample_pbr(Material m, vec2 uv, vec3 n, vec3 to_viewer, inout Rng rng, out 
   float so = smith_s(wo.z, alpha), si = smith_s(wi.z, alpha);
   // specular_brdf * cos = D G2 / (4 zo zi) * zi = D zi / (2 (so zi + si zo)).
   float spec = d * wi.z / (2.0 * (so * wi.z + si * wo.z));
-  // pdf of wi by the VNDF: D_wo(h) / (4 wo.h) with D_wo(h) = G1(wo) (wo.h)
-  // D(h) / zo (Heitz 2018 eq. 3 and the reflection Jacobian) = D / (2 (zo + so)).
-  float pdf = p_spec * d / (2.0 * (wo.z + so)) + (1.0 - p_spec) * wi.z / PI;
-  if (!(pdf > 0.0)) return false;
   float w = pow5(1.0 - clamp(dot(wo, h), 0.0, 1.0));
   float fr = f0 + (1.0 - f0) * w;
+  float p_spec_here = p_spec;
+  float diff_share = 1.0;
+  if (transmits) {
+    // Reflection was chosen at h with probability 1 - p_trans; past the
+    // critical angle the layer reflects everything (Fr = 1).
+    fr = layer_fresnel(dot(wo, h), f0, eta, thin);
+    float refl = (1.0 - metallic) * fr + metallic * (lum_base + (1.0 - lum_base) * w);
+    float trans = (1.0 - metallic) * (1.0 - fr) * transmission * lum_base;
+    if (trans > 0.0) p_spec_here *= refl / (refl + trans);
+    // Inside a solid past the critical angle at the macro normal nothing
+    // reaches the diffuse base either (diff_est is 0 there, so it is never
+    // sampled). glTF's mix weighs the diffuse term by 1 - Fr at the pair's
+    // own half vector, which for a diffuse direction lies far from the
+    // normal, below the critical angle: it would add (1 - t) base to a
+    // reflection that already returns everything, so that a path held by
+    // TIR gained energy at every bounce, and the diffuse term, reached only
+    // through the specular lobe's pdf, weighed 1 / pdf_vndf (unbounded).
+    diff_share = layer_fresnel(wo.z, f0, eta, thin) == 1.0 ? 0.0 : 1.0 - transmission;
+  }
+  // pdf of wi by the VNDF: D_wo(h) / (4 wo.h) with D_wo(h) = G1(wo) (wo.h)
+  // D(h) / zo (Heitz 2018 eq. 3 and the reflection Jacobian) = D / (2 (zo + so)).
+  float pdf = p_spec_here * d / (2.0 * (wo.z + so)) + (1.0 - p_spec) * wi.z / PI;
+  if (!(pdf > 0.0)) return false;
   real3 spec_colour = real((1.0 - metallic) * fr) + real(metallic) * (base + (real(1.0) - base) * real(w));
   real3 diff_colour = real((1.0 - metallic) * (1.0 - fr)) * base;
+  if (transmits) diff_colour *= real(diff_share);
   // In fp32, then to `real`: a factor such as cos / (pi pdf) after an
   // unlikely lobe choice may exceed half's range although its product with
   // the lobe's colour does not (the fp16 variants saw Inf samples from it).

@@ -139,6 +139,9 @@ OCT_CONST(uint, SPEC_ALPHA, 17u);
 // Whether some mesh material is single-sided (glTF's doubleSided false): off,
 // the back-face test in the triangle hit test compiles out.
 OCT_CONST(uint, SPEC_SINGLE_SIDED, 18u);
+// Whether some pbr material transmits (KHR_materials_transmission): off, the
+// refraction of shading/pbr.glsl compiles out. (20-26 are reserved.)
+OCT_CONST(uint, SPEC_TRANSMISSION, 19u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 255u);
 
@@ -239,7 +242,9 @@ struct GpuMesh {
 // multiplied by the blue and green channels of its metallic-roughness
 // texture; its ior sets the dielectric layer's F0. A lambertian or pbr
 // material may have a normal map (tangent space, linear; its xy times
-// normal_scale). The first 24 bytes are all that the RTIOW materials use;
+// normal_scale). A pbr material keeps its transmission in `fuzz` (which only
+// metal uses): t > 0 bounds a closed solid, -t a thin-walled surface (the
+// sign is exact in half too); 0 transmits nothing. The first 24 bytes are all that the RTIOW materials use;
 // the texture indices sit in what was padding, the emission and the pbr
 // parameters in rows of their own, the normal map in the last row's padding.
 // The last row (no padding was left) is glTF's alpha (read by the triangle
@@ -251,7 +256,7 @@ struct GpuMesh {
 struct GpuMaterial {
   vec3 color;
   uint type;   // MAT_*
-  float fuzz;  // metal
+  float fuzz;  // metal; pbr: transmission, negated when thin-walled
   float ior;   // dielectric, pbr
   uint base_color_texture;
   uint emission_texture;
@@ -401,6 +406,10 @@ OCT_CONST(uint, RR_STREAM, 0x40000000u);
 // with the pixel, sample and seed; path_trace.comp) with the triangle's id:
 // no stream's numbers are drawn, so alpha changes no other random number.
 OCT_CONST(uint, ALPHA_STREAM, 0x20000000u);
+// A transmissive pbr surface's choice between reflecting and transmitting
+// (shading/pbr.glsl) draws from a stream of its own (bounce |
+// TRANSMISSION_STREAM), so transmission changes no other random number.
+OCT_CONST(uint, TRANSMISSION_STREAM, 0x08000000u);
 
 #ifdef __cplusplus
 }  // namespace octrace::gpu

@@ -178,6 +178,31 @@ const EffectsCase CASES[] = {
        return s;
      },
      {"metal", "fuzzy_metal", "sky_envmap", "sky_black", "no_light"}},
+    {"transmission_solids_and_thin_walled_mesh",
+     [] {
+       // pbr with transmission: a smooth solid sphere, a rough one that is
+       // half diffuse and half metal, and a thin-walled icosphere, over a
+       // pbr ground without transmission.
+       Scene s = family(test::pbr(0.8f, 0.0f, 0.5f));
+       Material clear = test::pbr(1.0f, 0.0f, 0.0f);
+       clear.transmission = 1.0f;
+       s.materials.push_back(clear);
+       Material frosted = test::pbr(0.9f, 0.3f, 0.4f);
+       frosted.albedo = {0.9f, 0.6f, 0.4f};
+       frosted.transmission = 0.5f;
+       frosted.ior = 2.4f;
+       s.materials.push_back(frosted);
+       Material thin = test::pbr(1.0f, 0.0f, 0.2f);
+       thin.transmission = 1.0f;
+       thin.thin_walled = true;
+       s.materials.push_back(thin);
+       s.spheres[1].material = 1;
+       s.spheres[2].material = 2;
+       test::place(s, test::icosphere(2, 3), glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.6f, 1.6f)) *
+                                                 glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)));
+       return s;
+     },
+     {"pbr", "triangles", "transmission", "sky_gradient"}},
 };
 
 class EffectsTest : public test::VulkanTest, public ::testing::WithParamInterface<EffectsCase> {};

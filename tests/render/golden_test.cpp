@@ -97,6 +97,24 @@ Scene pbr_spheres() {
   return s;
 }
 
+// Transmission (closed solids): a rough tinted glass sphere (transmission
+// 1, roughness 0.3) and a smaller one that transmits 60% of what its
+// dielectric layer does not reflect and diffuses the rest (roughness 0.15,
+// ior 2.4), on the lambertian ground.
+Scene transmission_spheres() {
+  Material frosted = test::pbr(1.0f, 0.0f, 0.3f);
+  frosted.albedo = {0.9f, 0.95f, 0.7f};
+  frosted.transmission = 1.0f;
+  Material mixed = test::pbr(1.0f, 0.0f, 0.15f);
+  mixed.albedo = {0.8f, 0.3f, 0.3f};
+  mixed.transmission = 0.6f;
+  mixed.ior = 2.4f;
+  Scene s = single_material(frosted);
+  s.materials.push_back(mixed);
+  s.spheres[2].material = 2;
+  return s;
+}
+
 // The 2CylinderEngine of Debian's assimp-testmodels (tools/setup.sh installs
 // it) with its own pbr materials and camera: instanced meshes, vertex
 // normals, metal and dielectric lobes together.
@@ -119,6 +137,7 @@ const GoldenCase CASES[] = {
     {"rtiow", rtiow_small},          {"lambertian", lambertian_only}, {"metal", metal_only},
     {"glass", glass_only},           {"emissive", emissive_black_sky}, {"pbr", pbr_spheres},
     {"engine", engine},              {"envmap", envmap_sky},
+    {"transmission", transmission_spheres},
 };
 
 std::string golden_path(const std::string& name, const char* kind) {

@@ -623,6 +623,60 @@ TEST(GltfErrors, MetallicRoughnessAndIorOutOfRange) {
             "PATH: materials[0].extensions.KHR_materials_ior.ior: must be a finite number >= 1, got 0.5");
 }
 
+// KHR_materials_transmission's factor; without KHR_materials_volume the
+// surface is thin-walled, with thickness > 0 a closed solid whose back faces
+// are hit whatever doubleSided says (a ray leaves the solid through them).
+TEST(Gltf, TransmissionThinWalledOrSolid) {
+  GltfBuilder b = test::quad_gltf();
+  b.doc["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_volume"};
+  b.add("materials", {{"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 0.75}}}}}});
+  b.add("materials", {{"extensions",
+                       {{"KHR_materials_transmission", {{"transmissionFactor", 1}}},
+                        {"KHR_materials_volume", {{"thicknessFactor", 0.1}}}}}});
+  b.add("materials", {{"extensions", {{"KHR_materials_volume", {{"thicknessFactor", 0}}}}}});
+  b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  std::vector<std::string> warnings;
+  const Scene s = load(b, "glass.gltf", {}, &warnings);
+  EXPECT_EQ(warnings, std::vector<std::string>{});
+  ASSERT_EQ(s.materials.size(), 3u);
+  EXPECT_EQ(s.materials[0].transmission, 0.75f);
+  EXPECT_TRUE(s.materials[0].thin_walled);
+  EXPECT_FALSE(s.materials[0].double_sided);
+  EXPECT_EQ(s.materials[1].transmission, 1.0f);
+  EXPECT_FALSE(s.materials[1].thin_walled);
+  EXPECT_TRUE(s.materials[1].double_sided);
+  EXPECT_EQ(s.materials[2].transmission, 0.0f);
+  EXPECT_TRUE(s.materials[2].thin_walled);
+  EXPECT_FALSE(s.materials[2].double_sided);
+}
+
+// The volume's attenuation and the transmission texture are not rendered:
+// named in the file's one warning.
+TEST(Gltf, VolumeAttenuationAndTransmissionTextureAreNamed) {
+  GltfBuilder b = test::textured_quad_gltf(test::png(2, 1, kTwoTexels));
+  b.doc["materials"][0]["extensions"] = {
+      {"KHR_materials_transmission", {{"transmissionFactor", 1}, {"transmissionTexture", {{"index", 0}}}}},
+      {"KHR_materials_volume", {{"thicknessFactor", 1}, {"attenuationColor", {1, 0.5, 0.5}}}}};
+  std::vector<std::string> warnings;
+  load(b, "tinted.gltf", {}, &warnings);
+  EXPECT_EQ(warnings, std::vector<std::string>{tmp("tinted.gltf") +
+                                               ": materials render without what octrace does not support yet: "
+                                               "KHR_materials_transmission's transmissionTexture, "
+                                               "KHR_materials_volume's attenuation (volumes render clear)"});
+}
+
+TEST(GltfErrors, TransmissionAndThicknessOutOfRange) {
+  GltfBuilder b = test::quad_gltf();
+  b.add("materials", {{"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.5}}}}}});
+  b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  EXPECT_EQ(load_error(b, "transmission.gltf"),
+            "PATH: materials[0].extensions.KHR_materials_transmission.transmissionFactor: must be a number in [0, 1], "
+            "got 1.5");
+  b.doc["materials"][0] = {{"extensions", {{"KHR_materials_volume", {{"thicknessFactor", -1}}}}}};
+  EXPECT_EQ(load_error(b, "thickness.gltf"),
+            "PATH: materials[0].extensions.KHR_materials_volume.thicknessFactor: must be a finite number >= 0, got -1");
+}
+
 // alphaMode, alphaCutoff (default 0.5), baseColorFactor's alpha and doubleSided.
 TEST(Gltf, AlphaModeCutoffAndDoubleSided) {
   GltfBuilder b = test::textured_quad_gltf(test::png(2, 1, kTwoTexels));
@@ -658,7 +712,7 @@ TEST(GltfErrors, BadAlphaCutoffAndMode) {
 // What is not rendered yet is named in one warning per file.
 TEST(Gltf, WhatMaterialsLackIsNamedInOneWarning) {
   GltfBuilder b = test::textured_quad_gltf(test::png(2, 1, kTwoTexels));
-  b.doc["extensionsUsed"] = {"KHR_materials_transmission", "KHR_texture_transform", "KHR_materials_emissive_strength"};
+  b.doc["extensionsUsed"] = {"KHR_materials_clearcoat", "KHR_texture_transform", "KHR_materials_emissive_strength"};
   // KHR_texture_transform is rendered, but not its texCoord override to another set.
   b.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {
       {"KHR_texture_transform", {{"texCoord", 1}}}};
@@ -671,7 +725,7 @@ TEST(Gltf, WhatMaterialsLackIsNamedInOneWarning) {
   EXPECT_EQ(warnings, std::vector<std::string>{tmp("lacks.gltf") +
                                                ": materials render without what octrace does not support yet: "
                                                "texture coordinate sets other than 0, "
-                                               "KHR_materials_transmission"});
+                                               "KHR_materials_clearcoat"});
 }
 
 // ---------------------------------------------------------------------------

@@ -322,16 +322,17 @@ TEST(Json, PbrMaterialsTakeGltfDefaultsAndRoundTripBitExactly) {
   expect_bit_identical(parse_scene_json(scene_to_json(s), "rt.json"), s);
 }
 
-// Transmission is read and checked but not rendered yet: one warning naming
-// the file and the materials, and the scene loads.
-TEST(Json, PbrTransmissionLoadsWithOneWarning) {
+// Transmission is rendered: a JSON pbr material with it is a closed solid
+// (never thin-walled), and it loads without a warning.
+TEST(Json, PbrTransmissionIsASolidWithoutWarning) {
   testing::internal::CaptureStderr();
   const Scene s = parse_scene_json(R"({"materials": [{"type": "pbr", "transmission": 0.5}, {"type": "pbr"},
                                                      {"type": "pbr", "transmission": 1}], "spheres": []})",
                                    "glass.json");
-  EXPECT_EQ(testing::internal::GetCapturedStderr(),
-            "octrace: warning: glass.json: transmission is not rendered yet: materials[0], materials[2] render opaque\n");
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
   EXPECT_EQ(s.materials[0].transmission, 0.5f);
+  EXPECT_FALSE(s.materials[0].thin_walled);
+  EXPECT_FALSE(s.materials[2].thin_walled);
 }
 
 TEST(JsonErrors, PbrValuesOutOfRange) {
