@@ -459,7 +459,6 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
   RenderResult result;
   std::vector<DeviceShare> shares;
   mpi::Gathered gathered;  // under MPI: what each rank did
-  double merge_ms = 0;
   try {
     if (under_mpi) {
 #ifdef OCTRACE_MPI
@@ -481,9 +480,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       if (uint32_t n = validation_message_count())
         throw RuntimeError("the Vulkan validation layer reported " + std::to_string(n) + " message(s)");
       if (!mpi::gather(tracer.read_accumulation(), tracer.nonfinite_samples(), share, info, gathered)) return 0;
-      auto merge_start = Clock::now();
-      const Accumulation merged = merge_accumulations(gathered.parts);
-      merge_ms = ms_since(merge_start);
+      const Accumulation& merged = gathered.merged;
       result.timings = tracer.setup_timings();
       result.octree = tracer.octree_stats();
       result.features = tracer.features();
@@ -492,7 +489,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       result.samples = gathered.samples;
       result.interrupted = gathered.interrupted;
       if (result.interrupted) g_signal = gathered.signal;
-      result.timings.readback_ms = gathered.transfer_ms + merge_ms;
+      result.timings.readback_ms = gathered.reduce_ms;
       for (const mpi::RankShare& r : gathered.shares) {
         result.timings.render_device_ms = std::max(result.timings.render_device_ms, r.device_ms);
         result.timings.render_wall_ms = std::max(result.timings.render_wall_ms, r.wall_ms);
@@ -579,8 +576,8 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
         per_rank.push_back({{"rank", r.rank}, {"host", r.host}, {"device", r.device}, {"samples", r.samples},
                             {"render_ms", r.device_ms}, {"render_wall_ms", r.wall_ms}, {"setup_ms", r.setup_ms}});
       j["ranks"] = per_rank;
-      j["times_ms"]["reduce_transfer"] = gathered.transfer_ms;
-      j["times_ms"]["reduce_merge"] = merge_ms;
+      j["times_ms"]["reduce"] = gathered.reduce_ms;
+      j["times_ms"]["reduce_receive"] = gathered.receive_ms;
     }
     if (settings.accel == Accel::Octree) {
       const OctreeStats& o = result.octree;
@@ -622,7 +619,8 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       std::printf("rank %d    %s, %s: %u spp, %.1f ms of passes, %.1f ms set-up\n", r.rank, r.host.c_str(),
                   r.device.c_str(), r.samples, r.device_ms, r.setup_ms);
     if (!gathered.shares.empty())
-      std::printf("reduce    %.1f ms receiving the states, %.1f ms merging\n", gathered.transfer_ms, merge_ms);
+      std::printf("reduce    %.1f ms receiving and merging the ranks' states (%.1f ms of it receiving)\n",
+                  gathered.reduce_ms, gathered.receive_ms);
     for (const auto& [name, value] : result.pipeline_statistics)
       std::printf("pipeline  %s: %s\n", name.c_str(), value.c_str());
     if (result.nonfinite_samples)

@@ -371,26 +371,60 @@ bool gather(const Accumulation& acc, uint64_t nonfinite, const RankShare& share,
   const int decision = job.decide(0, "", report, &reports);
   job.phase = Phase::Final;
   if (decision != 0) throw JobFailed{decision};
-  const size_t floats = acc.sum.size() * 4;
-  if (floats > size_t(INT_MAX)) throw RuntimeError("MPI: the state is too large to send in one message");
+  // The states travel in slices of kSlice pixels (3 messages of 16 bytes per
+  // pixel each), and rank 0 merges each slice on worker threads while the
+  // next one arrives: the reduce costs about the transfer, not transfer +
+  // merge. Per pixel the merge is merge_accumulations' (rank order).
+  constexpr size_t kSlice = size_t(1) << 20;
+  const size_t pixels = acc.sum.size();
   if (job.rank != 0) {
-    for (const std::vector<glm::vec4>* v : {&acc.sum, &acc.comp, &acc.sq})
-      MPI_Send(v->data(), int(floats), MPI_FLOAT, 0, kTagState, MPI_COMM_WORLD);
+    for (size_t begin = 0; begin < pixels; begin += kSlice) {
+      const int count = int(std::min(kSlice, pixels - begin) * 4);
+      for (const std::vector<glm::vec4>* v : {&acc.sum, &acc.comp, &acc.sq})
+        MPI_Send(v->data() + begin, count, MPI_FLOAT, 0, kTagState, MPI_COMM_WORLD);
+    }
     return false;
   }
-  const auto transfer_start = Clock::now();
-  out.parts.assign(size_t(job.size), Accumulation{});
-  out.parts[0] = acc;
-  for (int r = 1; r < job.size; ++r) {
-    Accumulation& part = out.parts[size_t(r)];
-    part.width = acc.width;
-    part.height = acc.height;
-    for (std::vector<glm::vec4>* v : {&part.sum, &part.comp, &part.sq}) {
-      v->resize(acc.sum.size());
-      MPI_Recv(v->data(), int(floats), MPI_FLOAT, r, kTagState, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-    }
+  const auto reduce_start = Clock::now();
+  std::vector<Accumulation> parts(size_t(job.size - 1));
+  std::vector<const Accumulation*> pointers = {&acc};
+  for (Accumulation& part : parts) {
+    part = Accumulation{acc.width, acc.height, std::vector<glm::vec4>(pixels), std::vector<glm::vec4>(pixels),
+                        std::vector<glm::vec4>(pixels)};
+    pointers.push_back(&part);
   }
-  out.transfer_ms = ms_since(transfer_start);
+  out.merged = Accumulation{acc.width, acc.height, std::vector<glm::vec4>(pixels), std::vector<glm::vec4>(pixels),
+                            std::vector<glm::vec4>(pixels)};
+  // One thread is left to receive.
+  const size_t workers = std::max(1u, std::thread::hardware_concurrency()) > 1
+                             ? size_t(std::thread::hardware_concurrency()) - 1 : 1;
+  std::vector<std::thread> merging;
+  const auto join_merge = [&] {
+    for (std::thread& t : merging) t.join();
+    merging.clear();
+  };
+  double receive_ms = 0;
+  for (size_t begin = 0; begin < pixels; begin += kSlice) {
+    const size_t end = std::min(pixels, begin + kSlice);
+    const auto receive_start = Clock::now();
+    std::vector<MPI_Request> requests;
+    for (int r = 1; r < job.size; ++r)
+      for (std::vector<glm::vec4>* v : {&parts[size_t(r - 1)].sum, &parts[size_t(r - 1)].comp, &parts[size_t(r - 1)].sq}) {
+        requests.emplace_back();
+        MPI_Irecv(v->data() + begin, int((end - begin) * 4), MPI_FLOAT, r, kTagState, MPI_COMM_WORLD, &requests.back());
+      }
+    MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+    receive_ms += ms_since(receive_start);
+    join_merge();  // the slice before
+    const size_t step = (end - begin + workers - 1) / workers;
+    for (size_t from = begin; from < end; from += step)
+      merging.emplace_back([&, from, to = std::min(end, from + step)] {
+        merge_accumulation_pixels(pointers, out.merged, from, to);
+      });
+  }
+  join_merge();
+  out.receive_ms = receive_ms;
+  out.reduce_ms = ms_since(reduce_start);
   out.nonfinite_samples = 0;
   for (const json& j : reports) {
     out.shares.push_back(share_of(j.at("share")));

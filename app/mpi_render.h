@@ -63,13 +63,14 @@ struct RankShare {
 
 // What rank 0 has once the ranks have reported.
 struct Gathered {
-  std::vector<Accumulation> parts;   // in rank order
+  Accumulation merged;               // the ranks' states merged in rank order
   std::vector<RankShare> shares;     // in rank order
   uint32_t samples = 0;              // sample indices handed out, all rendered
   bool interrupted = false;          // a rank was signalled: fewer than spp
   int signal = 0;                    // which signal (SIGINT, SIGTERM)
   uint64_t nonfinite_samples = 0;
-  double transfer_ms = 0;            // receiving the other ranks' states
+  double receive_ms = 0;             // waiting for the other ranks' states
+  double reduce_ms = 0;              // receiving and merging them (overlapped)
 };
 
 #ifdef OCTRACE_MPI
@@ -98,7 +99,7 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
 
 // Every rank, after render_share: reports success with its state, its share
 // and the settings that must agree across ranks (info.scene_hash set).
-// Rank 0 returns true with the ranks' states; the others return false.
+// Rank 0 returns true with the ranks' states merged; the others false.
 // Throws JobFailed (rank 0 has printed the line) if a rank failed or renders
 // another scene or other settings than rank 0.
 bool gather(const Accumulation& acc, uint64_t nonfinite, const RankShare& share, const CheckpointInfo& info,
