@@ -361,8 +361,6 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
   // Under mpirun only rank 0 reports and writes; the others render their share.
   const bool under_mpi = mpi::active();
   if (under_mpi) {
-    if (checkpoint_seconds > 0)
-      throw InputError("--checkpoint: not under MPI (the state is merged once, at the end; --state writes it then)");
     if (outputs.empty() && state.empty() && !scene_opts.dump_scene.empty())
       throw InputError("--dump-scene: under MPI give --out or --state too (there is nothing to render)");
     if (mpi::rank() != 0) {
@@ -370,6 +368,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       as_json = false;
       outputs.clear();  // only rank 0 writes
       state.clear();
+      checkpoint_seconds = 0;  // rank 0 writes the merged checkpoints
       scene_opts.dump_scene.clear();
       resume_prefix.clear();  // rank 0 continues the state
     }
@@ -470,6 +469,11 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
         control.check_resume(tracer.scene_hash());
         tracer.write_accumulation(*control.resume);
       }
+      if (!state.empty() && checkpoint_seconds > 0)
+        mpi::set_checkpoint(checkpoint_seconds, settings.width, settings.height,
+                            [&, hash = tracer.scene_hash()](const Accumulation& acc, uint32_t samples) {
+                              control.checkpoint(acc, samples, hash);
+                            });
       mpi::RankShare share;
       share.device = ctx.info.name;
       share.setup_ms = device_ms + ms_since(setup_start);
@@ -773,8 +777,8 @@ int main(int argc, char** argv) {
                        "node-local GPU (local rank modulo the node's GPUs; or its own --device), takes batches of "
                        "samples from rank 0, and rank 0 merges the states and alone writes the outputs, --state and "
                        "the summary (\"ranks\"). A failed rank fails the job: one line names it and its host, every "
-                       "rank exits non-zero, no output is written. --checkpoint and device lists are refused under "
-                       "MPI (docs/multi_gpu.md)");
+                       "rank exits non-zero, no output is written. --checkpoint writes the merged state; device lists "
+                       "are refused under MPI (docs/multi_gpu.md)");
 
   ViewOptions view_opts;
   auto* view_cmd = app.add_subcommand("view", "Open a window that shows the image converge, pass by pass");

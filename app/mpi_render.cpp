@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <climits>
+#include <condition_variable>
+#include <functional>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -24,7 +26,12 @@ namespace {
 
 using json = nlohmann::json;
 
-constexpr int kTagRequest = 11, kTagReply = 12, kTagState = 20;
+constexpr int kTagRequest = 11, kTagReply = 12, kTagState = 20, kTagCheckpoint = 21;
+// A reply {kCheckpoint, 0}: send your state (a checkpoint), then ask again.
+constexpr uint32_t kCheckpoint = UINT32_MAX;
+// The states travel in slices of kSlice pixels (3 messages of 16 bytes per
+// pixel each).
+constexpr size_t kSlice = size_t(1) << 20;
 // A request's kinds: a batch (after `completed` samples of the last one), a
 // batch and stop the job (a signal reached the rank), the rank failed.
 constexpr int64_t kWant = 0, kStop = 1, kFailed = 2;
@@ -41,6 +48,25 @@ void wait_gently(MPI_Request& request) {
 }
 
 enum class Phase { Render, Final, Done };
+
+void send_state(const Accumulation& acc, int tag) {
+  const size_t pixels = acc.sum.size();
+  for (size_t begin = 0; begin < pixels; begin += kSlice) {
+    const int count = int(std::min(kSlice, pixels - begin) * 4);
+    for (const std::vector<glm::vec4>* v : {&acc.sum, &acc.comp, &acc.sq})
+      MPI_Send(v->data() + begin, count, MPI_FLOAT, 0, tag, MPI_COMM_WORLD);
+  }
+}
+
+void receive_state(int source, int tag, Accumulation& acc) {
+  const size_t pixels = size_t(acc.width) * size_t(acc.height);
+  for (std::vector<glm::vec4>* v : {&acc.sum, &acc.comp, &acc.sq}) v->resize(pixels);
+  for (size_t begin = 0; begin < pixels; begin += kSlice) {
+    const int count = int(std::min(kSlice, pixels - begin) * 4);
+    for (std::vector<glm::vec4>* v : {&acc.sum, &acc.comp, &acc.sq})
+      MPI_Recv(v->data() + begin, count, MPI_FLOAT, source, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  }
+}
 
 // `text` with its first `from` replaced by `to`.
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
@@ -69,6 +95,45 @@ struct Job {
   uint32_t done = 0;     // samples reported rendered
   ProgressFn progress;
   std::thread server;
+  // --checkpoint: every `checkpoint_seconds` the ranks are asked, as they
+  // finish their batches, for their states (no new batch meanwhile, so the
+  // states hold exactly the indices handed out); the last one to deliver
+  // merges them and writes the checkpoint, and the batches go on.
+  double checkpoint_seconds = 0;
+  int width = 0, height = 0;
+  std::function<void(const Accumulation&, uint32_t samples)> write_checkpoint;
+  Clock::time_point last_checkpoint;
+  bool draining = false;
+  int drained = 0;
+  std::vector<Accumulation> drained_parts;  // by rank
+  std::vector<bool> delivered;              // by rank, in this checkpoint
+  std::condition_variable drain_done;
+  std::string checkpoint_error;  // a checkpoint that could not be written fails rank 0
+
+  // Under `mutex`: rank `r`'s state for the checkpoint; the last one merges
+  // and writes.
+  void deliver_locked(int r, Accumulation&& acc) {
+    if (!draining) return;  // called off: a rank failed
+    drained_parts[size_t(r)] = std::move(acc);
+    delivered[size_t(r)] = true;
+    if (++drained < size) return;
+    try {
+      write_checkpoint(merge_accumulations(drained_parts), already + next);
+    } catch (const std::exception& e) {
+      checkpoint_error = e.what();
+      failed = true;
+    }
+    drained_parts.clear();
+    draining = false;
+    last_checkpoint = Clock::now();
+    drain_done.notify_all();
+  }
+  void call_off_checkpoint_locked() {
+    if (!draining) return;
+    draining = false;
+    drained_parts.clear();
+    drain_done.notify_all();
+  }
 
   // Under `mutex`: the next batch for a rank that wants `want` samples
   // ({first, 0} when there is none), after it reported `completed`.
@@ -80,7 +145,19 @@ struct Job {
       stop = true;
       signal = sig;
     }
-    if (failed || stop || next >= work) return {0, 0};
+    if (failed || stop || next >= work) {
+      call_off_checkpoint_locked();
+      return {0, 0};
+    }
+    if (draining || (checkpoint_seconds > 0 && ms_since(last_checkpoint) >= 1000.0 * checkpoint_seconds)) {
+      if (!draining) {
+        draining = true;
+        drained = 0;
+        drained_parts.assign(size_t(size), Accumulation{});
+        delivered.assign(size_t(size), false);
+      }
+      return {kCheckpoint, 0};
+    }
     // As the multi-device render: batches shrink near the end so that no
     // rank is left with much more than the others.
     const uint32_t remaining = work - next;
@@ -99,21 +176,35 @@ struct Job {
       int64_t msg[4];
     };
     std::vector<Pending> pending;  // first requests, held until the start
+    std::vector<Pending> held;     // requests of ranks that delivered, held until the checkpoint is written
     const auto answer = [&](int source, const int64_t* msg) {
       const auto [first, n] = take(uint32_t(msg[1]), uint32_t(msg[2]), msg[0] == kStop, int(msg[3]));
       uint32_t reply[2] = {first, n};
       MPI_Send(reply, 2, MPI_UINT32_T, source, kTagReply, MPI_COMM_WORLD);
-      if (n == 0) --active_ranks;
+      if (n == 0 && first != kCheckpoint) --active_ranks;
     };
     while (active_ranks > 0) {
       bool go = false;
       {
         std::lock_guard<std::mutex> lock(mutex);
-        if (!started && (failed || (rank0_ready && waiting == active_ranks))) started = go = true;
+        if (!started && (failed || (rank0_ready && waiting == active_ranks))) {
+          started = go = true;
+          last_checkpoint = Clock::now();
+        }
       }
       if (go) {
         for (const Pending& p : pending) answer(p.source, p.msg);
         pending.clear();
+        continue;
+      }
+      bool drain_over;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        drain_over = !draining;
+      }
+      if (drain_over && !held.empty()) {
+        for (const Pending& p : held) answer(p.source, p.msg);
+        held.clear();
         continue;
       }
       bool ready;
@@ -128,9 +219,16 @@ struct Job {
       }
       int flag = 0;
       MPI_Status status;
-      MPI_Iprobe(MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &flag, &status);
+      MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status);
       if (!flag) {
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        continue;
+      }
+      if (status.MPI_TAG == kTagCheckpoint) {
+        Accumulation acc{width, height, {}, {}, {}};
+        receive_state(status.MPI_SOURCE, kTagCheckpoint, acc);
+        std::lock_guard<std::mutex> lock(mutex);
+        deliver_locked(status.MPI_SOURCE, std::move(acc));
         continue;
       }
       int64_t msg[4];
@@ -138,13 +236,21 @@ struct Job {
       if (msg[0] == kFailed) {
         std::lock_guard<std::mutex> lock(mutex);
         failed = true;
+        call_off_checkpoint_locked();
         --active_ranks;
         continue;
       }
-      bool wait;
+      bool wait, hold;
       {
         std::lock_guard<std::mutex> lock(mutex);
         wait = !started;
+        // A rank that has given its state for the checkpoint under way
+        // gets its next batch once the checkpoint is written.
+        hold = draining && delivered[size_t(status.MPI_SOURCE)];
+      }
+      if (hold) {
+        held.push_back({status.MPI_SOURCE, {msg[0], msg[1], msg[2], msg[3]}});
+        continue;
       }
       if (wait) {
         pending.push_back({status.MPI_SOURCE, {msg[0], msg[1], msg[2], msg[3]}});
@@ -291,6 +397,16 @@ void set_work(uint32_t spp, uint32_t already, ProgressFn progress) {
   g_job.configured = true;
 }
 
+void set_checkpoint(double seconds, int width, int height,
+                    std::function<void(const Accumulation&, uint32_t samples)> write) {
+  if (g_job.rank != 0) return;
+  std::lock_guard<std::mutex> lock(g_job.mutex);
+  g_job.checkpoint_seconds = seconds;
+  g_job.width = width;
+  g_job.height = height;
+  g_job.write_checkpoint = std::move(write);
+}
+
 void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_sample, const std::atomic<bool>* stop,
                   const std::atomic<int>* signal, RankShare& share) {
   Job& job = g_job;
@@ -326,6 +442,18 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
       got = {reply[0], reply[1]};
     }
     completed = 0;
+    if (got.first == kCheckpoint && got.second == 0) {
+      // Everything handed out so far is in this state.
+      Accumulation acc = tracer.read_accumulation();
+      if (job.rank != 0) {
+        send_state(acc, kTagCheckpoint);
+      } else {
+        std::unique_lock<std::mutex> lock(job.mutex);
+        job.deliver_locked(0, std::move(acc));
+        job.drain_done.wait(lock, [&] { return !job.draining; });
+      }
+      continue;
+    }
     if (got.second == 0) {
       job.released = true;
       break;
@@ -339,6 +467,10 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
     completed = got.second;
   }
   share.wall_ms = ms_since(start);
+  if (job.rank == 0) {
+    std::lock_guard<std::mutex> lock(job.mutex);
+    if (!job.checkpoint_error.empty()) throw RuntimeError(job.checkpoint_error);
+  }
 }
 
 namespace {
@@ -371,18 +503,13 @@ bool gather(const Accumulation& acc, uint64_t nonfinite, const RankShare& share,
   const int decision = job.decide(0, "", report, &reports);
   job.phase = Phase::Final;
   if (decision != 0) throw JobFailed{decision};
-  // The states travel in slices of kSlice pixels (3 messages of 16 bytes per
-  // pixel each), and rank 0 merges each slice on worker threads while the
-  // next one arrives: the reduce costs about the transfer, not transfer +
-  // merge. Per pixel the merge is merge_accumulations' (rank order).
-  constexpr size_t kSlice = size_t(1) << 20;
+  // The states travel in slices, and rank 0 merges each slice on worker
+  // threads while the next one arrives: the reduce costs about the
+  // transfer, not transfer + merge. Per pixel the merge is
+  // merge_accumulations' (rank order).
   const size_t pixels = acc.sum.size();
   if (job.rank != 0) {
-    for (size_t begin = 0; begin < pixels; begin += kSlice) {
-      const int count = int(std::min(kSlice, pixels - begin) * 4);
-      for (const std::vector<glm::vec4>* v : {&acc.sum, &acc.comp, &acc.sq})
-        MPI_Send(v->data() + begin, count, MPI_FLOAT, 0, kTagState, MPI_COMM_WORLD);
-    }
+    send_state(acc, kTagState);
     return false;
   }
   const auto reduce_start = Clock::now();
@@ -458,6 +585,7 @@ int fail(int code, const std::string& message) {
       {
         std::lock_guard<std::mutex> lock(job.mutex);
         job.failed = true;
+        job.call_off_checkpoint_locked();
       }
       job.join_server();
     } else if (!job.released) {

@@ -18,6 +18,7 @@
 #include <atomic>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -90,6 +91,12 @@ std::string device_for_rank(const std::string& requested);
 // Rank 0: the job's total samples per pixel, the samples a resumed state
 // already holds, and the progress function (called with the job's totals).
 void set_work(uint32_t spp, uint32_t already, ProgressFn progress);
+
+// Rank 0, before render_share: --checkpoint every `seconds` (0: none) of
+// the merged state of width x height pixels, written by `write` (with the
+// samples per pixel it holds: indices first_sample .. + samples - 1).
+void set_checkpoint(double seconds, int width, int height,
+                    std::function<void(const Accumulation&, uint32_t samples)> write);
 
 // Renders this rank's batches (first_sample + the handed-out index) until
 // the job has none left, this rank is asked to stop (`stop`, a signal: the

@@ -1,7 +1,7 @@
 // Many processes, one render (docs/multi_gpu.md): `mpirun -np N octrace
 // render` equals a one-process render of the same samples; a rank that fails
 // fails the whole job in one line, with no output file; an interrupted job
-// leaves no partial file. And the path without MPI: a job array of
+// leaves no partial file; --checkpoint writes merged states that resume. And the path without MPI: a job array of
 // `render --first-sample K --state PART_K` runs merged by `octrace merge`.
 //
 // The MPI tests run two and three ranks on this machine's lavapipe with one
@@ -85,8 +85,8 @@ const std::string kArgs = "render --size 40x24 --spheres 60 --spp 12 ";
 #ifdef OCTRACE_MPIRUN
 
 // 2 and 3 ranks (12 samples: uneven shares with 3 ranks' batches) against one
-// process; the summary names each rank; --state of the merged state resumes
-// under another number of ranks to the same image.
+// process; the summary names each rank. (A merged state resumed under
+// another number of ranks: CheckpointsOfTheMergedStateResume.)
 TEST(Mpi, TwoAndThreeRanksRenderTheSamplesOfOneProcess) {
   const std::string one = tmp("one.pfm");
   ASSERT_EQ(run_octrace(kArgs + "--quiet --device 0 --out " + one).code, 0);
@@ -112,13 +112,6 @@ TEST(Mpi, TwoAndThreeRanksRenderTheSamplesOfOneProcess) {
     EXPECT_EQ(j["samples"].get<uint32_t>(), 12u);
     expect_same_render(out, one);
   }
-  // The merged state: 5 samples on 2 ranks, resumed to 12 on 3.
-  const std::string part = tmp("part"), resumed = tmp("resumed.pfm");
-  RunResult r = mpirun(2, "render --size 40x24 --spheres 60 --spp 5 --quiet --state " + part);
-  ASSERT_EQ(r.code, 0) << r.output;
-  r = mpirun(3, kArgs + "--quiet --resume " + part + " --out " + resumed);
-  ASSERT_EQ(r.code, 0) << r.output;
-  expect_same_render(resumed, one);
 }
 
 // `mpirun -np 1 octrace A : -np 1 octrace B`: rank 1 gets its own bad
@@ -198,6 +191,58 @@ TEST(Mpi, AnInterruptedJobLeavesNoPartialFile) {
     EXPECT_EQ(image.width, 64);
     EXPECT_EQ(image.height, 40);
   }
+}
+
+// --checkpoint under MPI: the merged state written during the render (the
+// ranks' states when no batch is in flight) is a whole render of the
+// samples it counts. mpirun is killed (SIGKILL: no final write) after the
+// first checkpoint; 3 ranks resume it to N + 7 samples, which equals one
+// process rendering N + 7 (1e-5 relative, as above).
+TEST(Mpi, CheckpointsOfTheMergedStateResume) {
+  const fs::path dir = tmp("checkpoint");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string scene = "render --size 16x10 --spheres 60 ";
+  const std::string state = (dir / "state").string(), log = (dir / "log.txt").string();
+  const std::string cmd = "exec env " + kMpiEnv + " " + OCTRACE_MPIRUN + " -q --oversubscribe -np 2 " + OCTRACE_BIN +
+                          " " + scene + "--spp 100000 --quiet --checkpoint 0.2 --state " + state + " > " + log + " 2>&1";
+  const pid_t pid = fork();
+  if (pid == 0) {
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!fs::exists(state + ".accum") && std::chrono::steady_clock::now() < end)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(fs::exists(state + ".accum")) << "no checkpoint";
+  // The ranks outlive mpirun by a moment (they end when they find it gone)
+  // and may write another checkpoint: wait until the file stays the same.
+  auto stamp = fs::last_write_time(state + ".accum");
+  for (int still = 0; still < 8 && std::chrono::steady_clock::now() < end;) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    const auto now = fs::last_write_time(state + ".accum");
+    still = now == stamp ? still + 1 : 0;
+    stamp = now;
+  }
+  // The samples the checkpoint holds, from its header.
+  std::ifstream f(state + ".accum", std::ios::binary);
+  std::string header(512, '\0');
+  f.read(header.data(), std::streamsize(header.size()));
+  const auto at = header.find("\"samples\":");
+  ASSERT_NE(at, std::string::npos) << header;
+  const uint32_t samples = uint32_t(std::stoul(header.substr(at + 10)));
+  ASSERT_GT(samples, 0u);
+  ASSERT_LT(samples, 100000u);
+  const std::string spp = "--spp " + std::to_string(samples + 7) + " ";
+  const std::string one = (dir / "one.pfm").string(), resumed = (dir / "resumed.pfm").string();
+  ASSERT_EQ(run_octrace(scene + spp + "--quiet --out " + one).code, 0);
+  const RunResult r = mpirun(3, scene + spp + "--json --resume " + state + " --out " + resumed);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(json_of(r.output).value("resumed_from", 0u), samples) << r.output;
+  expect_same_render(resumed, one);
 }
 
 #else
