@@ -462,6 +462,9 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
     if (under_mpi) {
 #ifdef OCTRACE_MPI
       // This rank's share of the job's batches; rank 0 merges the states.
+      struct ForgetCallbacks {
+        ~ForgetCallbacks() { mpi::clear_callbacks(); }
+      } forget;  // they refer to this function's locals
       mpi::set_work(settings.spp, control.resume_samples, control.progress);
       auto setup_start = Clock::now();
       PathTracer tracer(ctx, scene, settings);

@@ -118,7 +118,7 @@ struct Job {
     delivered[size_t(r)] = true;
     if (++drained < size) return;
     try {
-      write_checkpoint(merge_accumulations(drained_parts), already + next);
+      if (write_checkpoint) write_checkpoint(merge_accumulations(drained_parts), already + next);
     } catch (const std::exception& e) {
       checkpoint_error = e.what();
       failed = true;
@@ -274,7 +274,8 @@ struct Job {
     report["code"] = code;
     report["message"] = message;
     report["host"] = host;
-    const std::string text = report.dump();
+    // A message may hold bytes that are not UTF-8 (a file name): replaced.
+    const std::string text = report.dump(-1, ' ', false, json::error_handler_t::replace);
     int length = int(text.size());
     std::vector<int> lengths(size);
     MPI_Request request;
@@ -405,6 +406,14 @@ void set_checkpoint(double seconds, int width, int height,
   g_job.width = width;
   g_job.height = height;
   g_job.write_checkpoint = std::move(write);
+}
+
+void clear_callbacks() {
+  if (g_job.rank != 0) return;
+  std::lock_guard<std::mutex> lock(g_job.mutex);
+  g_job.progress = nullptr;
+  g_job.write_checkpoint = nullptr;
+  g_job.call_off_checkpoint_locked();
 }
 
 void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_sample, const std::atomic<bool>* stop,

@@ -98,6 +98,11 @@ void set_work(uint32_t spp, uint32_t already, ProgressFn progress);
 void set_checkpoint(double seconds, int width, int height,
                     std::function<void(const Accumulation&, uint32_t samples)> write);
 
+// Rank 0: forgets the progress and checkpoint functions (before what they
+// refer to goes away: the batch server may still run while an error
+// unwinds the front end).
+void clear_callbacks();
+
 // Renders this rank's batches (first_sample + the handed-out index) until
 // the job has none left, this rank is asked to stop (`stop`, a signal: the
 // whole job then stops after the batches in flight), or another rank failed.
