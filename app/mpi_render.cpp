@@ -426,7 +426,10 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
     {
       std::lock_guard<std::mutex> lock(job.mutex);
       job.rank0_ready = true;
-      if (job.size == 1) job.started = true;
+      if (job.size == 1) {
+        job.started = true;
+        job.last_checkpoint = Clock::now();
+      }
     }
     for (;;) {
       {
