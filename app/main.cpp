@@ -7,6 +7,7 @@
 #include <cctype>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -22,6 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench.h"
+#include "mpi_render.h"
 #include "io/image.h"
 #include "io/file.h"
 #include "core/clock.h"
@@ -319,6 +321,23 @@ std::vector<std::string> device_selections(const std::string& device) {
   return out;
 }
 
+// The MPI front end's rank and device choice; a build without MPI is rank 0
+// of one.
+int mpi_rank() {
+#ifdef OCTRACE_MPI
+  if (mpi::active()) return mpi::rank();
+#endif
+  return 0;
+}
+
+std::string mpi_device(const std::string& requested) {
+#ifdef OCTRACE_MPI
+  return mpi::device_for_rank(requested);
+#else
+  return requested;
+#endif
+}
+
 // The settings a checkpoint must match (render_state.h); the scene's hash
 // is known once it is on the device.
 CheckpointInfo checkpoint_info(const RenderSettings& s) {
@@ -334,12 +353,31 @@ CheckpointInfo checkpoint_info(const RenderSettings& s) {
   return info;
 }
 
-int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts, std::vector<std::string> outputs,
-               const std::string& state, double checkpoint_seconds, const std::string& resume_prefix, bool as_json,
-               bool quiet) {
+int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::vector<std::string> outputs,
+               std::string state, double checkpoint_seconds, std::string resume_prefix, bool as_json, bool quiet) {
   // Everything the user typed is checked before the (possibly long) render.
   RenderSettings settings = render_opts.parsed();
-  if (outputs.empty() && scene_opts.dump_scene.empty() && state.empty()) outputs.push_back("out.png");
+#ifdef OCTRACE_MPI
+  // Under mpirun only rank 0 reports and writes; the others render their share.
+  const bool under_mpi = mpi::active();
+  if (under_mpi) {
+    if (outputs.empty() && state.empty() && !scene_opts.dump_scene.empty())
+      throw InputError("--dump-scene: under MPI give --out or --state too (there is nothing to render)");
+    if (mpi::rank() != 0) {
+      quiet = true;
+      as_json = false;
+      outputs.clear();  // only rank 0 writes
+      state.clear();
+      checkpoint_seconds = 0;  // rank 0 writes the merged checkpoints
+      scene_opts.dump_scene.clear();
+      resume_prefix.clear();  // rank 0 continues the state
+    }
+  }
+#else
+  const bool under_mpi = false;
+#endif
+  const bool writes = !under_mpi || mpi_rank() == 0;
+  if (writes && outputs.empty() && scene_opts.dump_scene.empty() && state.empty()) outputs.push_back("out.png");
   for (const auto& o : outputs) check_image_path(o);
   if (!state.empty()) check_image_path(state + ".mean.pfm");
   if (checkpoint_seconds < 0 || std::isnan(checkpoint_seconds))
@@ -361,11 +399,13 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
   auto start = Clock::now();
   Scene scene = scene_opts.load();
   double scene_ms = ms_since(start);
-  if (outputs.empty() && state.empty()) return 0;  // only --dump-scene
+  if (!under_mpi && outputs.empty() && state.empty()) return 0;  // only --dump-scene
 
   start = Clock::now();
   // --device all | 0,2: one context per device, the first one the main one.
-  const std::vector<std::string> device_list = device_selections(render_opts.device);
+  // Under MPI: this rank's one device.
+  const std::vector<std::string> device_list =
+      under_mpi ? std::vector<std::string>{mpi_device(render_opts.device)} : device_selections(render_opts.device);
   if (device_list.size() > 1 && (!state.empty() || !resume_prefix.empty()))
     throw InputError("--device " + render_opts.device +
                      ": --state, --checkpoint and --resume work with one device only (use octrace merge)");
@@ -417,8 +457,56 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
   SignalGuard signals;
   RenderResult result;
   std::vector<DeviceShare> shares;
+  mpi::Gathered gathered;  // under MPI: what each rank did
   try {
-    if (!more_contexts.empty()) {
+    if (under_mpi) {
+#ifdef OCTRACE_MPI
+      // This rank's share of the job's batches; rank 0 merges the states.
+      struct ForgetCallbacks {
+        ~ForgetCallbacks() { mpi::clear_callbacks(); }
+      } forget;  // they refer to this function's locals
+      mpi::set_work(settings.spp, control.resume_samples, control.progress);
+      auto setup_start = Clock::now();
+      PathTracer tracer(ctx, scene, settings);
+      if (control.resume) {
+        control.check_resume(tracer.scene_hash());
+        tracer.write_accumulation(*control.resume);
+      }
+      if (!state.empty() && checkpoint_seconds > 0)
+        mpi::set_checkpoint(checkpoint_seconds, settings.width, settings.height,
+                            [&, hash = tracer.scene_hash()](const Accumulation& acc, uint32_t samples) {
+                              control.checkpoint(acc, samples, hash);
+                            });
+      mpi::RankShare share;
+      share.device = ctx.info.name;
+      share.setup_ms = device_ms + ms_since(setup_start);
+      mpi::render_share(tracer, pass_settings(scene, settings), settings.first_sample, &g_stop, &g_signal, share);
+      CheckpointInfo info = now;
+      info.scene_hash = tracer.scene_hash();
+      // After the job's decision this rank's failure could no longer fail it.
+      if (uint32_t n = validation_message_count())
+        throw RuntimeError("the Vulkan validation layer reported " + std::to_string(n) + " message(s)");
+      if (!mpi::gather(tracer.read_accumulation(), tracer.nonfinite_samples(), share, info, gathered)) return 0;
+      const Accumulation& merged = gathered.merged;
+      result.timings = tracer.setup_timings();
+      result.octree = tracer.octree_stats();
+      result.features = tracer.features();
+      resolve_accumulation(merged, result);
+      result.nonfinite_samples = gathered.nonfinite_samples;
+      result.samples = gathered.samples;
+      result.interrupted = gathered.interrupted;
+      if (result.interrupted) g_signal = gathered.signal;
+      result.timings.readback_ms = gathered.reduce_ms;
+      for (const mpi::RankShare& r : gathered.shares) {
+        result.timings.render_device_ms = std::max(result.timings.render_device_ms, r.device_ms);
+        result.timings.render_wall_ms = std::max(result.timings.render_wall_ms, r.wall_ms);
+      }
+      if (!state.empty()) {
+        info.samples = result.samples;
+        write_checkpoint(state, merged, info, state_of(merged));
+      }
+#endif
+    } else if (!more_contexts.empty()) {
       std::vector<const VulkanContext*> contexts = {&ctx};
       for (const auto& c : more_contexts) contexts.push_back(c.get());
       result = render_on_devices(contexts, scene, settings, control, shares);
@@ -489,6 +577,15 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
         per_device.push_back({{"name", d.name}, {"samples", d.samples}, {"render_ms", d.device_ms}, {"setup_ms", d.setup_ms}});
       j["devices"] = per_device;
     }
+    if (!gathered.shares.empty()) {
+      json per_rank = json::array();
+      for (const mpi::RankShare& r : gathered.shares)
+        per_rank.push_back({{"rank", r.rank}, {"host", r.host}, {"device", r.device}, {"samples", r.samples},
+                            {"render_ms", r.device_ms}, {"render_wall_ms", r.wall_ms}, {"setup_ms", r.setup_ms}});
+      j["ranks"] = per_rank;
+      j["times_ms"]["reduce"] = gathered.reduce_ms;
+      j["times_ms"]["reduce_receive"] = gathered.receive_ms;
+    }
     if (settings.accel == Accel::Octree) {
       const OctreeStats& o = result.octree;
       j["octree"] = {{"leaf_size", settings.octree.leaf_size}, {"max_depth", settings.octree.max_depth},
@@ -525,6 +622,12 @@ int cmd_render(const SceneOptions& scene_opts, const RenderOptions& render_opts,
     for (size_t d = 0; d < shares.size(); ++d)
       std::printf("device %zu  %s: %u spp, %.1f ms of passes, %.1f ms set-up\n", d, shares[d].name.c_str(),
                   shares[d].samples, shares[d].device_ms, shares[d].setup_ms);
+    for (const mpi::RankShare& r : gathered.shares)
+      std::printf("rank %d    %s, %s: %u spp, %.1f ms of passes, %.1f ms set-up\n", r.rank, r.host.c_str(),
+                  r.device.c_str(), r.samples, r.device_ms, r.setup_ms);
+    if (!gathered.shares.empty())
+      std::printf("reduce    %.1f ms receiving and merging the ranks' states (%.1f ms of it receiving)\n",
+                  gathered.reduce_ms, gathered.receive_ms);
     for (const auto& [name, value] : result.pipeline_statistics)
       std::printf("pipeline  %s: %s\n", name.c_str(), value.c_str());
     if (result.nonfinite_samples)
@@ -619,6 +722,30 @@ int main(int argc, char** argv) {
   // Mesa's lavapipe warns on every start when XDG_RUNTIME_DIR is unset (as
   // in containers and CI); it needs only a writable folder.
   setenv("XDG_RUNTIME_DIR", "/tmp", 0);
+  // `mpirun -np N octrace render ...` (or render --mpi): one rank of a job
+  // (app/mpi_render.h). Every way out of main below then goes through the
+  // job's protocol, so that every rank ends with the job's exit code.
+  const bool mpi_launch = argc > 1 && std::strcmp(argv[1], "render") == 0 && mpi::launched(argc, argv);
+#ifdef OCTRACE_MPI
+  if (mpi_launch) mpi::init(&argc, &argv);
+  const auto end = [](int code) { return mpi::active() ? mpi::finish(code) : code; };
+  const auto fail = [](int code, const std::string& message) {
+    if (mpi::active()) return mpi::fail(code, message);
+    std::fprintf(stderr, "octrace: error: %s\n", message.c_str());
+    return code;
+  };
+#else
+  if (mpi_launch) {
+    std::fprintf(stderr, "octrace: error: started by an MPI launcher (or --mpi), but this build has no MPI "
+                         "(configure with -DOCTRACE_MPI=ON and libopenmpi-dev)\n");
+    return 2;
+  }
+  const auto end = [](int code) { return code; };
+  const auto fail = [](int code, const std::string& message) {
+    std::fprintf(stderr, "octrace: error: %s\n", message.c_str());
+    return code;
+  };
+#endif
   CLI::App app{"octrace: a Vulkan compute path tracer for sphere scenes"};
   app.require_subcommand(1);
   // A flag given twice takes its last value, as scripts that append flags expect.
@@ -646,6 +773,15 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--resume", resume_prefix,
                          "Continue the render saved as PREFIX (--state) up to --spp, with the same sample indices");
   render_cmd->add_flag("--quiet,-q", quiet, "No progress or summary");
+  bool mpi_flag = false;  // read before parsing (mpi::launched)
+  render_cmd->add_flag("--mpi", mpi_flag,
+                       "Run as one rank of an MPI job; implied when started by mpirun (OMPI_COMM_WORLD_SIZE, "
+                       "PMIX_RANK or PMI_SIZE set). `mpirun -np N octrace render ...`: each rank renders on its "
+                       "node-local GPU (local rank modulo the node's GPUs; or its own --device), takes batches of "
+                       "samples from rank 0, and rank 0 merges the states and alone writes the outputs, --state and "
+                       "the summary (\"ranks\"). A failed rank fails the job: one line names it and its host, every "
+                       "rank exits non-zero, no output is written. --checkpoint writes the merged state; device lists "
+                       "are refused under MPI (docs/multi_gpu.md)");
 
   ViewOptions view_opts;
   auto* view_cmd = app.add_subcommand("view", "Open a window that shows the image converge, pass by pass");
@@ -712,12 +848,11 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+    return end(app.exit(e));
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    return end(app.exit(e));
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "octrace: error: %s (see --help)\n", e.what());
-    return 2;
+    return fail(2, std::string(e.what()) + " (see --help)");
   }
 
   int code = 0;
@@ -759,22 +894,18 @@ int main(int argc, char** argv) {
       }
       code = run_bench(bench);
     }
+  } catch (const mpi::JobFailed& e) {
+    return end(e.code);  // rank 0 has said why
   } catch (const SettingError& e) {
-    std::fprintf(stderr, "octrace: error: %s\n", message_for_cli(e).c_str());
-    return 2;
+    return fail(2, message_for_cli(e));
   } catch (const InputError& e) {
-    std::fprintf(stderr, "octrace: error: %s\n", e.what());
-    return 2;
+    return fail(2, e.what());
   } catch (const RuntimeError& e) {
-    std::fprintf(stderr, "octrace: error: %s\n", e.what());
-    return 1;
+    return fail(1, e.what());
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "octrace: error: out of host memory\n");
-    return 1;
+    return fail(1, "out of host memory");
   }
-  if (uint32_t n = validation_message_count()) {
-    std::fprintf(stderr, "octrace: error: the Vulkan validation layer reported %u message(s)\n", n);
-    return 1;
-  }
-  return code;
+  if (uint32_t n = validation_message_count())
+    return fail(1, "the Vulkan validation layer reported " + std::to_string(n) + " message(s)");
+  return end(code);
 }

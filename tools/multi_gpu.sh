@@ -4,8 +4,7 @@
 # of the balloon, on 1 GPU (--device 0) and on K GPUs at once in one process
 # (--device 0,1,...), median of RUNS runs after a warm-up. Builds nothing: run
 # it on the GPU machine with a build carried there (like the single-GPU
-# runs). MPI ranks (mpirun -np K) are not measured: octrace has no MPI front
-# end yet.
+# runs). MPI ranks (mpirun -np K): tools/mpi_scaling.sh.
 #
 #   tools/multi_gpu.sh OCTRACE_BINARY OUT_DIR [BALLOON.gltf] [RUNS]
 set -euo pipefail

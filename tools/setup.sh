@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs every Debian package octrace needs to build, test and render
-# (clang and libclang-rt-14-dev, which holds libFuzzer: tools/fuzz.sh).
+# (clang and libclang-rt-14-dev, which holds libFuzzer: tools/fuzz.sh; OpenMPI
+# for `mpirun -np N octrace render`, CMake option OCTRACE_MPI).
 # Idempotent and non-interactive: packages already present are skipped, and
 # apt-get runs only when something is missing.
 set -euo pipefail
@@ -15,6 +16,7 @@ packages=(
   clang libclang-rt-14-dev
   xvfb xauth python3 python3-matplotlib python3-numpy
   libegl1 libegl-mesa0
+  openmpi-bin libopenmpi-dev
 )
 
 missing=()

@@ -14,30 +14,24 @@
 
 namespace octrace {
 
-Accumulation merge_accumulations(const std::vector<Accumulation>& parts) {
-  if (parts.empty()) throw InputError("merge: no accumulation states");
-  const Accumulation& first = parts.front();
-  for (const Accumulation& p : parts)
-    if (p.width != first.width || p.height != first.height || p.sum.size() != first.sum.size())
-      throw InputError("merge: accumulation states of different sizes");
-  Accumulation out{first.width, first.height, std::vector<glm::vec4>(first.sum.size()),
-                   std::vector<glm::vec4>(first.sum.size()), std::vector<glm::vec4>(first.sum.size())};
-  for (size_t i = 0; i < first.sum.size(); ++i) {
+void merge_accumulation_pixels(const std::vector<const Accumulation*>& parts, Accumulation& out, size_t begin,
+                               size_t end) {
+  for (size_t i = begin; i < end; ++i) {
     double n = 0, total[3] = {0, 0, 0};
     uint32_t rays = 0;
-    for (const Accumulation& p : parts) {
-      n += p.sum[i].w;
-      rays += std::bit_cast<uint32_t>(p.sq[i].w);
-      for (int c = 0; c < 3; ++c) total[c] += double(p.sum[i][c]) - double(p.comp[i][c]);
+    for (const Accumulation* p : parts) {
+      n += p->sum[i].w;
+      rays += std::bit_cast<uint32_t>(p->sq[i].w);
+      for (int c = 0; c < 3; ++c) total[c] += double(p->sum[i][c]) - double(p->comp[i][c]);
     }
     for (int c = 0; c < 3; ++c) {
       const double mean = n > 0 ? total[c] / n : 0.0;
       double m2 = 0;
-      for (const Accumulation& p : parts) {
-        const double ni = p.sum[i].w;
+      for (const Accumulation* p : parts) {
+        const double ni = p->sum[i].w;
         if (ni == 0) continue;
-        const double mean_i = (double(p.sum[i][c]) - double(p.comp[i][c])) / ni;
-        m2 += double(p.sq[i][c]) + ni * (mean_i - mean) * (mean_i - mean);
+        const double mean_i = (double(p->sum[i][c]) - double(p->comp[i][c])) / ni;
+        m2 += double(p->sq[i][c]) + ni * (mean_i - mean) * (mean_i - mean);
       }
       // The total as a float and what it overshoots (the Kahan form: sum - comp).
       out.sum[i][c] = float(total[c]);
@@ -47,6 +41,20 @@ Accumulation merge_accumulations(const std::vector<Accumulation>& parts) {
     out.sum[i].w = float(n);
     out.sq[i].w = std::bit_cast<float>(rays);
   }
+}
+
+Accumulation merge_accumulations(const std::vector<Accumulation>& parts) {
+  if (parts.empty()) throw InputError("merge: no accumulation states");
+  const Accumulation& first = parts.front();
+  std::vector<const Accumulation*> pointers;
+  for (const Accumulation& p : parts) {
+    if (p.width != first.width || p.height != first.height || p.sum.size() != first.sum.size())
+      throw InputError("merge: accumulation states of different sizes");
+    pointers.push_back(&p);
+  }
+  Accumulation out{first.width, first.height, std::vector<glm::vec4>(first.sum.size()),
+                   std::vector<glm::vec4>(first.sum.size()), std::vector<glm::vec4>(first.sum.size())};
+  merge_accumulation_pixels(pointers, out, 0, first.sum.size());
   return out;
 }
 

@@ -37,5 +37,10 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
 // deviations combine by Chan et al.'s parallel update (M2 = sum of M2_i +
 // n_i (mean_i - mean)^2); ray segments add. Throws InputError if the sizes differ.
 Accumulation merge_accumulations(const std::vector<Accumulation>& parts);
+// The same for pixels [begin, end) only, into `out`, whose buffers have the
+// parts' size (not checked): for a caller that merges a large state in
+// slices or threads (the MPI front end merges slices as they arrive).
+void merge_accumulation_pixels(const std::vector<const Accumulation*>& parts, Accumulation& out, size_t begin,
+                               size_t end);
 
 }  // namespace octrace

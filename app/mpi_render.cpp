@@ -1,0 +1,631 @@
+#include "mpi_render.h"
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <condition_variable>
+#include <functional>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
+#include <thread>
+
+#include <mpi.h>
+
+#include <nlohmann/json.hpp>
+
+#include "core/clock.h"
+#include "core/errors.h"
+#include "render/multi_device.h"
+#include "vk/context.h"
+
+namespace octrace::mpi {
+
+namespace {
+
+using json = nlohmann::json;
+
+constexpr int kTagRequest = 11, kTagReply = 12, kTagState = 20, kTagCheckpoint = 21;
+// A reply {kCheckpoint, 0}: send your state (a checkpoint), then ask again.
+constexpr uint32_t kCheckpoint = UINT32_MAX;
+// The states travel in slices of kSlice pixels (3 messages of 16 bytes per
+// pixel each).
+constexpr size_t kSlice = size_t(1) << 20;
+// A request's kinds: a batch (after `completed` samples of the last one), a
+// batch and stop the job (a signal reached the rank), the rank failed.
+constexpr int64_t kWant = 0, kStop = 1, kFailed = 2;
+
+// Waits for a non-blocking operation without spinning a core: OpenMPI's
+// blocking calls poll, which would take a lavapipe rank's CPU.
+void wait_gently(MPI_Request& request) {
+  for (;;) {
+    int flag = 0;
+    MPI_Test(&request, &flag, MPI_STATUS_IGNORE);
+    if (flag) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+}
+
+enum class Phase { Render, Final, Done };
+
+void send_state(const Accumulation& acc, int tag) {
+  const size_t pixels = acc.sum.size();
+  for (size_t begin = 0; begin < pixels; begin += kSlice) {
+    const int count = int(std::min(kSlice, pixels - begin) * 4);
+    for (const std::vector<glm::vec4>* v : {&acc.sum, &acc.comp, &acc.sq})
+      MPI_Send(v->data() + begin, count, MPI_FLOAT, 0, tag, MPI_COMM_WORLD);
+  }
+}
+
+void receive_state(int source, int tag, Accumulation& acc) {
+  const size_t pixels = size_t(acc.width) * size_t(acc.height);
+  for (std::vector<glm::vec4>* v : {&acc.sum, &acc.comp, &acc.sq}) v->resize(pixels);
+  for (size_t begin = 0; begin < pixels; begin += kSlice) {
+    const int count = int(std::min(kSlice, pixels - begin) * 4);
+    for (std::vector<glm::vec4>* v : {&acc.sum, &acc.comp, &acc.sq})
+      MPI_Recv(v->data() + begin, count, MPI_FLOAT, source, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  }
+}
+
+// `text` with its first `from` replaced by `to`.
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  if (const size_t at = text.find(from); at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+struct Job {
+  bool active = false;
+  int rank = 0, size = 1, local_rank = 0;
+  std::string host;
+  Phase phase = Phase::Render;
+  bool released = false;  // rank > 0: the server answered "no more" (or was told of a failure)
+
+  // Rank 0: the counter of sample indices and what the ranks reported.
+  std::mutex mutex;
+  bool configured = false, failed = false, stop = false;
+  // The batches start once every rank is set up (has asked for its first
+  // batch) or one failed: a rank that is slow to set up does not leave the
+  // others' first batches unevenly large, and every rank starts together.
+  bool rank0_ready = false, started = false;
+  int signal = 0;
+  uint32_t work = 0;     // samples to hand out (spp - already)
+  uint32_t already = 0;  // samples a resumed state holds
+  uint32_t next = 0;     // next index to hand out, from `already`
+  uint32_t done = 0;     // samples reported rendered
+  ProgressFn progress;
+  std::thread server;
+  // --checkpoint: every `checkpoint_seconds` the ranks are asked, as they
+  // finish their batches, for their states (no new batch meanwhile, so the
+  // states hold exactly the indices handed out); the last one to deliver
+  // merges them and writes the checkpoint, and the batches go on.
+  double checkpoint_seconds = 0;
+  int width = 0, height = 0;
+  std::function<void(const Accumulation&, uint32_t samples)> write_checkpoint;
+  Clock::time_point last_checkpoint;
+  bool draining = false;
+  int drained = 0;
+  std::vector<Accumulation> drained_parts;  // by rank
+  std::vector<bool> delivered;              // by rank, in this checkpoint
+  std::condition_variable drain_done;
+  std::string checkpoint_error;  // a checkpoint that could not be written fails rank 0
+
+  // Under `mutex`: rank `r`'s state for the checkpoint; the last one merges
+  // and writes.
+  void deliver_locked(int r, Accumulation&& acc) {
+    if (!draining) return;  // called off: a rank failed
+    drained_parts[size_t(r)] = std::move(acc);
+    delivered[size_t(r)] = true;
+    if (++drained < size) return;
+    try {
+      if (write_checkpoint) write_checkpoint(merge_accumulations(drained_parts), already + next);
+    } catch (const std::exception& e) {
+      checkpoint_error = e.what();
+      failed = true;
+    }
+    drained_parts.clear();
+    draining = false;
+    last_checkpoint = Clock::now();
+    drain_done.notify_all();
+  }
+  void call_off_checkpoint_locked() {
+    if (!draining) return;
+    draining = false;
+    drained_parts.clear();
+    drain_done.notify_all();
+  }
+
+  // Under `mutex`: the next batch for a rank that wants `want` samples
+  // ({first, 0} when there is none), after it reported `completed`.
+  std::pair<uint32_t, uint32_t> take(uint32_t completed, uint32_t want, bool stop_request, int sig) {
+    std::lock_guard<std::mutex> lock(mutex);
+    done += completed;
+    if (completed && progress) progress(already + done, already + work);
+    if (stop_request && !stop) {
+      stop = true;
+      signal = sig;
+    }
+    if (failed || stop || next >= work) {
+      call_off_checkpoint_locked();
+      return {0, 0};
+    }
+    if (draining || (checkpoint_seconds > 0 && ms_since(last_checkpoint) >= 1000.0 * checkpoint_seconds)) {
+      if (!draining) {
+        draining = true;
+        drained = 0;
+        drained_parts.assign(size_t(size), Accumulation{});
+        delivered.assign(size_t(size), false);
+      }
+      return {kCheckpoint, 0};
+    }
+    // As the multi-device render: batches shrink near the end so that no
+    // rank is left with much more than the others.
+    const uint32_t remaining = work - next;
+    const uint32_t n = std::clamp(std::min(want, remaining / uint32_t(2 * size) + 1), 1u, remaining);
+    const uint32_t first = already + next;
+    next += n;
+    return {first, n};
+  }
+
+  // Rank 0's thread: answers the other ranks' requests until each has been
+  // told there is no more work or has reported a failure.
+  void serve() {
+    int active_ranks = size - 1, waiting = 0;
+    struct Pending {
+      int source;
+      int64_t msg[4];
+    };
+    std::vector<Pending> pending;  // first requests, held until the start
+    std::vector<Pending> held;     // requests of ranks that delivered, held until the checkpoint is written
+    const auto answer = [&](int source, const int64_t* msg) {
+      const auto [first, n] = take(uint32_t(msg[1]), uint32_t(msg[2]), msg[0] == kStop, int(msg[3]));
+      uint32_t reply[2] = {first, n};
+      MPI_Send(reply, 2, MPI_UINT32_T, source, kTagReply, MPI_COMM_WORLD);
+      if (n == 0 && first != kCheckpoint) --active_ranks;
+    };
+    while (active_ranks > 0) {
+      bool go = false;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!started && (failed || (rank0_ready && waiting == active_ranks))) {
+          started = go = true;
+          last_checkpoint = Clock::now();
+        }
+      }
+      if (go) {
+        for (const Pending& p : pending) answer(p.source, p.msg);
+        pending.clear();
+        continue;
+      }
+      bool drain_over;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        drain_over = !draining;
+      }
+      if (drain_over && !held.empty()) {
+        for (const Pending& p : held) answer(p.source, p.msg);
+        held.clear();
+        continue;
+      }
+      bool ready;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        ready = configured || failed;
+      }
+      if (!ready) {
+        // Rank 0 is still reading its settings.
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        continue;
+      }
+      int flag = 0;
+      MPI_Status status;
+      MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status);
+      if (!flag) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        continue;
+      }
+      if (status.MPI_TAG == kTagCheckpoint) {
+        Accumulation acc{width, height, {}, {}, {}};
+        receive_state(status.MPI_SOURCE, kTagCheckpoint, acc);
+        std::lock_guard<std::mutex> lock(mutex);
+        deliver_locked(status.MPI_SOURCE, std::move(acc));
+        continue;
+      }
+      int64_t msg[4];
+      MPI_Recv(msg, 4, MPI_INT64_T, status.MPI_SOURCE, kTagRequest, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      if (msg[0] == kFailed) {
+        std::lock_guard<std::mutex> lock(mutex);
+        failed = true;
+        call_off_checkpoint_locked();
+        --active_ranks;
+        continue;
+      }
+      bool wait, hold;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        wait = !started;
+        // A rank that has given its state for the checkpoint under way
+        // gets its next batch once the checkpoint is written.
+        hold = draining && delivered[size_t(status.MPI_SOURCE)];
+      }
+      if (hold) {
+        held.push_back({status.MPI_SOURCE, {msg[0], msg[1], msg[2], msg[3]}});
+        continue;
+      }
+      if (wait) {
+        pending.push_back({status.MPI_SOURCE, {msg[0], msg[1], msg[2], msg[3]}});
+        ++waiting;
+        continue;
+      }
+      answer(status.MPI_SOURCE, msg);
+    }
+    std::lock_guard<std::mutex> lock(mutex);
+    started = true;
+  }
+
+  void join_server() {
+    if (server.joinable()) server.join();
+  }
+
+  // The job's one decision after the render: every rank sends its code and
+  // report; rank 0 decides (the first failed rank, else a rank whose scene
+  // or settings differ from its own) and prints the line; all get the code.
+  int decide(int code, const std::string& message, json report, std::vector<json>* reports) {
+    report["code"] = code;
+    report["message"] = message;
+    report["host"] = host;
+    // A message may hold bytes that are not UTF-8 (a file name): replaced.
+    const std::string text = report.dump(-1, ' ', false, json::error_handler_t::replace);
+    int length = int(text.size());
+    std::vector<int> lengths(size);
+    MPI_Request request;
+    MPI_Igather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
+    wait_gently(request);
+    std::vector<int> offsets(size, 0);
+    for (int r = 1; r < size; ++r) offsets[r] = offsets[r - 1] + lengths[r - 1];
+    std::string all(rank == 0 ? size_t(offsets[size - 1] + lengths[size - 1]) : 0, '\0');
+    MPI_Igatherv(text.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(), MPI_CHAR, 0,
+                 MPI_COMM_WORLD, &request);
+    wait_gently(request);
+    int decision = 0;
+    if (rank == 0) {
+      std::vector<json> all_reports;
+      for (int r = 0; r < size; ++r) all_reports.push_back(json::parse(all.substr(offsets[r], lengths[r])));
+      std::string line;
+      int failed_ranks = 0;
+      for (int r = 0; r < size; ++r) {
+        const json& j = all_reports[r];
+        const int c = j.at("code").get<int>();
+        if (c == 0) continue;
+        decision = std::max(decision, c);
+        if (failed_ranks++ == 0)
+          line = "rank " + std::to_string(r) + " (" + j.at("host").get<std::string>() +
+                 "): " + j.at("message").get<std::string>();
+      }
+      if (failed_ranks > 1) line += " (" + std::to_string(failed_ranks) + " of " + std::to_string(size) + " ranks failed)";
+      if (decision == 0) {
+        // Every rank must have rendered the samples of rank 0's render.
+        const CheckpointInfo first = info_of(all_reports[0].at("info"));
+        for (int r = 1; r < size && decision == 0; ++r) {
+          const std::string why = checkpoint_mismatch(first, info_of(all_reports[r].at("info")));
+          if (!why.empty()) {
+            decision = 2;
+            line = "rank " + std::to_string(r) + " (" + all_reports[r].at("host").get<std::string>() +
+                   "): renders another scene or other settings than rank 0: " +
+                   replaced(why, ", this render ", ", rank " + std::to_string(r) + " ");
+          }
+        }
+      }
+      if (decision != 0) std::fprintf(stderr, "octrace: error: %s\n", line.c_str());
+      if (reports) *reports = std::move(all_reports);
+    }
+    MPI_Ibcast(&decision, 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
+    wait_gently(request);
+    return decision;
+  }
+
+  static json info_json(const CheckpointInfo& i) {
+    return {{"scene_hash", i.scene_hash}, {"width", i.width}, {"height", i.height},
+            {"sample_seed", i.sample_seed}, {"first_sample", i.first_sample}, {"bounce_limit", i.bounce_limit},
+            {"rr_depth", i.rr_depth}, {"precision", i.precision}, {"accel", i.accel}};
+  }
+  static CheckpointInfo info_of(const json& j) {
+    CheckpointInfo i;
+    if (j.is_null()) return i;
+    i.scene_hash = j.at("scene_hash");
+    i.width = j.at("width");
+    i.height = j.at("height");
+    i.sample_seed = j.at("sample_seed");
+    i.first_sample = j.at("first_sample");
+    i.bounce_limit = j.at("bounce_limit");
+    i.rr_depth = j.at("rr_depth");
+    i.precision = j.at("precision");
+    i.accel = j.at("accel");
+    return i;
+  }
+};
+
+Job g_job;
+
+}  // namespace
+
+void init(int* argc, char*** argv) {
+  int provided = 0;
+  MPI_Init_thread(argc, argv, MPI_THREAD_SERIALIZED, &provided);
+  Job& job = g_job;
+  job.active = true;
+  MPI_Comm_rank(MPI_COMM_WORLD, &job.rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &job.size);
+  char name[MPI_MAX_PROCESSOR_NAME];
+  int length = 0;
+  MPI_Get_processor_name(name, &length);
+  job.host.assign(name, size_t(length));
+  MPI_Comm node;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, job.rank, MPI_INFO_NULL, &node);
+  MPI_Comm_rank(node, &job.local_rank);
+  MPI_Comm_free(&node);
+  if (provided < MPI_THREAD_SERIALIZED) {
+    // Rank 0's batch server is a second thread that calls MPI.
+    if (job.rank == 0) std::fprintf(stderr, "octrace: error: this MPI library offers no MPI_THREAD_SERIALIZED\n");
+    MPI_Abort(MPI_COMM_WORLD, 1);
+  }
+  if (job.rank == 0 && job.size > 1) job.server = std::thread([] { g_job.serve(); });
+}
+
+bool active() { return g_job.active; }
+int rank() { return g_job.rank; }
+int size() { return g_job.size; }
+const std::string& host() { return g_job.host; }
+
+std::string device_for_rank(const std::string& requested) {
+  if (requested == "all" || requested.find(',') != std::string::npos)
+    throw InputError("--device " + requested + ": under MPI each rank renders on one device (give each rank its own "
+                     "--device, or let it take its node-local rank's GPU)");
+  if (requested != "auto") return requested;
+  std::vector<uint32_t> gpus;
+  for (const DeviceInfo& d : list_devices())
+    if (!d.software) gpus.push_back(d.index);
+  if (gpus.empty()) return "auto";
+  return std::to_string(gpus[size_t(g_job.local_rank) % gpus.size()]);
+}
+
+void set_work(uint32_t spp, uint32_t already, ProgressFn progress) {
+  if (g_job.rank != 0) return;
+  std::lock_guard<std::mutex> lock(g_job.mutex);
+  g_job.already = std::min(already, spp);
+  g_job.work = spp - g_job.already;
+  g_job.progress = std::move(progress);
+  g_job.configured = true;
+}
+
+void set_checkpoint(double seconds, int width, int height,
+                    std::function<void(const Accumulation&, uint32_t samples)> write) {
+  if (g_job.rank != 0) return;
+  std::lock_guard<std::mutex> lock(g_job.mutex);
+  g_job.checkpoint_seconds = seconds;
+  g_job.width = width;
+  g_job.height = height;
+  g_job.write_checkpoint = std::move(write);
+}
+
+void clear_callbacks() {
+  if (g_job.rank != 0) return;
+  std::lock_guard<std::mutex> lock(g_job.mutex);
+  g_job.progress = nullptr;
+  g_job.write_checkpoint = nullptr;
+  g_job.call_off_checkpoint_locked();
+}
+
+void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_sample, const std::atomic<bool>* stop,
+                  const std::atomic<int>* signal, RankShare& share) {
+  Job& job = g_job;
+  share.rank = job.rank;
+  share.host = job.host;
+  uint32_t completed = 0, batch = 1;
+  if (job.rank == 0) {
+    {
+      std::lock_guard<std::mutex> lock(job.mutex);
+      job.rank0_ready = true;
+      if (job.size == 1) {
+        job.started = true;
+        job.last_checkpoint = Clock::now();
+      }
+    }
+    for (;;) {
+      {
+        std::lock_guard<std::mutex> lock(job.mutex);
+        if (job.started) break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+  }
+  const auto start = Clock::now();
+  for (;;) {
+    const bool stopping = stop && stop->load();
+    const int sig = signal ? signal->load() : 0;
+    std::pair<uint32_t, uint32_t> got;
+    if (job.rank == 0) {
+      got = job.take(completed, batch, stopping, sig);
+    } else {
+      int64_t msg[4] = {stopping ? kStop : kWant, completed, batch, sig};
+      MPI_Send(msg, 4, MPI_INT64_T, 0, kTagRequest, MPI_COMM_WORLD);
+      uint32_t reply[2];
+      MPI_Recv(reply, 2, MPI_UINT32_T, 0, kTagReply, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      got = {reply[0], reply[1]};
+    }
+    completed = 0;
+    if (got.first == kCheckpoint && got.second == 0) {
+      // Everything handed out so far is in this state.
+      Accumulation acc = tracer.read_accumulation();
+      if (job.rank != 0) {
+        send_state(acc, kTagCheckpoint);
+      } else {
+        std::unique_lock<std::mutex> lock(job.mutex);
+        job.deliver_locked(0, std::move(acc));
+        job.drain_done.wait(lock, [&] { return !job.draining; });
+      }
+      continue;
+    }
+    if (got.second == 0) {
+      job.released = true;
+      break;
+    }
+    const auto batch_start = Clock::now();
+    share.device_ms += tracer.run_passes(pass, first_sample + got.first, got.second);
+    const double per_pass = ms_since(batch_start) / got.second;
+    // As render(): batches of about a quarter second.
+    batch = uint32_t(std::clamp(250.0 / std::max(per_pass, 1e-3), 1.0, 1024.0));
+    share.samples += got.second;
+    completed = got.second;
+  }
+  share.wall_ms = ms_since(start);
+  if (job.rank == 0) {
+    std::lock_guard<std::mutex> lock(job.mutex);
+    if (!job.checkpoint_error.empty()) throw RuntimeError(job.checkpoint_error);
+  }
+}
+
+namespace {
+
+json share_json(const RankShare& s) {
+  return {{"rank", s.rank},         {"host", s.host},           {"device", s.device},  {"samples", s.samples},
+          {"render_ms", s.device_ms}, {"setup_ms", s.setup_ms}, {"wall_ms", s.wall_ms}};
+}
+
+RankShare share_of(const json& j) {
+  RankShare s;
+  s.rank = j.at("rank");
+  s.host = j.at("host");
+  s.device = j.at("device");
+  s.samples = j.at("samples");
+  s.device_ms = j.at("render_ms");
+  s.setup_ms = j.at("setup_ms");
+  s.wall_ms = j.at("wall_ms");
+  return s;
+}
+
+}  // namespace
+
+bool gather(const Accumulation& acc, uint64_t nonfinite, const RankShare& share, const CheckpointInfo& info,
+            Gathered& out) {
+  Job& job = g_job;
+  if (job.rank == 0) job.join_server();
+  json report = {{"share", share_json(share)}, {"info", Job::info_json(info)}, {"nonfinite", nonfinite}};
+  std::vector<json> reports;
+  const int decision = job.decide(0, "", report, &reports);
+  job.phase = Phase::Final;
+  if (decision != 0) throw JobFailed{decision};
+  // The states travel in slices, and rank 0 merges each slice on worker
+  // threads while the next one arrives: the reduce costs about the
+  // transfer, not transfer + merge. Per pixel the merge is
+  // merge_accumulations' (rank order).
+  const size_t pixels = acc.sum.size();
+  if (job.rank != 0) {
+    send_state(acc, kTagState);
+    return false;
+  }
+  const auto reduce_start = Clock::now();
+  std::vector<Accumulation> parts(size_t(job.size - 1));
+  std::vector<const Accumulation*> pointers = {&acc};
+  for (Accumulation& part : parts) {
+    part = Accumulation{acc.width, acc.height, std::vector<glm::vec4>(pixels), std::vector<glm::vec4>(pixels),
+                        std::vector<glm::vec4>(pixels)};
+    pointers.push_back(&part);
+  }
+  out.merged = Accumulation{acc.width, acc.height, std::vector<glm::vec4>(pixels), std::vector<glm::vec4>(pixels),
+                            std::vector<glm::vec4>(pixels)};
+  // One thread is left to receive.
+  const size_t workers = std::max(1u, std::thread::hardware_concurrency()) > 1
+                             ? size_t(std::thread::hardware_concurrency()) - 1 : 1;
+  std::vector<std::thread> merging;
+  const auto join_merge = [&] {
+    for (std::thread& t : merging) t.join();
+    merging.clear();
+  };
+  double receive_ms = 0;
+  for (size_t begin = 0; begin < pixels; begin += kSlice) {
+    const size_t end = std::min(pixels, begin + kSlice);
+    const auto receive_start = Clock::now();
+    std::vector<MPI_Request> requests;
+    for (int r = 1; r < job.size; ++r)
+      for (std::vector<glm::vec4>* v : {&parts[size_t(r - 1)].sum, &parts[size_t(r - 1)].comp, &parts[size_t(r - 1)].sq}) {
+        requests.emplace_back();
+        MPI_Irecv(v->data() + begin, int((end - begin) * 4), MPI_FLOAT, r, kTagState, MPI_COMM_WORLD, &requests.back());
+      }
+    MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+    receive_ms += ms_since(receive_start);
+    join_merge();  // the slice before
+    const size_t step = (end - begin + workers - 1) / workers;
+    for (size_t from = begin; from < end; from += step)
+      merging.emplace_back([&, from, to = std::min(end, from + step)] {
+        merge_accumulation_pixels(pointers, out.merged, from, to);
+      });
+  }
+  join_merge();
+  out.receive_ms = receive_ms;
+  out.reduce_ms = ms_since(reduce_start);
+  out.nonfinite_samples = 0;
+  for (const json& j : reports) {
+    out.shares.push_back(share_of(j.at("share")));
+    out.nonfinite_samples += j.at("nonfinite").get<uint64_t>();
+  }
+  out.samples = job.already + job.next;
+  out.interrupted = job.next < job.work;
+  out.signal = job.signal;
+  return true;
+}
+
+namespace {
+
+// Rank 0 tells the others its final code; every rank finalises.
+int final_code(int code) {
+  Job& job = g_job;
+  MPI_Request request;
+  MPI_Ibcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
+  wait_gently(request);
+  job.phase = Phase::Done;
+  MPI_Finalize();
+  return code;
+}
+
+}  // namespace
+
+int fail(int code, const std::string& message) {
+  Job& job = g_job;
+  if (job.phase == Phase::Render) {
+    if (job.rank == 0) {
+      {
+        std::lock_guard<std::mutex> lock(job.mutex);
+        job.failed = true;
+        job.call_off_checkpoint_locked();
+      }
+      job.join_server();
+    } else if (!job.released) {
+      int64_t msg[4] = {kFailed, 0, 0, 0};
+      MPI_Send(msg, 4, MPI_INT64_T, 0, kTagRequest, MPI_COMM_WORLD);
+      job.released = true;
+    }
+    const int decision = job.decide(code, message, json{{"info", nullptr}}, nullptr);
+    job.phase = Phase::Final;
+    return final_code(decision);
+  }
+  if (job.phase == Phase::Final) {
+    // After the decision only rank 0 works (the merge and the outputs).
+    std::fprintf(stderr, "octrace: error: rank %d (%s): %s\n", job.rank, job.host.c_str(), message.c_str());
+    return final_code(code);
+  }
+  std::fprintf(stderr, "octrace: error: %s\n", message.c_str());
+  return code;
+}
+
+int finish(int code) {
+  if (g_job.phase == Phase::Done) return code;
+  if (g_job.phase == Phase::Render) {
+    // A rank that ended without rendering (nothing to render: --dump-scene
+    // alone) still takes part in the decision.
+    return fail(code ? code : 1, "ended before rendering");
+  }
+  return final_code(code);
+}
+
+}  // namespace octrace::mpi

@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# MPI scaling of octrace render (issue 16, docs/multi_gpu.md): time to a
+# fixed number of samples with 1, 2, 4 ranks (`mpirun -np K octrace render`),
+# speedup and efficiency against one rank, and the merge overhead: reducing
+# a 3840x2160 state between 2 ranks (the other ranks' states received by
+# rank 0 in slices, each merged while the next arrives; octrace's times_ms.reduce).
+# Each rank renders on its node-local GPU (local rank modulo the node's
+# GPUs): on a host with one GPU the ranks share it, which measures what the
+# split and the reduce cost. Needs only the binary, mpirun and a shell (no
+# Python): run it where the binary runs.
+#
+#   tools/mpi_scaling.sh OCTRACE_BINARY OUT_DIR [RUNS]
+#
+# Settings through the environment (defaults in brackets): SIZE [1200x800],
+# SPP [1000], RANKS ["1 2 4"], SCENE_FLAGS [the default scene], MERGE_SIZE
+# [3840x2160], MERGE_SPP [1], MPIRUN [mpirun], MPIRUN_FLAGS [-q
+# --oversubscribe --bind-to none]. On lavapipe, set LP_NUM_THREADS (the threads of each
+# rank) so that the ranks do not fight for the cores.
+set -euo pipefail
+[ $# -ge 2 ] || { echo "usage: $0 OCTRACE_BINARY OUT_DIR [RUNS]" >&2; exit 2; }
+bin=$1 out=$2 runs=${3:-3}
+size=${SIZE:-1200x800} spp=${SPP:-1000} ranks_list=${RANKS:-"1 2 4"} scene_flags=${SCENE_FLAGS:-}
+merge_size=${MERGE_SIZE:-3840x2160} merge_spp=${MERGE_SPP:-1}
+mpirun=${MPIRUN:-mpirun}
+# --bind-to none: OpenMPI binds each of up to 2 ranks to one core by default,
+# which leaves a rank one core for its host threads (and lavapipe's).
+read -r -a mpirun_flags <<< "${MPIRUN_FLAGS:--q --oversubscribe --bind-to none}"
+# OpenMPI refuses root unless told (containers, the GPU machine).
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+mkdir -p "$out"
+
+# A number from octrace's --json summary: the first "KEY": VALUE.
+field() { grep -o "\"$2\": [-0-9.e+]*" "$1" | head -1 | awk '{print $2}'; }
+median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+now() { date +%s.%N; }
+
+{
+  echo "date      $(date -u +'%Y-%m-%d %H:%M UTC')"
+  echo "binary    $bin"
+  echo "host      $(hostname)"
+  echo "mpirun    $("$mpirun" --version 2>&1 | head -1)"
+  echo "devices   $("$bin" devices | grep -E '^[0-9]+ ' | tr '\n' ';')"
+  echo "settings  --size $size --spp $spp $scene_flags, median of $runs runs after a warm-up"
+} | tee "$out/summary.txt"
+
+echo "render wall: from every rank set up to the last pass (times_ms.render_wall); job: the whole mpirun command, set-up, reduce and write included." | tee -a "$out/summary.txt"
+echo "| ranks | render wall s | job s | reduce ms | speedup (render / job) | efficiency (render / job) |" | tee -a "$out/summary.txt"
+echo "|---:|---:|---:|---:|---:|---:|" | tee -a "$out/summary.txt"
+w1="" j1=""
+for k in $ranks_list; do
+  # shellcheck disable=SC2086
+  "$mpirun" "${mpirun_flags[@]}" -np "$k" "$bin" render $scene_flags --size "$size" --spp "$spp" --quiet \
+    --out "$out/warm.pfm"
+  : > "$out/wall-$k.txt"; : > "$out/job-$k.txt"; : > "$out/reduce-$k.txt"
+  for r in $(seq "$runs"); do
+    s=$(now)
+    # shellcheck disable=SC2086
+    "$mpirun" "${mpirun_flags[@]}" -np "$k" "$bin" render $scene_flags --size "$size" --spp "$spp" --json --quiet \
+      --out "$out/ranks-$k.pfm" > "$out/ranks-$k-$r.json"
+    e=$(now)
+    awk -v a="$s" -v b="$e" 'BEGIN {print b - a}' >> "$out/job-$k.txt"
+    awk -v w="$(field "$out/ranks-$k-$r.json" render_wall)" 'BEGIN {print w / 1000}' >> "$out/wall-$k.txt"
+    red=$(field "$out/ranks-$k-$r.json" reduce)
+    echo "${red:-0}" >> "$out/reduce-$k.txt"
+  done
+  w=$(median < "$out/wall-$k.txt") j=$(median < "$out/job-$k.txt") red=$(median < "$out/reduce-$k.txt")
+  [ -z "$w1" ] && w1=$w && j1=$j
+  awk -v k="$k" -v w="$w" -v j="$j" -v red="$red" -v w1="$w1" -v j1="$j1" 'BEGIN {
+    printf "| %d | %.3f | %.3f | %.1f | %.2fx / %.2fx | %.1f%% / %.1f%% |\n", k, w, j, red, w1 / w, j1 / j, 100 * w1 / (k * w), 100 * j1 / (k * j)
+  }' | tee -a "$out/summary.txt"
+done
+
+# The merge overhead: 2 ranks, a MERGE_SIZE state each.
+echo "merge overhead, 2 ranks, $merge_size, $merge_spp spp: rank 0 receives rank 1's state (3 x 16 bytes per pixel) in slices and merges each slice while the next arrives (times_ms.reduce; of it waiting for data: reduce_receive; median of $runs):" | tee -a "$out/summary.txt"
+: > "$out/reduce.txt"; : > "$out/receive.txt"
+for r in $(seq "$runs"); do
+  # shellcheck disable=SC2086
+  "$mpirun" "${mpirun_flags[@]}" -np 2 "$bin" render $scene_flags --size "$merge_size" --spp "$merge_spp" --json --quiet \
+    --out "$out/merge.pfm" > "$out/merge-$r.json"
+  field "$out/merge-$r.json" reduce >> "$out/reduce.txt"
+  field "$out/merge-$r.json" reduce_receive >> "$out/receive.txt"
+done
+t=$(median < "$out/reduce.txt") w=$(median < "$out/receive.txt")
+awk -v t="$t" -v w="$w" 'BEGIN {printf "| reduce ms | of it waiting for data |\n|---:|---:|\n| %.1f | %.1f |\n", t, w}' |
+  tee -a "$out/summary.txt"
+rm -f "$out/warm.pfm"
