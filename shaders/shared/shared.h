@@ -93,7 +93,27 @@ OCT_CONST(uint, BINDING_TEXTURES, 14u);
 OCT_CONST(uint, BINDING_TEXELS, 15u);
 OCT_CONST(uint, BINDING_TRIANGLE_UVS, 16u);
 OCT_CONST(uint, BINDING_TEXTURE_TRANSFORMS, 17u);
-OCT_CONST(uint, BINDING_COUNT, 18u);
+// The part table of a scene split over several buffers (scene_buffers.glsl);
+// bindings 18-23 belong to other features.
+OCT_CONST(uint, BINDING_BUFFER_PARTS, 24u);
+OCT_CONST(uint, BINDING_COUNT, 25u);
+
+// A scene larger than one storage buffer (the device's maxStorageBufferRange,
+// 128 MiB on lavapipe) is read through buffer device addresses
+// (VK_KHR_buffer_device_address, Vulkan 1.2 core): each big per-primitive
+// array is cut into parts of 2^SPEC_PART_LOG2 bytes at most, element i of an
+// array of elements of size s lying in part i >> (PART_LOG2 - ceil(log2 s)),
+// and the part table (BINDING_BUFFER_PARTS) holds each part's address as a
+// uvec2 (low, high) at [array * MAX_PARTS + part]. The arrays, by SPLIT_*:
+OCT_CONST(uint, SPLIT_SPHERES, 0u);
+OCT_CONST(uint, SPLIT_SPHERE_MATERIALS, 1u);
+OCT_CONST(uint, SPLIT_TRIANGLES, 2u);
+OCT_CONST(uint, SPLIT_TRIANGLE_NORMALS, 3u);
+OCT_CONST(uint, SPLIT_TRIANGLE_UVS, 4u);
+OCT_CONST(uint, SPLIT_OCTREE_NODES, 5u);
+OCT_CONST(uint, SPLIT_OCTREE_REFS, 6u);
+OCT_CONST(uint, SPLIT_ARRAYS, 7u);
+OCT_CONST(uint, MAX_PARTS, 64u);  // per array: 8 GiB at lavapipe's 128 MiB parts
 
 // Descriptor bindings of the resolve pipeline (resolve.comp).
 OCT_CONST(uint, RESOLVE_BINDING_ACCUM_SUM, 0u);
@@ -130,6 +150,9 @@ OCT_CONST(uint, SPEC_ALPHA, 17u);
 // Whether some mesh material is single-sided (glTF's doubleSided false): off,
 // the back-face test in the triangle hit test compiles out.
 OCT_CONST(uint, SPEC_SINGLE_SIDED, 18u);
+// log2 of the largest part of a split scene, in bytes (the split pipeline
+// only, path_trace_*_split; scene_buffers.glsl). 19-26 belong to other features.
+OCT_CONST(uint, SPEC_PART_LOG2, 27u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 3u);
 
