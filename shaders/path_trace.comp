@@ -13,11 +13,6 @@ layout(local_size_x = WORKGROUP_SIZE * WORKGROUP_SIZE) in;
 
 layout(std430, binding = BINDING_SCENE) readonly buffer SceneBuf { SceneParams scene; };
 #include "shared/scene_buffers.glsl"
-#if OCTRACE_PRECISION >= 1
-layout(std430, binding = BINDING_MATERIALS) readonly buffer MaterialBuf { GpuMaterialHalf materials[]; };
-#else
-layout(std430, binding = BINDING_MATERIALS) readonly buffer MaterialBuf { GpuMaterial materials[]; };
-#endif
 layout(std430, binding = BINDING_ACCUM_SUM) buffer AccumSumBuf { vec4 accum_sum[]; };
 layout(std430, binding = BINDING_ACCUM_COMP) buffer AccumCompBuf { vec4 accum_comp[]; };
 layout(std430, binding = BINDING_ACCUM_SQ) buffer AccumSqBuf { vec4 accum_sq[]; };

@@ -41,31 +41,34 @@ constexpr uint32_t size_log2() {
 }
 static_assert(size_log2<gpu::GpuSphere>() == 4 && size_log2<uint32_t>() == 2 &&
                   size_log2<gpu::GpuTriangle>() == 6 && size_log2<gpu::GpuTriangleNormals>() == 6 &&
-                  size_log2<gpu::GpuTriangleUvs>() == 5 && size_log2<gpu::GpuOctreeNode>() == 5,
+                  size_log2<gpu::GpuTriangleUvs>() == 5 && size_log2<gpu::GpuOctreeNode>() == 5 &&
+                  size_log2<gpu::GpuMaterial>() == 7 && size_log2<gpu::GpuMaterialHalf>() == 6,
               "shaders/shared/scene_buffers.glsl's part shifts");
 
 // Uploads `data` as the scene's array `array` (SPLIT_*): into `whole` for a
 // scene in one buffer per array, else into parts, whose addresses go into
-// g.part_addresses (`whole` is then a placeholder).
+// g.part_addresses (`whole` is then a placeholder). `data` is freed once on
+// the device (on a CPU device both are host memory: the peak stays lower).
 template <typename T>
-void upload_array(GpuScene& g, const VulkanContext& ctx, uint32_t array, Buffer& whole, const std::vector<T>& data,
+void upload_array(GpuScene& g, const VulkanContext& ctx, uint32_t array, Buffer& whole, std::vector<T>&& data,
                   const std::string& what) {
   const uint64_t bytes = data.size() * sizeof(T);
   if (g.part_log2 == 0) {
     create_buffer(whole, ctx, bytes, false, what);
     upload_buffer(ctx, whole, data.data(), bytes);
-    return;
+  } else {
+    create_buffer(whole, ctx, 0, false, what);
+    const uint64_t per_part = uint64_t(1) << (g.part_log2 - size_log2<T>());
+    for (uint64_t first = 0, k = 0; first < data.size(); first += per_part, ++k) {
+      const uint64_t n = std::min<uint64_t>(per_part, data.size() - first);
+      Buffer& part = g.parts.emplace_back();
+      create_buffer(part, ctx, n * sizeof(T), false, what + " part " + std::to_string(k), true);
+      upload_buffer(ctx, part, data.data() + first, n * sizeof(T));
+      const VkDeviceAddress a = buffer_address(part);
+      g.part_addresses[array * gpu::MAX_PARTS + k] = {uint32_t(a), uint32_t(a >> 32)};
+    }
   }
-  create_buffer(whole, ctx, 0, false, what);
-  const uint64_t per_part = uint64_t(1) << (g.part_log2 - size_log2<T>());
-  for (uint64_t first = 0, k = 0; first < data.size(); first += per_part, ++k) {
-    const uint64_t n = std::min<uint64_t>(per_part, data.size() - first);
-    Buffer& part = g.parts.emplace_back();
-    create_buffer(part, ctx, n * sizeof(T), false, what + " part " + std::to_string(k), true);
-    upload_buffer(ctx, part, data.data() + first, n * sizeof(T));
-    const VkDeviceAddress a = buffer_address(part);
-    g.part_addresses[array * gpu::MAX_PARTS + k] = {uint32_t(a), uint32_t(a >> 32)};
-  }
+  std::vector<T>().swap(data);
 }
 
 void upload_part_table(GpuScene& g, const VulkanContext& ctx) {
@@ -145,11 +148,11 @@ static std::string octree_what(const Scene& scene, const char* array) {
          " primitives (a larger leaf size needs fewer)";
 }
 
-static void upload_scene_octree(GpuScene& g, const VulkanContext& ctx, const SceneOctree& t) {
+static void upload_scene_octree(GpuScene& g, const VulkanContext& ctx, SceneOctree&& t) {
   const auto start = Clock::now();
-  const Octree& octree = t.octree;
-  upload_array(g, ctx, gpu::SPLIT_OCTREE_NODES, g.nodes, octree.nodes, "octree node buffer");
-  upload_array(g, ctx, gpu::SPLIT_OCTREE_REFS, g.refs, octree.refs, "octree reference buffer");
+  Octree& octree = t.octree;
+  upload_array(g, ctx, gpu::SPLIT_OCTREE_NODES, g.nodes, std::move(octree.nodes), "octree node buffer");
+  upload_array(g, ctx, gpu::SPLIT_OCTREE_REFS, g.refs, std::move(octree.refs), "octree reference buffer");
   upload_buffer(ctx, g.meshes, t.meshes.data(), t.meshes.size() * sizeof(gpu::GpuMesh));
   g.values.big_count = octree.big_count;
   upload_buffer(ctx, g.params, &g.values, sizeof g.values);
@@ -159,7 +162,7 @@ static void upload_scene_octree(GpuScene& g, const VulkanContext& ctx, const Sce
 }
 
 static void upload_octree_of(GpuScene& g, const VulkanContext& ctx, const Scene& scene, const OctreeParams& params) {
-  const SceneOctree t = build_scene_octree(g, scene, params);
+  SceneOctree t = build_scene_octree(g, scene, params);
   if (g.part_log2 == 0) {
     // Uploaded whole, the scene's pipeline reads one buffer per array.
     check_fits(max_buffer_bytes(ctx), t.octree.nodes.size() * sizeof(gpu::GpuOctreeNode), octree_what(scene, "nodes"),
@@ -167,7 +170,7 @@ static void upload_octree_of(GpuScene& g, const VulkanContext& ctx, const Scene&
     check_fits(max_buffer_bytes(ctx), t.octree.refs.size() * sizeof(uint32_t), octree_what(scene, "references"),
                " (render with the octree from the start to split the scene)");
   }
-  upload_scene_octree(g, ctx, t);
+  upload_scene_octree(g, ctx, std::move(t));
 }
 
 std::vector<gpu::GpuMesh> gpu_meshes(const Scene& scene) {
@@ -367,7 +370,7 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   p.sky_b = sky.up;
   p.sphere_count = uint32_t(scene.spheres.size());
 
-  const std::vector<gpu::GpuTriangle> triangles = object_triangles(scene);
+  std::vector<gpu::GpuTriangle> triangles = object_triangles(scene);
   std::vector<gpu::GpuTriangleNormals> normals;
   bool any_normals = false;
   for (const Mesh& mesh : scene.meshes) any_normals |= !mesh.normals.empty();
@@ -416,6 +419,12 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   } arrays[] = {
       {spheres.size() * sizeof(gpu::GpuSphere), spheres.size(), size_log2<gpu::GpuSphere>(),
        std::to_string(spheres.size()) + " spheres"},
+      {sphere_materials.size() * sizeof(uint32_t), sphere_materials.size(), size_log2<uint32_t>(),
+       "the material indices of " + std::to_string(spheres.size()) + " spheres"},
+      {materials.size() * sizeof(gpu::GpuMaterial), materials.size(), size_log2<gpu::GpuMaterial>(),
+       std::to_string(materials.size()) + " materials"},
+      {materials_half.size() * sizeof(gpu::GpuMaterialHalf), materials_half.size(), size_log2<gpu::GpuMaterialHalf>(),
+       std::to_string(materials.size()) + " materials (fp16)"},
       {triangles.size() * sizeof(gpu::GpuTriangle), triangles.size(), size_log2<gpu::GpuTriangle>(),
        std::to_string(triangles.size()) + " triangles"},
       {normals.size() * sizeof(gpu::GpuTriangleNormals), normals.size(), size_log2<gpu::GpuTriangleNormals>(),
@@ -446,9 +455,7 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   }
   // Everything on the device against its memory (device_memory), before
   // asking the driver for any of it.
-  uint64_t total = reserved_bytes + sizeof p + sphere_materials.size() * sizeof(uint32_t) +
-                   materials.size() * (sizeof(gpu::GpuMaterial) + sizeof(gpu::GpuMaterialHalf)) +
-                   instances.size() * sizeof(gpu::GpuInstance) + meshes.size() * sizeof(gpu::GpuMesh) +
+  uint64_t total = reserved_bytes + sizeof p + instances.size() * sizeof(gpu::GpuInstance) + meshes.size() * sizeof(gpu::GpuMesh) +
                    textures.table.size() * sizeof(gpu::GpuTexture) + textures.texels.size() * sizeof(uint32_t) +
                    uv_transforms.size() * sizeof(gpu::GpuUvTransform) + g.part_addresses.size() * sizeof(glm::uvec2);
   for (const auto& a : arrays) total += a.bytes;
@@ -461,20 +468,20 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   }
 
   create_buffer(g.params, ctx, sizeof p, false, "scene parameters");
-  upload_array(g, ctx, gpu::SPLIT_TRIANGLES, g.triangles, triangles, "triangle buffer");
-  upload_array(g, ctx, gpu::SPLIT_TRIANGLE_NORMALS, g.triangle_normals, normals, "triangle normal buffer");
+  upload_array(g, ctx, gpu::SPLIT_TRIANGLES, g.triangles, std::move(triangles), "triangle buffer");
+  upload_array(g, ctx, gpu::SPLIT_TRIANGLE_NORMALS, g.triangle_normals, std::move(normals), "triangle normal buffer");
   create_buffer(g.instances, ctx, instances.size() * sizeof(gpu::GpuInstance), false, "instance buffer");
   create_buffer(g.meshes, ctx, meshes.size() * sizeof(gpu::GpuMesh), false, "mesh buffer");
   upload_buffer(ctx, g.instances, instances.data(), instances.size() * sizeof(gpu::GpuInstance));
   upload_buffer(ctx, g.meshes, meshes.data(), meshes.size() * sizeof(gpu::GpuMesh));
-  upload_array(g, ctx, gpu::SPLIT_SPHERES, g.spheres, spheres, "sphere buffer");
-  upload_array(g, ctx, gpu::SPLIT_SPHERE_MATERIALS, g.sphere_materials, sphere_materials, "sphere material buffer");
-  create_buffer(g.materials, ctx, materials.size() * sizeof(gpu::GpuMaterial), false, "material buffer");
-  create_buffer(g.materials_half, ctx, materials_half.size() * sizeof(gpu::GpuMaterialHalf), false,
-                "material buffer");
+  upload_array(g, ctx, gpu::SPLIT_SPHERES, g.spheres, std::move(spheres), "sphere buffer");
+  upload_array(g, ctx, gpu::SPLIT_SPHERE_MATERIALS, g.sphere_materials, std::move(sphere_materials),
+               "sphere material buffer");
+  upload_array(g, ctx, gpu::SPLIT_MATERIALS, g.materials, std::move(materials), "material buffer");
+  upload_array(g, ctx, gpu::SPLIT_MATERIALS_HALF, g.materials_half, std::move(materials_half), "material buffer");
   create_buffer(g.textures, ctx, textures.table.size() * sizeof(gpu::GpuTexture), false, "texture table");
   create_buffer(g.texels, ctx, textures.texels.size() * sizeof(uint32_t), false, "texel buffer");
-  upload_array(g, ctx, gpu::SPLIT_TRIANGLE_UVS, g.triangle_uvs, uvs, "triangle uv buffer");
+  upload_array(g, ctx, gpu::SPLIT_TRIANGLE_UVS, g.triangle_uvs, std::move(uvs), "triangle uv buffer");
   upload_buffer(ctx, g.textures, textures.table.data(), textures.table.size() * sizeof(gpu::GpuTexture));
   upload_buffer(ctx, g.texels, textures.texels.data(), textures.texels.size() * sizeof(uint32_t));
   create_buffer(g.texture_transforms, ctx, uv_transforms.size() * sizeof(gpu::GpuUvTransform), false,
@@ -483,11 +490,9 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   create_buffer(g.nodes, ctx, 0, false, "octree node buffer");
   create_buffer(g.refs, ctx, 0, false, "octree reference buffer");
   upload_buffer(ctx, g.params, &p, sizeof p);
-  upload_buffer(ctx, g.materials, materials.data(), materials.size() * sizeof(gpu::GpuMaterial));
-  upload_buffer(ctx, g.materials_half, materials_half.data(), materials_half.size() * sizeof(gpu::GpuMaterialHalf));
   upload_part_table(g, ctx);
   g.upload_ms = pack_ms + ms_since(start);
-  if (tree) upload_scene_octree(g, ctx, *tree);
+  if (tree) upload_scene_octree(g, ctx, std::move(*tree));
 }
 
 Scene bake_single_use_meshes(const Scene& scene) {

@@ -5,12 +5,12 @@
 // instances, and for each instance its mesh's own octree in object space,
 // which the ray enters through the instance's transform. The includer
 // declares `scene`, `instances` and `meshes`, includes
-// shared/scene_buffers.glsl (sphere_at, triangle_at, node_at, ref_at, ...:
-// the big arrays, in one buffer or split over several), and declares the
-// specialization constants HAS_SPHERES,
+// shared/scene_buffers.glsl (sphere_at, triangle_at, node_at, ref_at,
+// material_at, ...: the big arrays, in one buffer or split over several),
+// and declares the specialization constants HAS_SPHERES,
 // HAS_TRIANGLES, HAS_VERTEX_NORMALS, HAS_TEXTURES, HAS_ALPHA and
 // HAS_SINGLE_SIDED (a kind the
-// scene lacks compiles out), and for the alpha test `materials`, `textures`,
+// scene lacks compiles out), and for the alpha test `textures`,
 // `texels` and `texture_transforms`. A new
 // primitive kind adds its test to test_primitive and its surface to
 // surface_at; nothing else here or in the integrator changes.
@@ -80,17 +80,17 @@ uint alpha_key = 0u;
 // triangles in (octree == brute force) nor on any random stream, and a ray
 // that meets the same triangle twice decides the same way both times.
 bool alpha_cut(GpuTriangle tri, uint i, uint id, vec3 b) {
-  uint mode = materials[tri.material].alpha_mode;
+  uint mode = material_at(tri.material).alpha_mode;
   if (mode == ALPHA_OPAQUE) return false;
-  float alpha = materials[tri.material].alpha;
-  uint tex = materials[tri.material].base_color_texture;
+  float alpha = material_at(tri.material).alpha;
+  uint tex = material_at(tri.material).base_color_texture;
   if (HAS_TEXTURES && tex != NO_TEXTURE && scene.triangle_uvs != 0u) {
     GpuTriangleUvs u = triangle_uvs_at(i);
     vec2 uv = b.x * u.uv0 + b.y * u.uv1 + b.z * u.uv2;
     GpuUvTransform x = texture_transforms[tri.material * TEXTURE_SLOTS + TEXTURE_SLOT_BASE_COLOR];
     alpha *= sample_texture_alpha(tex, x.x_axis * uv.x + x.y_axis * uv.y + x.offset);
   }
-  if (mode == ALPHA_MASK) return alpha < materials[tri.material].alpha_cutoff;
+  if (mode == ALPHA_MASK) return alpha < material_at(tri.material).alpha_cutoff;
   uint h = pcg4d(uvec4(alpha_key, id, ALPHA_STREAM, 0u)).x;
   return float(h >> 8u) * (1.0 / 16777216.0) >= alpha;
 }
@@ -109,7 +109,7 @@ void test_instance_triangle(Ray oray, RayShear osh, InstanceRef ir, uint local, 
     // side the winding's normal points away from; the same side shading
     // calls back, as normal_to_world keeps dot(dir, n) through the
     // placement) is not hit.
-    if (HAS_SINGLE_SIDED && materials[tri.material].double_sided == 0u &&
+    if (HAS_SINGLE_SIDED && material_at(tri.material).double_sided == 0u &&
         dot(oray.dir, cross(tri.v1 - tri.v0, tri.v2 - tri.v0)) > 0.0)
       return;
     if (HAS_ALPHA && alpha_cut(tri, i, id, b)) return;

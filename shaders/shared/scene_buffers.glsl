@@ -1,7 +1,9 @@
-// The scene's big per-primitive arrays (spheres, sphere materials, triangles
-// with their normals and uvs, octree nodes and references) and the one way
-// the shaders read them: sphere_at(i), sphere_material_at(i), triangle_at(i),
-// triangle_normals_at(i), triangle_uvs_at(i), node_at(i), ref_at(i).
+// The scene's big per-primitive arrays (spheres, their material indices,
+// materials (the rtiow field has one per sphere), triangles with their
+// normals and uvs, octree nodes and references) and the one way the shaders
+// read them: sphere_at(i), sphere_material_at(i), material_at(i),
+// triangle_at(i), triangle_normals_at(i), triangle_uvs_at(i), node_at(i),
+// ref_at(i).
 //
 // A scene whose arrays each fit one storage buffer reads them from the
 // descriptors BINDING_SPHERES etc., as it always has. A larger one (render/
@@ -18,6 +20,13 @@
 #ifndef OCTRACE_SCENE_BUFFERS_GLSL
 #define OCTRACE_SCENE_BUFFERS_GLSL
 
+// The material as the precision variant reads it (shared.h).
+#if OCTRACE_PRECISION >= 1
+#define OCTRACE_MATERIAL GpuMaterialHalf
+#else
+#define OCTRACE_MATERIAL GpuMaterial
+#endif
+
 #if OCTRACE_SPLIT
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
@@ -31,6 +40,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Tr
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TriangleNormalPart { GpuTriangleNormals v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TriangleUvPart { GpuTriangleUvs v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer NodePart { GpuOctreeNode v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer MaterialPart { OCTRACE_MATERIAL v[]; };
 
 // The address of the part of `array` (SPLIT_*) that holds element i, and i's
 // index in it, for elements of 2^size_log2 bytes or fewer.
@@ -50,6 +60,15 @@ GpuTriangleUvs triangle_uvs_at(uint i) {
 }
 GpuOctreeNode node_at(uint i) { return NodePart(OCTRACE_PART(SPLIT_OCTREE_NODES, 5u, i)).v[OCTRACE_IN_PART(5u, i)]; }
 uint ref_at(uint i) { return UintPart(OCTRACE_PART(SPLIT_OCTREE_REFS, 2u, i)).v[OCTRACE_IN_PART(2u, i)]; }
+#if OCTRACE_PRECISION >= 1
+OCTRACE_MATERIAL material_at(uint i) {
+  return MaterialPart(OCTRACE_PART(SPLIT_MATERIALS_HALF, 6u, i)).v[OCTRACE_IN_PART(6u, i)];
+}
+#else
+OCTRACE_MATERIAL material_at(uint i) {
+  return MaterialPart(OCTRACE_PART(SPLIT_MATERIALS, 7u, i)).v[OCTRACE_IN_PART(7u, i)];
+}
+#endif
 
 #else
 layout(std430, binding = BINDING_SPHERES) readonly buffer SphereBuf { GpuSphere spheres[]; };
@@ -59,6 +78,7 @@ layout(std430, binding = BINDING_OCTREE_REFS) readonly buffer RefBuf { uint octr
 layout(std430, binding = BINDING_TRIANGLES) readonly buffer TriangleBuf { GpuTriangle triangles[]; };
 layout(std430, binding = BINDING_TRIANGLE_NORMALS) readonly buffer TriangleNormalBuf { GpuTriangleNormals triangle_normals[]; };
 layout(std430, binding = BINDING_TRIANGLE_UVS) readonly buffer TriangleUvBuf { GpuTriangleUvs triangle_uvs[]; };
+layout(std430, binding = BINDING_MATERIALS) readonly buffer MaterialBuf { OCTRACE_MATERIAL materials[]; };
 
 GpuSphere sphere_at(uint i) { return spheres[i]; }
 uint sphere_material_at(uint i) { return sphere_materials[i]; }
@@ -67,6 +87,7 @@ GpuTriangleNormals triangle_normals_at(uint i) { return triangle_normals[i]; }
 GpuTriangleUvs triangle_uvs_at(uint i) { return triangle_uvs[i]; }
 GpuOctreeNode node_at(uint i) { return octree_nodes[i]; }
 uint ref_at(uint i) { return octree_refs[i]; }
+OCTRACE_MATERIAL material_at(uint i) { return materials[i]; }
 #endif
 
 #endif

@@ -112,7 +112,9 @@ OCT_CONST(uint, SPLIT_TRIANGLE_NORMALS, 3u);
 OCT_CONST(uint, SPLIT_TRIANGLE_UVS, 4u);
 OCT_CONST(uint, SPLIT_OCTREE_NODES, 5u);
 OCT_CONST(uint, SPLIT_OCTREE_REFS, 6u);
-OCT_CONST(uint, SPLIT_ARRAYS, 7u);
+OCT_CONST(uint, SPLIT_MATERIALS, 7u);       // GpuMaterial (fp32 variant)
+OCT_CONST(uint, SPLIT_MATERIALS_HALF, 8u);  // GpuMaterialHalf (fp16 variants)
+OCT_CONST(uint, SPLIT_ARRAYS, 9u);
 OCT_CONST(uint, MAX_PARTS, 64u);  // per array: 8 GiB at lavapipe's 128 MiB parts
 
 // Descriptor bindings of the resolve pipeline (resolve.comp).

@@ -64,31 +64,33 @@ void expect_split_renders_the_same(const Scene& scene, Accel accel, Precision pr
   EXPECT_EQ(whole.rays, split.rays);
 }
 
-// The default scene (492 spheres, 196 octree nodes, 733 references): parts
-// of 1 KiB hold 64 spheres, 256 material indices, 32 nodes or 256
-// references, so every array spans several parts (8, 2, 7 and 3) and a walk
-// crosses part boundaries all the time.
+// The default scene (492 spheres, 467 materials, 196 octree nodes, 733
+// references): parts of 1 KiB hold 64 spheres, 256 material indices, 8
+// materials (16 in fp16), 32 nodes or 256 references, so every array spans
+// several parts (8, 2, 59, 30, 7 and 3) and a walk crosses part boundaries
+// all the time.
 TEST_F(BigSceneTest, SplitSpheresRenderAsInOneBuffer) {
   const Scene scene = make_rtiow_scene({});
-  expect_split_renders_the_same(scene, Accel::Octree, Precision::FP32, 1024, 8 + 2 + 7 + 3);
-  expect_split_renders_the_same(scene, Accel::Brute, Precision::FP32, 1024, 8 + 2);
+  expect_split_renders_the_same(scene, Accel::Octree, Precision::FP32, 1024, 8 + 2 + 59 + 30 + 7 + 3);
+  expect_split_renders_the_same(scene, Accel::Brute, Precision::FP32, 1024, 8 + 2 + 59 + 30);
   if (test::shared_context().fp16_enabled)
-    expect_split_renders_the_same(scene, Accel::Octree, Precision::FP16, 1024, 8 + 2 + 7 + 3);
+    expect_split_renders_the_same(scene, Accel::Octree, Precision::FP16, 1024, 8 + 2 + 59 + 30 + 7 + 3);
 }
 
 // Meshes: the 2CylinderEngine (Debian's assimp-testmodels) has instanced
 // meshes with their own octrees and vertex normals: in parts of 1 MiB, its
 // 75,730 triangles and their normals take 5 parts each (16,384 of 48 bytes
-// a part), its 63,158 nodes and 392,906 references 2 each. BoxTextured has
-// texture coordinates: in parts of 256 bytes, its 12 triangles take 3 parts
-// (4 a part), their normals 3 and uvs 2 (8 a part), and its octree of 2
-// nodes and 13 references one each.
+// a part), its 63,158 nodes and 392,906 references 2 each, its 34
+// materials one in each precision. BoxTextured has texture coordinates: in
+// parts of 256 bytes, its 12 triangles take 3 parts (4 a part), their
+// normals 3 and uvs 2 (8 a part), its material one in each precision, and
+// its octree of 2 nodes and 13 references one each.
 TEST_F(BigSceneTest, SplitMeshesRenderAsInOneBuffer) {
   const Scene engine = load_gltf_scene("/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb");
-  expect_split_renders_the_same(engine, Accel::Octree, Precision::FP32, 1 << 20, 5 + 5 + 2 + 2);
+  expect_split_renders_the_same(engine, Accel::Octree, Precision::FP32, 1 << 20, 5 + 5 + 2 + 2 + 1 + 1);
   const Scene box = load_gltf_scene("/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf");
-  expect_split_renders_the_same(box, Accel::Octree, Precision::FP32, 256, 3 + 3 + 2 + 1 + 1);
-  expect_split_renders_the_same(box, Accel::Brute, Precision::FP32, 256, 3 + 3 + 2);
+  expect_split_renders_the_same(box, Accel::Octree, Precision::FP32, 256, 3 + 3 + 2 + 1 + 1 + 1 + 1);
+  expect_split_renders_the_same(box, Accel::Brute, Precision::FP32, 256, 3 + 3 + 2 + 1 + 1);
 }
 
 // A part table has MAX_PARTS entries per array: more parts than that is
