@@ -15,6 +15,7 @@ packages=(
   clang libclang-rt-14-dev
   xvfb xauth python3 python3-matplotlib python3-numpy
   libegl1 libegl-mesa0
+  time
 )
 
 missing=()

@@ -28,8 +28,8 @@ constexpr float kHalfMax = 65504.0f;
 // bytes): say which one does not, and why, before asking the driver for memory.
 void check_fits(uint64_t limit, uint64_t bytes, const std::string& what, const std::string& hint = "") {
   if (bytes > limit)
-    throw SceneSizeError(what + " need " + mib_string(bytes) + ", the device allows " + mib_string(limit) +
-                     " per buffer" + hint);
+    throw SceneSizeError(what + " need " + byte_string(bytes) + ", the device allows " + byte_string(limit) +
+                         " per buffer" + hint);
 }
 
 // Elements of an array split into parts (scene_buffers.glsl): a part of at
@@ -144,7 +144,8 @@ static SceneOctree build_scene_octree(GpuScene& g, const Scene& scene, const Oct
 // Where the octree's arrays would not fit one storage buffer: what the
 // message names.
 static std::string octree_what(const Scene& scene, const char* array) {
-  return std::string("the octree ") + array + " of " + std::to_string(scene.spheres.size() + unique_triangle_count(scene)) +
+  return std::string("the octree ") + array + " of " +
+         std::to_string(scene.spheres.size() + unique_triangle_count(scene)) +
          " primitives (a larger leaf size needs fewer)";
 }
 
@@ -444,27 +445,31 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
     for (const auto& a : arrays) check_fits(limit, a.bytes, a.what, " (and it lacks bufferDeviceAddress to split it)");
   if (split) {
     g.part_log2 = uint32_t(std::bit_width(limit)) - 1;
+    // A part holds at least one of the largest elements (GpuMaterial, 2^7).
+    if (g.part_log2 < size_log2<gpu::GpuMaterial>())
+      throw SceneSizeError("the device allows " + std::to_string(limit) + " bytes per buffer, too few to split a scene");
     g.part_addresses.assign(gpu::SPLIT_ARRAYS * gpu::MAX_PARTS, glm::uvec2(0));
     for (const auto& a : arrays) {
       const uint64_t per_part = uint64_t(1) << (g.part_log2 - a.size_log2);
       if ((a.elements + per_part - 1) / per_part > gpu::MAX_PARTS)
-        throw SceneSizeError(a.what + " need " + mib_string(a.bytes) + ", more than " + std::to_string(gpu::MAX_PARTS) +
-                         " buffers of " + mib_string(per_part << a.size_log2) + " (the device allows " +
-                         mib_string(limit) + " per buffer)");
+        throw SceneSizeError(a.what + " need " + byte_string(a.bytes) + ", more than " +
+                             std::to_string(gpu::MAX_PARTS) + " buffers of " + byte_string(per_part << a.size_log2) +
+                             " (the device allows " + byte_string(limit) + " per buffer)");
     }
   }
   // Everything on the device against its memory (device_memory), before
   // asking the driver for any of it.
-  uint64_t total = reserved_bytes + sizeof p + instances.size() * sizeof(gpu::GpuInstance) + meshes.size() * sizeof(gpu::GpuMesh) +
-                   textures.table.size() * sizeof(gpu::GpuTexture) + textures.texels.size() * sizeof(uint32_t) +
+  uint64_t total = reserved_bytes + sizeof p + instances.size() * sizeof(gpu::GpuInstance) +
+                   meshes.size() * sizeof(gpu::GpuMesh) + textures.table.size() * sizeof(gpu::GpuTexture) + textures.texels.size() * sizeof(uint32_t) +
                    uv_transforms.size() * sizeof(gpu::GpuUvTransform) + g.part_addresses.size() * sizeof(glm::uvec2);
   for (const auto& a : arrays) total += a.bytes;
   const DeviceMemory memory = device_memory(ctx);
   if (total > memory.bytes) {
     std::string what = std::to_string(spheres.size()) + " spheres";
     if (!triangles.empty()) what += " and " + std::to_string(triangles.size()) + " triangles";
-    throw SceneSizeError(what + (tree ? " with their octree" : "") + " need " + mib_string(total) +
-                     " of device memory, the device has " + mib_string(memory.bytes) + " (" + memory.source + ")");
+    throw SceneSizeError(what + (tree ? " with their octree" : "") + " need " + byte_string(total) +
+                         " of device memory, the device has " + byte_string(memory.bytes) + " (" + memory.source +
+                         ")");
   }
 
   create_buffer(g.params, ctx, sizeof p, false, "scene parameters");
