@@ -27,6 +27,7 @@
 #include "io/image.h"
 #include "io/file.h"
 #include "core/clock.h"
+#include "core/text.h"
 #include "render/multi_device.h"
 #include "render/path_tracer.h"
 #include "render/render_state.h"
@@ -513,6 +514,9 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
     } else {
       result = render(ctx, scene, settings, control);
     }
+  } catch (const SceneSizeError& e) {
+    if (scene_opts.scene_file.empty()) throw;
+    throw SceneSizeError(scene_opts.scene_file + ": " + e.what());
   } catch (const RuntimeError& e) {
     if (last_checkpoint.empty()) throw;
     throw RuntimeError(std::string(e.what()) + "; the last checkpoint is " + last_checkpoint + ": resume with --resume " +
@@ -570,6 +574,8 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
               {"rays", result.rays},
               {"rays_per_second", rays_per_s},
               {"nonfinite_samples", result.nonfinite_samples},
+              {"buffer_parts", result.buffer_parts},
+              {"buffer_part_bytes", result.buffer_part_bytes},
               {"outputs", outputs}};
     if (!shares.empty()) {
       json per_device = json::array();
@@ -614,6 +620,9 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       std::printf("octree    %u nodes, %u leaves, depth %u, %.2f refs/primitive, %.1f bytes/primitive, %u big primitives\n",
                   result.octree.nodes, result.octree.leaves, result.octree.max_depth_reached,
                   result.octree.refs_per_primitive, result.octree.bytes_per_primitive, result.octree.big_primitives);
+    if (result.buffer_parts)
+      std::printf("buffers   the scene's arrays split over %u buffers of at most %s (larger than one storage buffer)\n",
+                  result.buffer_parts, mib_string(result.buffer_part_bytes).c_str());
     std::printf("times     scene %.1f ms, %s build %.1f ms, upload %.1f ms, pipeline %.1f ms, render %.1f ms (device)\n",
                 scene_ms, accel_name(settings.accel), t.accel_build_ms, t.upload_ms, t.pipeline_ms,
                 t.render_device_ms);

@@ -12,26 +12,15 @@
 layout(local_size_x = WORKGROUP_SIZE * WORKGROUP_SIZE) in;
 
 layout(std430, binding = BINDING_SCENE) readonly buffer SceneBuf { SceneParams scene; };
-layout(std430, binding = BINDING_SPHERES) readonly buffer SphereBuf { GpuSphere spheres[]; };
-layout(std430, binding = BINDING_SPHERE_MATERIALS) readonly buffer SphereMatBuf { uint sphere_materials[]; };
-#if OCTRACE_PRECISION >= 1
-layout(std430, binding = BINDING_MATERIALS) readonly buffer MaterialBuf { GpuMaterialHalf materials[]; };
-#else
-layout(std430, binding = BINDING_MATERIALS) readonly buffer MaterialBuf { GpuMaterial materials[]; };
-#endif
+#include "shared/scene_buffers.glsl"
 layout(std430, binding = BINDING_ACCUM_SUM) buffer AccumSumBuf { vec4 accum_sum[]; };
 layout(std430, binding = BINDING_ACCUM_COMP) buffer AccumCompBuf { vec4 accum_comp[]; };
 layout(std430, binding = BINDING_ACCUM_SQ) buffer AccumSqBuf { vec4 accum_sq[]; };
 layout(std430, binding = BINDING_STATS) buffer StatsBuf { RenderStats stats; };
-layout(std430, binding = BINDING_OCTREE_NODES) readonly buffer NodeBuf { GpuOctreeNode octree_nodes[]; };
-layout(std430, binding = BINDING_OCTREE_REFS) readonly buffer RefBuf { uint octree_refs[]; };
-layout(std430, binding = BINDING_TRIANGLES) readonly buffer TriangleBuf { GpuTriangle triangles[]; };
-layout(std430, binding = BINDING_TRIANGLE_NORMALS) readonly buffer TriangleNormalBuf { GpuTriangleNormals triangle_normals[]; };
 layout(std430, binding = BINDING_INSTANCES) readonly buffer InstanceBuf { GpuInstance instances[]; };
 layout(std430, binding = BINDING_MESHES) readonly buffer MeshBuf { GpuMesh meshes[]; };
 layout(std430, binding = BINDING_TEXTURES) readonly buffer TextureBuf { GpuTexture textures[]; };
 layout(std430, binding = BINDING_TEXELS) readonly buffer TexelBuf { uint texels[]; };
-layout(std430, binding = BINDING_TRIANGLE_UVS) readonly buffer TriangleUvBuf { GpuTriangleUvs triangle_uvs[]; };
 layout(std430, binding = BINDING_TEXTURE_TRANSFORMS) readonly buffer TextureTransformBuf { GpuUvTransform texture_transforms[]; };
 layout(std430, binding = BINDING_ENVMAP_TEXELS) readonly buffer EnvmapTexelBuf { float envmap_texels[]; };
 layout(std430, binding = BINDING_ENVMAP_MARGINAL) readonly buffer EnvmapMarginalBuf { float envmap_marginal[]; };

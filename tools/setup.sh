@@ -17,6 +17,7 @@ packages=(
   xvfb xauth python3 python3-matplotlib python3-numpy
   libegl1 libegl-mesa0
   openmpi-bin libopenmpi-dev
+  time
 )
 
 missing=()

@@ -25,6 +25,13 @@ struct SettingError : InputError {
   std::string setting;
 };
 
+// The scene is too large for the device: its memory, or a buffer where the
+// scene cannot be split. The message names what does not fit and the limit;
+// a front end that loaded the scene from a file puts the file's name first.
+struct SceneSizeError : InputError {
+  using InputError::InputError;
+};
+
 // The input was fine but the machine could not do it: no device, device lost,
 // out of memory, an I/O failure while writing.
 struct RuntimeError : std::runtime_error {

@@ -3,6 +3,8 @@
 #include "accel/clip.h"
 
 #include <algorithm>
+#include <bit>
+#include <optional>
 #include <string>
 
 #include <glm/gtc/packing.hpp>
@@ -23,13 +25,57 @@ namespace {
 // Half's largest finite value.
 constexpr float kHalfMax = 65504.0f;
 
-// Every array must fit one storage-buffer binding of the device: say which
-// one does not, and why, before asking the driver for memory.
-void check_fits(const VulkanContext& ctx, uint64_t bytes, const std::string& what) {
-  const uint64_t limit = ctx.limits.maxStorageBufferRange;
+// An array that must fit one storage-buffer binding of the device (`limit`
+// bytes): say which one does not, and why, before asking the driver for memory.
+void check_fits(uint64_t limit, uint64_t bytes, const std::string& what, const std::string& hint = "") {
   if (bytes > limit)
-    throw InputError(what + " need " + mib_string(bytes) + ", the device allows " + mib_string(limit) +
-                     " per buffer");
+    throw SceneSizeError(what + " need " + byte_string(bytes) + ", the device allows " + byte_string(limit) +
+                         " per buffer" + hint);
+}
+
+// Elements of an array split into parts (scene_buffers.glsl): a part of at
+// most 2^part_log2 bytes holds 2^(part_log2 - ceil(log2 size)) elements. The
+// shader has these exponents written in; they must match the structs.
+template <typename T>
+constexpr uint32_t size_log2() {
+  return uint32_t(std::bit_width(sizeof(T) - 1));
+}
+static_assert(size_log2<gpu::GpuSphere>() == 4 && size_log2<uint32_t>() == 2 &&
+                  size_log2<gpu::GpuTriangle>() == 6 && size_log2<gpu::GpuTriangleNormals>() == 6 &&
+                  size_log2<gpu::GpuTriangleUvs>() == 5 && size_log2<gpu::GpuOctreeNode>() == 5 &&
+                  size_log2<gpu::GpuMaterial>() == 7 && size_log2<gpu::GpuMaterialHalf>() == 6,
+              "shaders/shared/scene_buffers.glsl's part shifts");
+
+// Uploads `data` as the scene's array `array` (SPLIT_*): into `whole` for a
+// scene in one buffer per array, else into parts, whose addresses go into
+// g.part_addresses (`whole` is then a placeholder). `data` is freed once on
+// the device (on a CPU device both are host memory: the peak stays lower).
+template <typename T>
+void upload_array(GpuScene& g, const VulkanContext& ctx, uint32_t array, Buffer& whole, std::vector<T>&& data,
+                  const std::string& what) {
+  const uint64_t bytes = data.size() * sizeof(T);
+  if (g.part_log2 == 0) {
+    create_buffer(whole, ctx, bytes, false, what);
+    upload_buffer(ctx, whole, data.data(), bytes);
+  } else {
+    create_buffer(whole, ctx, 0, false, what);
+    const uint64_t per_part = uint64_t(1) << (g.part_log2 - size_log2<T>());
+    for (uint64_t first = 0, k = 0; first < data.size(); first += per_part, ++k) {
+      const uint64_t n = std::min<uint64_t>(per_part, data.size() - first);
+      Buffer& part = g.parts.emplace_back();
+      create_buffer(part, ctx, n * sizeof(T), false, what + " part " + std::to_string(k), true);
+      upload_buffer(ctx, part, data.data() + first, n * sizeof(T));
+      const VkDeviceAddress a = buffer_address(part);
+      g.part_addresses[array * gpu::MAX_PARTS + k] = {uint32_t(a), uint32_t(a >> 32)};
+    }
+  }
+  std::vector<T>().swap(data);
+}
+
+void upload_part_table(GpuScene& g, const VulkanContext& ctx) {
+  const uint64_t bytes = g.part_addresses.size() * sizeof(glm::uvec2);
+  if (g.part_table.size < std::max<uint64_t>(bytes, 16)) create_buffer(g.part_table, ctx, bytes, false, "part table");
+  upload_buffer(ctx, g.part_table, g.part_addresses.data(), bytes);
 }
 
 
@@ -49,15 +95,21 @@ uint64_t texel_count(const Scene& scene) {
 
 }  // namespace
 
-// The device's view of the scene (bake_single_use_meshes applied).
-static void upload_octree_of(GpuScene& g, const VulkanContext& ctx, const Scene& scene, const OctreeParams& params) {
+// The octree of the device's view of the scene (bake_single_use_meshes
+// applied), with the meshes' roots filled in; records its statistics and
+// build time in `g`.
+struct SceneOctree {
+  Octree octree;
+  std::vector<gpu::GpuMesh> meshes;
+};
+
+static SceneOctree build_scene_octree(GpuScene& g, const Scene& scene, const OctreeParams& params) {
   auto start = Clock::now();
   // The top level over spheres and instances, then one octree per mesh in
   // object space, appended: their `first` fields are moved by where they land.
-  const std::vector<Aabb> boxes = primitive_boxes(scene);
-  Octree octree = build_octree(boxes, params);
+  SceneOctree t{build_octree(primitive_boxes(scene), params), gpu_meshes(scene)};
+  Octree& octree = t.octree;
   OctreeStats& st = octree.stats;
-  std::vector<gpu::GpuMesh> meshes = gpu_meshes(scene);
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const Mesh& mesh = scene.meshes[m];
     // Triangles are clipped to the cells they reach (octree.h ClipFn).
@@ -72,9 +124,9 @@ static void upload_octree_of(GpuScene& g, const VulkanContext& ctx, const Scene&
       octree.nodes.push_back(n);
     }
     octree.refs.insert(octree.refs.end(), mesh_tree.refs.begin(), mesh_tree.refs.end());
-    meshes[m].root = node_base;
-    meshes[m].first_ref = ref_base;
-    meshes[m].big_count = mesh_tree.big_count;
+    t.meshes[m].root = node_base;
+    t.meshes[m].first_ref = ref_base;
+    t.meshes[m].big_count = mesh_tree.big_count;
     st.leaves += mesh_tree.stats.leaves;
     st.max_depth_reached = std::max(st.max_depth_reached, mesh_tree.stats.max_depth_reached);
   }
@@ -87,20 +139,40 @@ static void upload_octree_of(GpuScene& g, const VulkanContext& ctx, const Scene&
   st.build_ms = ms_since(start);
   g.accel_build_ms = st.build_ms;
   g.octree = st;
-  check_fits(ctx, octree.nodes.size() * sizeof(gpu::GpuOctreeNode),
-             "the octree nodes of " + std::to_string(primitives) + " primitives (a larger leaf size needs fewer)");
-  check_fits(ctx, octree.refs.size() * sizeof(uint32_t),
-             "the octree references of " + std::to_string(primitives) + " primitives (a larger leaf size needs fewer)");
-  start = Clock::now();
-  create_buffer(g.nodes, ctx, octree.nodes.size() * sizeof(gpu::GpuOctreeNode), false, "octree node buffer");
-  create_buffer(g.refs, ctx, octree.refs.size() * sizeof(uint32_t), false, "octree reference buffer");
-  upload_buffer(ctx, g.nodes, octree.nodes.data(), octree.nodes.size() * sizeof(gpu::GpuOctreeNode));
-  upload_buffer(ctx, g.refs, octree.refs.data(), octree.refs.size() * sizeof(uint32_t));
-  upload_buffer(ctx, g.meshes, meshes.data(), meshes.size() * sizeof(gpu::GpuMesh));
+  return t;
+}
+
+// Where the octree's arrays would not fit one storage buffer: what the
+// message names.
+static std::string octree_what(const Scene& scene, const char* array) {
+  return std::string("the octree ") + array + " of " +
+         std::to_string(scene.spheres.size() + unique_triangle_count(scene)) +
+         " primitives (a larger leaf size needs fewer)";
+}
+
+static void upload_scene_octree(GpuScene& g, const VulkanContext& ctx, SceneOctree&& t) {
+  const auto start = Clock::now();
+  Octree& octree = t.octree;
+  upload_array(g, ctx, gpu::SPLIT_OCTREE_NODES, g.nodes, std::move(octree.nodes), "octree node buffer");
+  upload_array(g, ctx, gpu::SPLIT_OCTREE_REFS, g.refs, std::move(octree.refs), "octree reference buffer");
+  upload_buffer(ctx, g.meshes, t.meshes.data(), t.meshes.size() * sizeof(gpu::GpuMesh));
   g.values.big_count = octree.big_count;
   upload_buffer(ctx, g.params, &g.values, sizeof g.values);
+  upload_part_table(g, ctx);
   g.has_octree = true;
   g.upload_ms += ms_since(start);
+}
+
+static void upload_octree_of(GpuScene& g, const VulkanContext& ctx, const Scene& scene, const OctreeParams& params) {
+  SceneOctree t = build_scene_octree(g, scene, params);
+  if (g.part_log2 == 0) {
+    // Uploaded whole, the scene's pipeline reads one buffer per array.
+    check_fits(max_buffer_bytes(ctx), t.octree.nodes.size() * sizeof(gpu::GpuOctreeNode), octree_what(scene, "nodes"),
+               " (render with the octree from the start to split the scene)");
+    check_fits(max_buffer_bytes(ctx), t.octree.refs.size() * sizeof(uint32_t), octree_what(scene, "references"),
+               " (render with the octree from the start to split the scene)");
+  }
+  upload_scene_octree(g, ctx, std::move(t));
 }
 
 std::vector<gpu::GpuMesh> gpu_meshes(const Scene& scene) {
@@ -234,10 +306,8 @@ std::vector<Aabb> primitive_boxes(const Scene& scene) {
   return boxes;
 }
 
-static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel, const OctreeParams& params) {
-  const uint64_t sphere_bytes = scene.spheres.size() * sizeof(gpu::GpuSphere);
-  check_fits(ctx, sphere_bytes, std::to_string(scene.spheres.size()) + " spheres");
-
+static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel,
+                            const OctreeParams& params, uint64_t reserved_bytes) {
   auto start = Clock::now();
   std::vector<gpu::GpuSphere> spheres(scene.spheres.size());
   std::vector<uint32_t> sphere_materials(scene.spheres.size());
@@ -284,7 +354,7 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
     h.double_sided = f.double_sided;
   }
   const size_t texture_count = scene.textures.size();
-  check_fits(ctx, texel_count(scene) * sizeof(uint32_t),
+  check_fits(ctx.limits.maxStorageBufferRange, texel_count(scene) * sizeof(uint32_t),
              "the texels of " + std::to_string(texture_count) + (texture_count == 1 ? " texture" : " textures"));
   const GpuTextures textures = gpu_textures(scene);
   // The uv transforms of every material's texture slots, only where a texture can be sampled.
@@ -317,9 +387,7 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   const std::vector<float>& envmap_texels = sky.image.rgb;
   p.sphere_count = uint32_t(scene.spheres.size());
 
-  const std::vector<gpu::GpuTriangle> triangles = object_triangles(scene);
-  const uint64_t triangle_bytes = triangles.size() * sizeof(gpu::GpuTriangle);
-  check_fits(ctx, triangle_bytes, std::to_string(triangles.size()) + " triangles");
+  std::vector<gpu::GpuTriangle> triangles = object_triangles(scene);
   std::vector<gpu::GpuTriangleNormals> normals;
   bool any_normals = false;
   for (const Mesh& mesh : scene.meshes) any_normals |= !mesh.normals.empty();
@@ -354,27 +422,91 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
                       .add_vector(materials)
                       .add_vector(materials_half)
                       .value();
+  const double pack_ms = ms_since(start);
+  std::optional<SceneOctree> tree;
+  if (accel == Accel::Octree) tree = build_scene_octree(g, scene, params);
+  start = Clock::now();
+
+  // The big arrays, each in one storage buffer, or the whole scene split
+  // into parts when one of them does not fit (scene_buffers.glsl).
+  const uint64_t node_bytes = tree ? tree->octree.nodes.size() * sizeof(gpu::GpuOctreeNode) : 0;
+  const uint64_t ref_bytes = tree ? tree->octree.refs.size() * sizeof(uint32_t) : 0;
+  const struct {
+    uint64_t bytes, elements;
+    uint32_t size_log2;
+    std::string what;
+  } arrays[] = {
+      {spheres.size() * sizeof(gpu::GpuSphere), spheres.size(), size_log2<gpu::GpuSphere>(),
+       std::to_string(spheres.size()) + " spheres"},
+      {sphere_materials.size() * sizeof(uint32_t), sphere_materials.size(), size_log2<uint32_t>(),
+       "the material indices of " + std::to_string(spheres.size()) + " spheres"},
+      {materials.size() * sizeof(gpu::GpuMaterial), materials.size(), size_log2<gpu::GpuMaterial>(),
+       std::to_string(materials.size()) + " materials"},
+      {materials_half.size() * sizeof(gpu::GpuMaterialHalf), materials_half.size(), size_log2<gpu::GpuMaterialHalf>(),
+       std::to_string(materials.size()) + " materials (fp16)"},
+      {triangles.size() * sizeof(gpu::GpuTriangle), triangles.size(), size_log2<gpu::GpuTriangle>(),
+       std::to_string(triangles.size()) + " triangles"},
+      {normals.size() * sizeof(gpu::GpuTriangleNormals), normals.size(), size_log2<gpu::GpuTriangleNormals>(),
+       "the vertex normals of " + std::to_string(triangles.size()) + " triangles"},
+      {uvs.size() * sizeof(gpu::GpuTriangleUvs), uvs.size(), size_log2<gpu::GpuTriangleUvs>(),
+       "the texture coordinates of " + std::to_string(triangles.size()) + " triangles"},
+      {node_bytes, node_bytes / sizeof(gpu::GpuOctreeNode), size_log2<gpu::GpuOctreeNode>(), octree_what(scene, "nodes")},
+      {ref_bytes, ref_bytes / sizeof(uint32_t), size_log2<uint32_t>(), octree_what(scene, "references")},
+  };
+  const uint64_t limit = max_buffer_bytes(ctx);
+  bool split = false;
+  for (const auto& a : arrays) split |= a.bytes > limit;
+  g.part_log2 = 0;
+  g.part_addresses.clear();
+  g.parts.clear();
+  if (split && !ctx.buffer_device_address)
+    for (const auto& a : arrays) check_fits(limit, a.bytes, a.what, " (and it lacks bufferDeviceAddress to split it)");
+  if (split) {
+    g.part_log2 = uint32_t(std::bit_width(limit)) - 1;
+    // A part holds at least one of the largest elements (GpuMaterial, 2^7).
+    if (g.part_log2 < size_log2<gpu::GpuMaterial>())
+      throw SceneSizeError("the device allows " + std::to_string(limit) + " bytes per buffer, too few to split a scene");
+    g.part_addresses.assign(gpu::SPLIT_ARRAYS * gpu::MAX_PARTS, glm::uvec2(0));
+    for (const auto& a : arrays) {
+      const uint64_t per_part = uint64_t(1) << (g.part_log2 - a.size_log2);
+      if ((a.elements + per_part - 1) / per_part > gpu::MAX_PARTS)
+        throw SceneSizeError(a.what + " need " + byte_string(a.bytes) + ", more than " +
+                             std::to_string(gpu::MAX_PARTS) + " buffers of " + byte_string(per_part << a.size_log2) +
+                             " (the device allows " + byte_string(limit) + " per buffer)");
+    }
+  }
+  // Everything on the device against its memory (device_memory), before
+  // asking the driver for any of it.
+  uint64_t total = reserved_bytes + sizeof p + instances.size() * sizeof(gpu::GpuInstance) +
+                   meshes.size() * sizeof(gpu::GpuMesh) + textures.table.size() * sizeof(gpu::GpuTexture) + textures.texels.size() * sizeof(uint32_t) +
+                   uv_transforms.size() * sizeof(gpu::GpuUvTransform) + g.part_addresses.size() * sizeof(glm::uvec2);
+  for (const auto& a : arrays) total += a.bytes;
+  const DeviceMemory memory = device_memory(ctx);
+  if (total > memory.bytes) {
+    std::string what = std::to_string(spheres.size()) + " spheres";
+    if (!triangles.empty()) what += " and " + std::to_string(triangles.size()) + " triangles";
+    throw SceneSizeError(what + (tree ? " with their octree" : "") + " need " + byte_string(total) +
+                         " of device memory, the device has " + byte_string(memory.bytes) + " (" + memory.source +
+                         ")");
+  }
+
   create_buffer(g.params, ctx, sizeof p, false, "scene parameters");
-  create_buffer(g.triangles, ctx, triangle_bytes, false, "triangle buffer");
-  create_buffer(g.triangle_normals, ctx, normals.size() * sizeof(gpu::GpuTriangleNormals), false,
-                "triangle normal buffer");
-  upload_buffer(ctx, g.triangles, triangles.data(), triangle_bytes);
+  upload_array(g, ctx, gpu::SPLIT_TRIANGLES, g.triangles, std::move(triangles), "triangle buffer");
+  upload_array(g, ctx, gpu::SPLIT_TRIANGLE_NORMALS, g.triangle_normals, std::move(normals), "triangle normal buffer");
   create_buffer(g.instances, ctx, instances.size() * sizeof(gpu::GpuInstance), false, "instance buffer");
   create_buffer(g.meshes, ctx, meshes.size() * sizeof(gpu::GpuMesh), false, "mesh buffer");
   upload_buffer(ctx, g.instances, instances.data(), instances.size() * sizeof(gpu::GpuInstance));
   upload_buffer(ctx, g.meshes, meshes.data(), meshes.size() * sizeof(gpu::GpuMesh));
-  upload_buffer(ctx, g.triangle_normals, normals.data(), normals.size() * sizeof(gpu::GpuTriangleNormals));
-  create_buffer(g.spheres, ctx, sphere_bytes, false, "sphere buffer");
-  create_buffer(g.sphere_materials, ctx, sphere_materials.size() * 4, false, "sphere material buffer");
-  create_buffer(g.materials, ctx, materials.size() * sizeof(gpu::GpuMaterial), false, "material buffer");
-  create_buffer(g.materials_half, ctx, materials_half.size() * sizeof(gpu::GpuMaterialHalf), false,
-                "material buffer");
+  upload_array(g, ctx, gpu::SPLIT_SPHERES, g.spheres, std::move(spheres), "sphere buffer");
+  upload_array(g, ctx, gpu::SPLIT_SPHERE_MATERIALS, g.sphere_materials, std::move(sphere_materials),
+               "sphere material buffer");
+  upload_array(g, ctx, gpu::SPLIT_MATERIALS, g.materials, std::move(materials), "material buffer");
+  upload_array(g, ctx, gpu::SPLIT_MATERIALS_HALF, g.materials_half, std::move(materials_half), "material buffer");
   create_buffer(g.textures, ctx, textures.table.size() * sizeof(gpu::GpuTexture), false, "texture table");
   create_buffer(g.texels, ctx, textures.texels.size() * sizeof(uint32_t), false, "texel buffer");
-  create_buffer(g.triangle_uvs, ctx, uvs.size() * sizeof(gpu::GpuTriangleUvs), false, "triangle uv buffer");
+  upload_array(g, ctx, gpu::SPLIT_TRIANGLE_UVS, g.triangle_uvs, std::move(uvs), "triangle uv buffer");
   upload_buffer(ctx, g.textures, textures.table.data(), textures.table.size() * sizeof(gpu::GpuTexture));
   upload_buffer(ctx, g.texels, textures.texels.data(), textures.texels.size() * sizeof(uint32_t));
-  upload_buffer(ctx, g.triangle_uvs, uvs.data(), uvs.size() * sizeof(gpu::GpuTriangleUvs));
   create_buffer(g.texture_transforms, ctx, uv_transforms.size() * sizeof(gpu::GpuUvTransform), false,
                 "texture transform buffer");
   upload_buffer(ctx, g.texture_transforms, uv_transforms.data(), uv_transforms.size() * sizeof(gpu::GpuUvTransform));
@@ -388,12 +520,9 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   create_buffer(g.nodes, ctx, 0, false, "octree node buffer");
   create_buffer(g.refs, ctx, 0, false, "octree reference buffer");
   upload_buffer(ctx, g.params, &p, sizeof p);
-  upload_buffer(ctx, g.spheres, spheres.data(), sphere_bytes);
-  upload_buffer(ctx, g.sphere_materials, sphere_materials.data(), sphere_materials.size() * 4);
-  upload_buffer(ctx, g.materials, materials.data(), materials.size() * sizeof(gpu::GpuMaterial));
-  upload_buffer(ctx, g.materials_half, materials_half.data(), materials_half.size() * sizeof(gpu::GpuMaterialHalf));
-  g.upload_ms = ms_since(start);
-  if (accel == Accel::Octree) upload_octree_of(g, ctx, scene, params);
+  upload_part_table(g, ctx);
+  g.upload_ms = pack_ms + ms_since(start);
+  if (tree) upload_scene_octree(g, ctx, std::move(*tree));
 }
 
 Scene bake_single_use_meshes(const Scene& scene) {
@@ -467,9 +596,10 @@ void upload_octree(GpuScene& g, const VulkanContext& ctx, const Scene& scene, co
   else upload_octree_of(g, ctx, bake_single_use_meshes(scene), params);
 }
 
-void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel, const OctreeParams& params) {
-  if (scene.meshes.empty()) upload_scene_of(g, ctx, scene, accel, params);
-  else upload_scene_of(g, ctx, bake_single_use_meshes(scene), accel, params);
+void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel, const OctreeParams& params,
+                  uint64_t reserved_bytes) {
+  if (scene.meshes.empty()) upload_scene_of(g, ctx, scene, accel, params, reserved_bytes);
+  else upload_scene_of(g, ctx, bake_single_use_meshes(scene), accel, params, reserved_bytes);
 }
 
 void check_precision(const Scene& scene, Precision precision) {

@@ -4,7 +4,10 @@
 // of a PathTracer shares it.
 #pragma once
 
+#include <deque>
 #include <vector>
+
+#include <glm/vec2.hpp>
 
 #include "accel/octree.h"
 #include "render/settings.h"
@@ -33,6 +36,15 @@ struct GpuScene {
   // The environment map's texels (3 floats each) and sampling tables
   // (scene/envmap.h; placeholders without an envmap).
   Buffer envmap_texels, envmap_marginal, envmap_conditional;
+  // A scene larger than one storage buffer (shaders/shared/scene_buffers.glsl):
+  // log2 of the largest part in bytes, 0 when every array has one buffer
+  // (spheres ... refs above). Split, those are 16-byte placeholders and the
+  // arrays lie in `parts`, whose addresses `part_table` holds (uvec2 per
+  // [SPLIT_* * MAX_PARTS + part]; a placeholder when not split).
+  uint32_t part_log2 = 0;
+  std::deque<Buffer> parts;
+  std::vector<glm::uvec2> part_addresses;
+  Buffer part_table;
   // A hash of every array above but the octree, as uploaded (spheres,
   // materials, triangles, instances, textures, sky): the scene a checkpoint
   // belongs to.
@@ -75,12 +87,20 @@ struct GpuTextures {
 GpuTextures gpu_textures(const Scene& scene);
 
 // Packs and uploads `scene`; with Accel::Octree also builds and uploads its
-// octree. Throws InputError when an array does not fit one storage buffer of
-// the device (naming the array, its size and the limit).
-void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel, const OctreeParams& params);
+// octree. An array larger than one storage buffer (max_buffer_bytes) splits
+// the whole scene into parts (GpuScene::part_log2), where the device has
+// buffer device addresses. Throws InputError when the scene, with the
+// `reserved_bytes` already allocated for the render (the accumulation), needs
+// more than the device's memory (device_memory), when an array needs more
+// than MAX_PARTS parts, or, without buffer device addresses, when an array
+// does not fit one storage buffer (naming the array, its size and the limit).
+void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel, const OctreeParams& params,
+                  uint64_t reserved_bytes = 0);
 
 // Builds the octree over the scene's primitives and uploads it (for a scene
-// uploaded with Accel::Brute that then switches to the octree).
+// uploaded with Accel::Brute that then switches to the octree; a scene
+// uploaded whole whose octree would need splitting is refused: render it
+// with the octree from the start).
 void upload_octree(GpuScene& g, const VulkanContext& ctx, const Scene& scene, const OctreeParams& params);
 
 // Throws InputError when a value of the scene does not fit the precision

@@ -127,6 +127,8 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
       if (d == 0) {
         r.timings = tracer.setup_timings();
         r.octree = tracer.octree_stats();
+        r.buffer_parts = tracer.buffer_parts();
+        r.buffer_part_bytes = tracer.buffer_part_bytes();
         r.features = tracer.features();
       }
     } catch (...) {

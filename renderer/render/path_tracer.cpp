@@ -10,7 +10,10 @@
 #include "core/text.h"
 #include "path_trace_fp16.h"
 #include "path_trace_fp16_all.h"
+#include "path_trace_fp16_all_split.h"
+#include "path_trace_fp16_split.h"
 #include "path_trace_fp32.h"
+#include "path_trace_fp32_split.h"
 #include "render/camera.h"
 #include "render/gpu_layout.h"
 #include "render/gpu_scene.h"
@@ -86,14 +89,19 @@ void PathTracer::State::create_pipeline() {
   // black sky of any type is specialised to none.
   const uint32_t sky = settings.all_effects ? gpu::SKY_RUNTIME : f.sky_black ? gpu::SKY_NONE : uint32_t(f.sky);
   const uint32_t accel = settings.accel == Accel::Octree ? gpu::ACCEL_OCTREE : gpu::ACCEL_BRUTE;
-  const uint32_t* spirv = path_trace_fp32_spv;
-  size_t spirv_bytes = sizeof(path_trace_fp32_spv);
+  // A scene split over several buffers (GpuScene::part_log2) has a pipeline
+  // of its own (shaders/shared/scene_buffers.glsl), so that one in one
+  // buffer per array runs the code it always has.
+  const GpuScene& g = s.scene;
+  const bool split = g.part_log2 != 0;
+  const uint32_t* spirv = split ? path_trace_fp32_split_spv : path_trace_fp32_spv;
+  size_t spirv_bytes = split ? sizeof(path_trace_fp32_split_spv) : sizeof(path_trace_fp32_spv);
   if (settings.precision == Precision::FP16) {
-    spirv = path_trace_fp16_spv;
-    spirv_bytes = sizeof(path_trace_fp16_spv);
+    spirv = split ? path_trace_fp16_split_spv : path_trace_fp16_spv;
+    spirv_bytes = split ? sizeof(path_trace_fp16_split_spv) : sizeof(path_trace_fp16_spv);
   } else if (settings.precision == Precision::FP16All) {
-    spirv = path_trace_fp16_all_spv;
-    spirv_bytes = sizeof(path_trace_fp16_all_spv);
+    spirv = split ? path_trace_fp16_all_split_spv : path_trace_fp16_all_spv;
+    spirv_bytes = split ? sizeof(path_trace_fp16_all_split_spv) : sizeof(path_trace_fp16_all_spv);
   }
   ComputePipeline& p = s.pipeline;
   create_compute_pipeline(p, s.ctx, spirv, spirv_bytes, gpu::BINDING_COUNT, sizeof(gpu::PassParams),
@@ -116,8 +124,8 @@ void PathTracer::State::create_pipeline() {
                            {gpu::SPEC_NORMAL_MAPS, f.normal_maps},
                            {gpu::SPEC_ALPHA, f.alpha},
                            {gpu::SPEC_SINGLE_SIDED, f.single_sided},
-                           {gpu::SPEC_TRANSMISSION, f.transmission}});
-  const GpuScene& g = s.scene;
+                           {gpu::SPEC_TRANSMISSION, f.transmission},
+                           {gpu::SPEC_PART_LOG2, g.part_log2}});
   bind_buffers(p, {{gpu::BINDING_SCENE, &g.params},
                    {gpu::BINDING_SPHERES, &g.spheres},
                    {gpu::BINDING_TRIANGLES, &g.triangles},
@@ -134,7 +142,8 @@ void PathTracer::State::create_pipeline() {
                    {gpu::BINDING_TEXTURE_TRANSFORMS, &g.texture_transforms},
                    {gpu::BINDING_ENVMAP_TEXELS, &g.envmap_texels},
                    {gpu::BINDING_ENVMAP_MARGINAL, &g.envmap_marginal},
-                   {gpu::BINDING_ENVMAP_CONDITIONAL, &g.envmap_conditional}});
+                   {gpu::BINDING_ENVMAP_CONDITIONAL, &g.envmap_conditional},
+                   {gpu::BINDING_BUFFER_PARTS, &g.part_table}});
   bind_accumulation();
   s.timings.pipeline_ms = ms_since(start);
 }
@@ -149,7 +158,8 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
   check_precision(scene, settings.precision);
   s.create_accumulation();
   create_buffer(s.stats, ctx, sizeof(gpu::RenderStats), false, "statistics buffer");
-  upload_scene(s.scene, ctx, scene, settings.accel, settings.octree);
+  upload_scene(s.scene, ctx, scene, settings.accel, settings.octree,
+               3 * s.pixels() * sizeof(glm::vec4) + sizeof(gpu::RenderStats));
   s.timings.accel_build_ms = s.scene.accel_build_ms;
   s.timings.upload_ms = s.scene.upload_ms;
   s.create_pipeline();
@@ -161,6 +171,10 @@ PathTracer::~PathTracer() = default;
 
 const RenderTimings& PathTracer::setup_timings() const { return state_->timings; }
 const OctreeStats& PathTracer::octree_stats() const { return state_->scene.octree; }
+uint32_t PathTracer::buffer_parts() const { return uint32_t(state_->scene.parts.size()); }
+uint64_t PathTracer::buffer_part_bytes() const {
+  return state_->scene.part_log2 ? uint64_t(1) << state_->scene.part_log2 : 0;
+}
 const SceneFeatures& PathTracer::features() const { return state_->features; }
 const Buffer& PathTracer::accum_sum() const { return state_->accum_sum; }
 const Buffer& PathTracer::accum_comp() const { return state_->accum_comp; }
@@ -349,6 +363,8 @@ RenderResult PathTracer::read_result(const Accumulation& acc) {
   s.timings.readback_ms = ms_since(start);
   r.timings = s.timings;
   r.octree = s.scene.octree;
+  r.buffer_parts = buffer_parts();
+  r.buffer_part_bytes = buffer_part_bytes();
   r.features = s.features;
   r.pipeline_statistics = s.pipeline.statistics;
   return r;

@@ -54,6 +54,10 @@ struct RenderResult {
   SceneFeatures features;         // what the pipeline was specialised to
   // The driver's statistics of the path-tracing pipeline (ComputePipeline::statistics).
   std::vector<std::pair<std::string, std::string>> pipeline_statistics;
+  // Buffers the scene's big arrays were split into (0: one per array;
+  // shaders/shared/scene_buffers.glsl) and the largest part's bytes.
+  uint32_t buffer_parts = 0;
+  uint64_t buffer_part_bytes = 0;
   uint32_t samples = 0;      // samples per pixel the state holds (settings.spp unless interrupted)
   bool interrupted = false;  // render(): RenderControl::stop ended it early
 };
@@ -111,6 +115,9 @@ class PathTracer {
   uint64_t scene_hash() const;
   const RenderTimings& setup_timings() const;
   const OctreeStats& octree_stats() const;
+  // RenderResult::buffer_parts and buffer_part_bytes of the scene on the device.
+  uint32_t buffer_parts() const;
+  uint64_t buffer_part_bytes() const;
   const SceneFeatures& features() const;
 
  private:

@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <cstring>
 
+#include <unistd.h>
+
 namespace octrace {
 
 namespace {
@@ -355,6 +357,25 @@ void create_context(VulkanContext& ctx, const ContextOptions& options) {
     exec_props.pipelineExecutableInfo = VK_TRUE;
     f12.pNext = &exec_props;
   }
+  // Buffer device addresses wherever the device has them: only the split
+  // pipeline (scenes larger than one storage buffer) uses them.
+  {
+    VkPhysicalDeviceVulkan12Features have{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceFeatures2 query{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    query.pNext = &have;
+    if (ctx.info.vulkan12) vkGetPhysicalDeviceFeatures2(ctx.physical, &query);
+    ctx.buffer_device_address = have.bufferDeviceAddress;
+    f12.bufferDeviceAddress = have.bufferDeviceAddress;
+  }
+  ctx.memory_budget = has_device_extension(ctx.physical, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
+  if (ctx.memory_budget) extensions.push_back(VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
+  {
+    VkPhysicalDeviceMaintenance3Properties m3{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+    VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    props2.pNext = &m3;
+    vkGetPhysicalDeviceProperties2(ctx.physical, &props2);
+    ctx.max_allocation_bytes = m3.maxMemoryAllocationSize;
+  }
   VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   features.pNext = &f11;
 
@@ -373,6 +394,44 @@ void create_context(VulkanContext& ctx, const ContextOptions& options) {
   VK_CHECK(vkCreateCommandPool(ctx.device, &pool_info, nullptr, &ctx.command_pool));
   VkPipelineCacheCreateInfo cache_info{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
   VK_CHECK(vkCreatePipelineCache(ctx.device, &cache_info, nullptr, &ctx.pipeline_cache));
+}
+
+namespace {
+
+// A test hook's value (a byte count), or 0 when it is not set.
+uint64_t test_bytes(const char* name) {
+  const char* v = std::getenv(name);
+  return v ? std::strtoull(v, nullptr, 10) : 0;
+}
+
+}  // namespace
+
+DeviceMemory device_memory(const VulkanContext& ctx) {
+  if (const uint64_t fake = test_bytes("OCTRACE_TEST_DEVICE_MEMORY_BYTES")) return {fake, "OCTRACE_TEST_DEVICE_MEMORY_BYTES"};
+  VkPhysicalDeviceMemoryBudgetPropertiesEXT budget{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_BUDGET_PROPERTIES_EXT};
+  VkPhysicalDeviceMemoryProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_PROPERTIES_2};
+  if (ctx.memory_budget) props.pNext = &budget;
+  vkGetPhysicalDeviceMemoryProperties2(ctx.physical, &props);
+  const VkPhysicalDeviceMemoryProperties& m = props.memoryProperties;
+  DeviceMemory best;
+  for (uint32_t h = 0; h < m.memoryHeapCount; ++h) {
+    if (!(m.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)) continue;
+    const uint64_t bytes = ctx.memory_budget ? budget.heapBudget[h] : m.memoryHeaps[h].size;
+    if (bytes > best.bytes) best = {bytes, "heap " + std::to_string(h) + (ctx.memory_budget ? " budget" : "")};
+  }
+  if (ctx.info.software) {
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+    const uint64_t host = pages > 0 && page > 0 ? uint64_t(pages) * uint64_t(page) : 0;
+    if (host > best.bytes) best = {host, "host memory"};
+  }
+  return best;
+}
+
+uint64_t max_buffer_bytes(const VulkanContext& ctx) {
+  if (const uint64_t fake = test_bytes("OCTRACE_TEST_MAX_BUFFER_BYTES")) return fake;
+  uint64_t limit = ctx.limits.maxStorageBufferRange;
+  if (ctx.max_allocation_bytes) limit = std::min(limit, ctx.max_allocation_bytes);
+  return limit;
 }
 
 VulkanContext::~VulkanContext() {

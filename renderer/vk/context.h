@@ -104,12 +104,34 @@ struct VulkanContext {
   DeviceInfo info;
   bool fp16_enabled = false;
   bool pipeline_statistics = false;  // VK_KHR_pipeline_executable_properties enabled
+  // bufferDeviceAddress (Vulkan 1.2) enabled, where the device has it: a
+  // scene larger than one storage buffer is read through addresses.
+  bool buffer_device_address = false;
+  bool memory_budget = false;             // VK_EXT_memory_budget enabled
+  uint64_t max_allocation_bytes = 0;      // maxMemoryAllocationSize (Vulkan 1.1)
 
   VulkanContext() = default;
   VulkanContext(const VulkanContext&) = delete;
   VulkanContext& operator=(const VulkanContext&) = delete;
   ~VulkanContext();
 };
+
+// The memory a render can have on `ctx`'s device: the largest device-local
+// heap, or its budget where VK_EXT_memory_budget offers one (what is left to
+// this process now). A software device's memory is the host's, so there the
+// host's physical memory counts when it is larger (lavapipe 22.3 reports a
+// fixed 2 GiB heap whatever the machine has). `source` says which, for
+// messages. Test hook: OCTRACE_TEST_DEVICE_MEMORY_BYTES=N pretends N bytes.
+struct DeviceMemory {
+  uint64_t bytes = 0;
+  std::string source;  // "heap 0", "heap 0 budget", "host memory", "OCTRACE_TEST_DEVICE_MEMORY_BYTES"
+};
+DeviceMemory device_memory(const VulkanContext& ctx);
+
+// The largest buffer a shader may read through one descriptor (and allocate
+// at once): maxStorageBufferRange and maxMemoryAllocationSize, whichever is
+// smaller. Test hook: OCTRACE_TEST_MAX_BUFFER_BYTES=N lowers it to N.
+uint64_t max_buffer_bytes(const VulkanContext& ctx);
 
 // Every device the loader reports, with what octrace needs to know about it.
 std::vector<DeviceInfo> list_devices();

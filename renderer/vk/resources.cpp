@@ -16,7 +16,8 @@ uint32_t find_memory_type(const VulkanContext& ctx, uint32_t type_bits, VkMemory
 
 }  // namespace
 
-void create_buffer(Buffer& b, const VulkanContext& ctx, VkDeviceSize size, bool host, const std::string& what) {
+void create_buffer(Buffer& b, const VulkanContext& ctx, VkDeviceSize size, bool host, const std::string& what,
+                   bool addressable) {
   destroy_buffer(b);
   size = std::max<VkDeviceSize>(size, 16);
   b.ctx = &ctx;
@@ -25,6 +26,7 @@ void create_buffer(Buffer& b, const VulkanContext& ctx, VkDeviceSize size, bool 
   info.size = size;
   info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  if (addressable) info.usage |= VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   VkResult r = vkCreateBuffer(ctx.device, &info, nullptr, &b.buffer);
   if (r != VK_SUCCESS)
@@ -43,12 +45,21 @@ void create_buffer(Buffer& b, const VulkanContext& ctx, VkDeviceSize size, bool 
   VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   alloc.allocationSize = req.size;
   alloc.memoryTypeIndex = type;
+  VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+  flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+  if (addressable) alloc.pNext = &flags;
   r = vkAllocateMemory(ctx.device, &alloc, nullptr, &b.memory);
   if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY)
     throw RuntimeError("out of memory allocating " + mib_string(size) + " for the " + what);
   if (r != VK_SUCCESS) throw RuntimeError("cannot allocate the " + what + ": " + vk_result_name(r));
   VK_CHECK(vkBindBufferMemory(ctx.device, b.buffer, b.memory, 0));
   if (host) VK_CHECK(vkMapMemory(ctx.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
+}
+
+VkDeviceAddress buffer_address(const Buffer& b) {
+  VkBufferDeviceAddressInfo info{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+  info.buffer = b.buffer;
+  return vkGetBufferDeviceAddress(b.ctx->device, &info);
 }
 
 Buffer::~Buffer() { destroy_buffer(*this); }

@@ -29,7 +29,11 @@ struct Buffer {
 
 // `what` names the buffer in error messages ("accumulation buffer").
 // Zero-sized requests get a 16-byte buffer so an empty scene still binds.
-void create_buffer(Buffer& b, const VulkanContext& ctx, VkDeviceSize size, bool host, const std::string& what);
+// `addressable`: a shader may read it through its device address
+// (buffer_address; needs ctx.buffer_device_address).
+void create_buffer(Buffer& b, const VulkanContext& ctx, VkDeviceSize size, bool host, const std::string& what,
+                   bool addressable = false);
+VkDeviceAddress buffer_address(const Buffer& b);
 void destroy_buffer(Buffer& b);
 
 // Copies host data into a device buffer through a staging buffer, and back.

@@ -4,12 +4,13 @@
 // constant ACCEL) lives behind it: two levels, the top over spheres and mesh
 // instances, and for each instance its mesh's own octree in object space,
 // which the ray enters through the instance's transform. The includer
-// declares `scene`, `spheres`, `sphere_materials`, `triangles`,
-// `triangle_normals`, `triangle_uvs`, `instances`, `meshes`, `octree_nodes`
-// and `octree_refs`, and the specialization constants HAS_SPHERES,
+// declares `scene`, `instances` and `meshes`, includes
+// shared/scene_buffers.glsl (sphere_at, triangle_at, node_at, ref_at,
+// material_at, ...: the big arrays, in one buffer or split over several),
+// and declares the specialization constants HAS_SPHERES,
 // HAS_TRIANGLES, HAS_VERTEX_NORMALS, HAS_TEXTURES, HAS_ALPHA and
 // HAS_SINGLE_SIDED (a kind the
-// scene lacks compiles out), and for the alpha test `materials`, `textures`,
+// scene lacks compiles out), and for the alpha test `textures`,
 // `texels` and `texture_transforms`. A new
 // primitive kind adds its test to test_primitive and its surface to
 // surface_at; nothing else here or in the integrator changes.
@@ -53,7 +54,7 @@ float widened(float t) { return uintBitsToFloat(floatBitsToUint(t) + 1u); }
 // rays); `into_from`: whether the ray enters it (see intersect_sphere).
 void test_sphere(Ray ray, uint i, uint from_prim, bool into_from, inout Hit hit) {
   bool self = i == from_prim;
-  GpuSphere s = spheres[i];
+  GpuSphere s = sphere_at(i);
   float t = intersect_sphere(ray, s.center, s.radius, widened(hit.t), self && into_from, self && !into_from);
   if (t < hit.t || (t == hit.t && t != INF && i < hit.prim)) {
     hit.t = t;
@@ -79,17 +80,17 @@ uint alpha_key = 0u;
 // triangles in (octree == brute force) nor on any random stream, and a ray
 // that meets the same triangle twice decides the same way both times.
 bool alpha_cut(GpuTriangle tri, uint i, uint id, vec3 b) {
-  uint mode = materials[tri.material].alpha_mode;
+  uint mode = material_at(tri.material).alpha_mode;
   if (mode == ALPHA_OPAQUE) return false;
-  float alpha = materials[tri.material].alpha;
-  uint tex = materials[tri.material].base_color_texture;
+  float alpha = material_at(tri.material).alpha;
+  uint tex = material_at(tri.material).base_color_texture;
   if (HAS_TEXTURES && tex != NO_TEXTURE && scene.triangle_uvs != 0u) {
-    GpuTriangleUvs u = triangle_uvs[i];
+    GpuTriangleUvs u = triangle_uvs_at(i);
     vec2 uv = b.x * u.uv0 + b.y * u.uv1 + b.z * u.uv2;
     GpuUvTransform x = texture_transforms[tri.material * TEXTURE_SLOTS + TEXTURE_SLOT_BASE_COLOR];
     alpha *= sample_texture_alpha(tex, x.x_axis * uv.x + x.y_axis * uv.y + x.offset);
   }
-  if (mode == ALPHA_MASK) return alpha < materials[tri.material].alpha_cutoff;
+  if (mode == ALPHA_MASK) return alpha < material_at(tri.material).alpha_cutoff;
   uint h = pcg4d(uvec4(alpha_key, id, ALPHA_STREAM, 0u)).x;
   return float(h >> 8u) * (1.0 / 16777216.0) >= alpha;
 }
@@ -100,7 +101,7 @@ bool alpha_cut(GpuTriangle tri, uint i, uint id, vec3 b) {
 void test_instance_triangle(Ray oray, RayShear osh, InstanceRef ir, uint local, uint from_prim, inout Hit hit) {
   uint id = ir.first_id + local;
   uint i = ir.first_triangle + local;
-  GpuTriangle tri = triangles[i];
+  GpuTriangle tri = triangle_at(i);
   vec3 b;
   float t = intersect_triangle(oray.origin, osh, tri, widened(hit.t), id == from_prim, b);
   if (t < hit.t || (t == hit.t && t != INF && id < hit.prim)) {
@@ -108,7 +109,7 @@ void test_instance_triangle(Ray oray, RayShear osh, InstanceRef ir, uint local, 
     // side the winding's normal points away from; the same side shading
     // calls back, as normal_to_world keeps dot(dir, n) through the
     // placement) is not hit.
-    if (HAS_SINGLE_SIDED && materials[tri.material].double_sided == 0u &&
+    if (HAS_SINGLE_SIDED && material_at(tri.material).double_sided == 0u &&
         dot(oray.dir, cross(tri.v1 - tri.v0, tri.v2 - tri.v0)) > 0.0)
       return;
     if (HAS_ALPHA && alpha_cut(tri, i, id, b)) return;
@@ -146,7 +147,7 @@ void test_instance(Ray ray, uint inst, uint from_prim, inout Hit hit) {
     for (uint k = 0; k < m.triangle_count; ++k) test_instance_triangle(oray, osh, ir, k, from_prim, hit);
     return;
   }
-  for (uint j = 0; j < m.big_count; ++j) test_instance_triangle(oray, osh, ir, octree_refs[m.first_ref + j], from_prim, hit);
+  for (uint j = 0; j < m.big_count; ++j) test_instance_triangle(oray, osh, ir, ref_at(m.first_ref + j), from_prim, hit);
   traverse_mesh(m.root, oray, osh, from_prim, false, ir, hit);
 }
 
@@ -176,7 +177,7 @@ bool closest_hit(Ray ray, uint from_prim, bool into_from, out Hit hit) {
   }
 
   // Primitives too large for the octree's cells are tested first.
-  for (uint i = 0; i < scene.big_count; ++i) test_primitive(ray, octree_refs[i], from_prim, into_from, hit);
+  for (uint i = 0; i < scene.big_count; ++i) test_primitive(ray, ref_at(i), from_prim, into_from, hit);
   RayShear no_shear;
   traverse_top(0u, ray, no_shear, from_prim, into_from, InstanceRef(0u, 0u, 0u), hit);
   return hit.prim != NO_PRIM;
@@ -185,7 +186,7 @@ bool closest_hit(Ray ray, uint from_prim, bool into_from, out Hit hit) {
 // The surface at a hit that closest_hit returned.
 Surface surface_at(Ray ray, Hit hit) {
   if (!HAS_TRIANGLES || (HAS_SPHERES && hit.kind == PRIM_SPHERE))
-    return sphere_surface(ray, hit.t, spheres[hit.prim], sphere_materials[hit.prim]);
+    return sphere_surface(ray, hit.t, sphere_at(hit.prim), sphere_material_at(hit.prim));
   GpuInstance g = instances[hit.inst];
   uint tri = meshes[g.mesh].first_triangle + (hit.prim - g.first_id);
   return triangle_surface(ray, to_object(g, ray), hit.t, tri, g);

@@ -11,7 +11,7 @@ void OCTREE_WALK_NAME(uint root_index, Ray ray, RayShear sh, uint from_prim, boo
   float stack_entry[STACK_SIZE];  // where the ray enters the node's box
   uint sp = 0;
   float t_entry;
-  GpuOctreeNode root = octree_nodes[root_index];
+  GpuOctreeNode root = node_at(root_index);
   if (hit_box(root.lo, root.hi, ray.origin, inv_dir, hit.t, t_entry)) {
     stack_node[0] = root_index;
     stack_entry[0] = t_entry;
@@ -23,10 +23,10 @@ void OCTREE_WALK_NAME(uint root_index, Ray ray, RayShear sh, uint from_prim, boo
     // The node was pushed when its box was met before the nearest hit of that
     // moment; a nearer hit found since rules it out (the early exit).
     if (stack_entry[sp] > hit.t * WIDEN) continue;
-    GpuOctreeNode node = octree_nodes[stack_node[sp]];
+    GpuOctreeNode node = node_at(stack_node[sp]);
     if (node.count_or_mask < OCTREE_INTERNAL) {
       for (uint k = node.first; k < node.first + node.count_or_mask; ++k)
-        OCTREE_LEAF(octree_refs[k]);
+        OCTREE_LEAF(ref_at(k));
       continue;
     }
     uint mask = node.count_or_mask & 0xffu;
@@ -43,7 +43,7 @@ void OCTREE_WALK_NAME(uint root_index, Ray ray, RayShear sh, uint from_prim, boo
       ordered ^= 1u << j;
       uint octant = j ^ sign_mask;
       uint child = node.first + bitCount(mask & ((1u << octant) - 1u));
-      GpuOctreeNode c = octree_nodes[child];
+      GpuOctreeNode c = node_at(child);
       if (hit_box(c.lo, c.hi, ray.origin, inv_dir, hit.t, t_entry)) {
         stack_node[sp] = child;
         stack_entry[sp] = t_entry;

@@ -115,7 +115,7 @@ void triangle_tangents(GpuTriangle tri, GpuTriangleUvs u, GpuInstance g, out vec
 // the vertices' at the hit's barycentrics (worked out again here, once per
 // hit, rather than carried through the traversal).
 Surface triangle_surface(Ray ray, Ray oray, float t, uint i, GpuInstance g) {
-  GpuTriangle tri = triangles[i];
+  GpuTriangle tri = triangle_at(i);
   vec3 p = ray.origin + t * ray.dir;
   vec3 ng = safe_normalize(normal_to_world(g, cross(tri.v1 - tri.v0, tri.v2 - tri.v0)), -ray.dir);
   vec3 ns = ng;
@@ -130,11 +130,11 @@ Surface triangle_surface(Ray ray, Ray oray, float t, uint i, GpuInstance g) {
     if (triangle_edges(oray.origin, ray_shear(oray.dir), tri.v0, tri.v1, tri.v2, uvw, T, det)) {
       vec3 b = uvw / det;
       if (smooth_normals) {
-        GpuTriangleNormals n = triangle_normals[i];
+        GpuTriangleNormals n = triangle_normals_at(i);
         ns = safe_normalize(normal_to_world(g, b.x * n.n0 + b.y * n.n1 + b.z * n.n2), ng);
       }
       if (textured) {
-        GpuTriangleUvs u = triangle_uvs[i];
+        GpuTriangleUvs u = triangle_uvs_at(i);
         uv = b.x * u.uv0 + b.y * u.uv1 + b.z * u.uv2;
         if (HAS_NORMAL_MAPS) triangle_tangents(tri, u, g, dpdu, dpdv);
       }

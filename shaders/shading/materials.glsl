@@ -28,12 +28,12 @@ struct Material {
 
 Material load_material(uint i) {
 #if OCTRACE_PRECISION >= 1
-  GpuMaterialHalf m = materials[i];
+  GpuMaterialHalf m = material_at(i);
   return Material(i, m.color_type.rgb, uint(m.color_type.a), m.params.x, m.params.y, m.base_color_texture,
                   m.emission_texture, m.emission.rgb, m.metallic_roughness_texture, m.params.z, m.params.w,
                   m.normal_texture, m.normal_scale);
 #else
-  GpuMaterial m = materials[i];
+  GpuMaterial m = material_at(i);
   return Material(i, m.color, m.type, m.fuzz, m.ior, m.base_color_texture, m.emission_texture, m.emission,
                   m.metallic_roughness_texture, m.metallic, m.roughness, m.normal_texture, m.normal_scale);
 #endif

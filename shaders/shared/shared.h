@@ -102,7 +102,29 @@ OCT_CONST(uint, BINDING_TEXTURE_TRANSFORMS, 17u);
 OCT_CONST(uint, BINDING_ENVMAP_TEXELS, 21u);
 OCT_CONST(uint, BINDING_ENVMAP_MARGINAL, 22u);
 OCT_CONST(uint, BINDING_ENVMAP_CONDITIONAL, 23u);
-OCT_CONST(uint, BINDING_COUNT, 24u);
+// The part table of a scene split over several buffers (scene_buffers.glsl);
+// bindings 18-20 are light sampling's, 21-23 the environment map's.
+OCT_CONST(uint, BINDING_BUFFER_PARTS, 24u);
+OCT_CONST(uint, BINDING_COUNT, 25u);
+
+// A scene larger than one storage buffer (the device's maxStorageBufferRange,
+// 128 MiB on lavapipe) is read through buffer device addresses
+// (VK_KHR_buffer_device_address, Vulkan 1.2 core): each big per-primitive
+// array is cut into parts of 2^SPEC_PART_LOG2 bytes at most, element i of an
+// array of elements of size s lying in part i >> (PART_LOG2 - ceil(log2 s)),
+// and the part table (BINDING_BUFFER_PARTS) holds each part's address as a
+// uvec2 (low, high) at [array * MAX_PARTS + part]. The arrays, by SPLIT_*:
+OCT_CONST(uint, SPLIT_SPHERES, 0u);
+OCT_CONST(uint, SPLIT_SPHERE_MATERIALS, 1u);
+OCT_CONST(uint, SPLIT_TRIANGLES, 2u);
+OCT_CONST(uint, SPLIT_TRIANGLE_NORMALS, 3u);
+OCT_CONST(uint, SPLIT_TRIANGLE_UVS, 4u);
+OCT_CONST(uint, SPLIT_OCTREE_NODES, 5u);
+OCT_CONST(uint, SPLIT_OCTREE_REFS, 6u);
+OCT_CONST(uint, SPLIT_MATERIALS, 7u);       // GpuMaterial (fp32 variant)
+OCT_CONST(uint, SPLIT_MATERIALS_HALF, 8u);  // GpuMaterialHalf (fp16 variants)
+OCT_CONST(uint, SPLIT_ARRAYS, 9u);
+OCT_CONST(uint, MAX_PARTS, 64u);  // per array: 8 GiB at lavapipe's 128 MiB parts
 
 // Descriptor bindings of the resolve pipeline (resolve.comp).
 OCT_CONST(uint, RESOLVE_BINDING_ACCUM_SUM, 0u);
@@ -140,8 +162,11 @@ OCT_CONST(uint, SPEC_ALPHA, 17u);
 // the back-face test in the triangle hit test compiles out.
 OCT_CONST(uint, SPEC_SINGLE_SIDED, 18u);
 // Whether some pbr material transmits (KHR_materials_transmission): off, the
-// refraction of shading/pbr.glsl compiles out. (20-26 are reserved.)
+// refraction of shading/pbr.glsl compiles out.
 OCT_CONST(uint, SPEC_TRANSMISSION, 19u);
+// log2 of the largest part of a split scene, in bytes (the split pipeline
+// only, path_trace_*_split; scene_buffers.glsl).
+OCT_CONST(uint, SPEC_PART_LOG2, 27u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 255u);
 
