@@ -379,8 +379,8 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
     p.envmap_width = sky.image.width;
     p.envmap_height = sky.image.height;
     const std::string size = std::to_string(sky.image.width) + "x" + std::to_string(sky.image.height);
-    check_fits(ctx, sky.image.rgb.size() * sizeof(float), sky.file + ": the environment map's " + size + " texels");
-    check_fits(ctx, uint64_t(sky.image.height) * (sky.image.width + 1) * sizeof(float),
+    check_fits(ctx.limits.maxStorageBufferRange, sky.image.rgb.size() * sizeof(float), sky.file + ": the environment map's " + size + " texels");
+    check_fits(ctx.limits.maxStorageBufferRange, uint64_t(sky.image.height) * (sky.image.width + 1) * sizeof(float),
                sky.file + ": the sampling table of the " + size + " environment map");
     envmap_tables = build_envmap_tables(sky.image);
   }
@@ -479,7 +479,9 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   // asking the driver for any of it.
   uint64_t total = reserved_bytes + sizeof p + instances.size() * sizeof(gpu::GpuInstance) +
                    meshes.size() * sizeof(gpu::GpuMesh) + textures.table.size() * sizeof(gpu::GpuTexture) + textures.texels.size() * sizeof(uint32_t) +
-                   uv_transforms.size() * sizeof(gpu::GpuUvTransform) + g.part_addresses.size() * sizeof(glm::uvec2);
+                   uv_transforms.size() * sizeof(gpu::GpuUvTransform) + g.part_addresses.size() * sizeof(glm::uvec2) +
+                   (envmap_texels.size() + envmap_tables.marginal.size() + envmap_tables.conditional.size()) *
+                       sizeof(float);
   for (const auto& a : arrays) total += a.bytes;
   const DeviceMemory memory = device_memory(ctx);
   if (total > memory.bytes) {
