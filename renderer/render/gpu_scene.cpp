@@ -14,6 +14,7 @@
 #include "core/errors.h"
 #include "core/text.h"
 #include "render/gpu_layout.h"
+#include "render/lights.h"
 
 namespace octrace {
 
@@ -319,8 +320,14 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   p.vertex_normals = any_normals ? 1u : 0u;
   p.instance_count = uint32_t(instances.size());
   p.triangle_uvs = uvs.empty() ? 0u : 1u;
+  const LightList lights = build_light_list(scene);
+  check_fits(ctx, lights.lights.size() * sizeof(gpu::GpuLight), std::to_string(lights.lights.size()) + " lights");
+  check_fits(ctx, lights.sphere_lights.size() * 4, "the light indices of " + std::to_string(scene.spheres.size()) + " spheres");
+  p.light_count = uint32_t(lights.lights.size());
 
   Hash64 hash;
+  // Scenes without lights keep the hash they had before lights existed (checkpoints).
+  if (!lights.lights.empty()) hash.add_vector(lights.lights);
   // Scenes without textures keep the hash they had before transforms existed (checkpoints).
   if (!uv_transforms.empty()) hash.add_vector(uv_transforms);
   g.content_hash = hash.add(&p, sizeof p)
@@ -360,6 +367,10 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   create_buffer(g.texture_transforms, ctx, uv_transforms.size() * sizeof(gpu::GpuUvTransform), false,
                 "texture transform buffer");
   upload_buffer(ctx, g.texture_transforms, uv_transforms.data(), uv_transforms.size() * sizeof(gpu::GpuUvTransform));
+  create_buffer(g.lights, ctx, lights.lights.size() * sizeof(gpu::GpuLight), false, "light buffer");
+  create_buffer(g.sphere_lights, ctx, lights.sphere_lights.size() * 4, false, "sphere light buffer");
+  upload_buffer(ctx, g.lights, lights.lights.data(), lights.lights.size() * sizeof(gpu::GpuLight));
+  upload_buffer(ctx, g.sphere_lights, lights.sphere_lights.data(), lights.sphere_lights.size() * 4);
   create_buffer(g.nodes, ctx, 0, false, "octree node buffer");
   create_buffer(g.refs, ctx, 0, false, "octree reference buffer");
   upload_buffer(ctx, g.params, &p, sizeof p);
@@ -380,6 +391,7 @@ Scene bake_single_use_meshes(const Scene& scene) {
   out.materials = scene.materials;
   out.textures = scene.textures;
   out.spheres = scene.spheres;
+  out.lights = scene.lights;
   // Meshes placed more than once stay instanced, in their order.
   std::vector<uint32_t> remap(scene.meshes.size(), UINT32_MAX);
   for (size_t m = 0; m < scene.meshes.size(); ++m)

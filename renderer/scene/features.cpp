@@ -8,6 +8,15 @@ bool is_black(glm::vec3 c) { return c.r == 0.0f && c.g == 0.0f && c.b == 0.0f; }
 
 }  // namespace
 
+glm::vec3 sphere_radiance(const Material& m) {
+  switch (m.type) {
+    case MaterialType::Emissive: return m.radiance;
+    case MaterialType::Lambertian:
+    case MaterialType::Pbr: return m.emission_texture ? glm::vec3(0.0f) : m.emission;
+    default: return glm::vec3(0.0f);
+  }
+}
+
 SceneFeatures scene_features(const Scene& scene) {
   SceneFeatures f;
   std::vector<bool> used(scene.materials.size(), false);
@@ -59,7 +68,9 @@ SceneFeatures scene_features(const Scene& scene) {
     case SkyType::Uniform: f.sky_black = is_black(scene.sky.radiance); break;
     case SkyType::Gradient: f.sky_black = is_black(scene.sky.down) && is_black(scene.sky.up); break;
   }
-  f.any_light = f.emissive || f.surface_emission || !f.sky_black;
+  for (const Sphere& s : scene.spheres) f.sphere_lights |= !is_black(sphere_radiance(scene.materials[s.material]));
+  for (const Light& l : scene.lights) f.punctual |= l.intensity > 0.0f && !is_black(l.color);
+  f.any_light = f.emissive || f.surface_emission || !f.sky_black || f.punctual;
   f.spheres = !scene.spheres.empty();
   f.empty = !f.spheres && !f.triangles;
   return f;
@@ -73,6 +84,7 @@ SceneFeatures all_features(const Scene& scene) {
   f.any_light = true;
   f.empty = false;
   f.spheres = f.triangles = f.vertex_normals = f.textures = f.surface_emission = f.normal_maps = f.alpha = f.single_sided = true;
+  f.sphere_lights = f.punctual = true;
   return f;
 }
 
@@ -92,6 +104,8 @@ std::vector<std::string> feature_names(const SceneFeatures& f) {
   if (f.normal_maps) names.push_back("normal_maps");
   if (f.alpha) names.push_back("alpha");
   if (f.single_sided) names.push_back("single_sided");
+  if (f.sphere_lights) names.push_back("sphere_lights");
+  if (f.punctual) names.push_back("punctual");
   names.push_back(f.sky == SkyType::Gradient ? "sky_gradient" : f.sky == SkyType::Uniform ? "sky_uniform" : "sky_none");
   if (f.sky_black) names.push_back("sky_black");
   if (!f.any_light) names.push_back("no_light");

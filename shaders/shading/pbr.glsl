@@ -97,71 +97,125 @@ float pow5(float x) {
   return x2 * x2 * x;
 }
 
-// Samples a direction `dir` (world space) off a pbr surface with shading
-// normal n (on the viewer's side) seen from `to_viewer`, and its weight
-// f cos / pdf. False when there is none: the view is exactly grazing, or the
-// sample went below the surface (where f = 0: the path ends, as the integral
-// over the upper hemisphere says). Draws three numbers from `rng` whatever
-// happens.
-bool sample_pbr(Material m, vec2 uv, vec3 n, vec3 to_viewer, inout Rng rng, out vec3 dir, out real3 weight) {
-  float u0 = rng_next(rng), u1 = rng_next(rng), u2 = rng_next(rng);
-  dir = n;
-  weight = real3(0.0);
-  real3 base = base_color(m, uv);
+// A pbr surface at a hit, as sampling and evaluation need it: its
+// parameters after the textures, its local frame (t, b, n) with n the
+// shading normal on the viewer's side, the view wo in that frame, and the
+// probability p_spec of sampling the specular lobe.
+struct PbrSurface {
+  real3 base;
+  float metallic;
+  float alpha;
+  float f0;
+  vec3 t;
+  vec3 b;
+  vec3 n;
+  vec3 wo;
+  float p_spec;
+};
+
+// False when the view is exactly grazing or below the shading normal (no
+// reflection is defined there).
+bool pbr_surface(Material m, vec2 uv, vec3 n, vec3 to_viewer, out PbrSurface s) {
+  s.base = base_color(m, uv);
   float metallic = float(m.metallic), roughness = float(m.roughness);
   if (HAS_TEXTURES && m.metallic_roughness_texture != NO_TEXTURE) {
     vec3 mr = sample_material_texture(m, TEXTURE_SLOT_METALLIC_ROUGHNESS, m.metallic_roughness_texture, uv, false);
     roughness *= mr.g;
     metallic *= mr.b;
   }
-  float alpha = max(roughness * roughness, PBR_MIN_ALPHA);
-  vec3 t, b;
-  pbr_basis(n, t, b);
-  vec3 wo = vec3(dot(to_viewer, t), dot(to_viewer, b), dot(to_viewer, n));
-  if (!(wo.z > 0.0)) return false;
+  s.metallic = metallic;
+  s.alpha = max(roughness * roughness, PBR_MIN_ALPHA);
+  s.n = n;
+  pbr_basis(n, s.t, s.b);
+  s.wo = vec3(dot(to_viewer, s.t), dot(to_viewer, s.b), dot(to_viewer, n));
+  s.p_spec = 1.0;
+  s.f0 = 0.0;
+  if (!(s.wo.z > 0.0)) return false;
   float ior = float(m.ior);
   float f0 = (ior - 1.0) / (ior + 1.0);
-  f0 *= f0;
+  s.f0 = f0 * f0;
 
   // Lobe choice: each lobe's weight estimated with Fresnel at the macro
   // normal (n.wo in place of h.wo), in luminance. The metal's Schlick colour
   // is linear in the base colour, so its luminance is lum(base) + (1 -
   // lum(base)) w. A diffuse estimate of 0 means no diffuse reflection at all
   // (metallic 1 or a black base): then p_spec = 1.
-  float w_view = pow5(1.0 - wo.z);
-  float lum_base = dot(vec3(base), PBR_LUMINANCE);
-  float fr_view = f0 + (1.0 - f0) * w_view;
+  float w_view = pow5(1.0 - s.wo.z);
+  float lum_base = dot(vec3(s.base), PBR_LUMINANCE);
+  float fr_view = s.f0 + (1.0 - s.f0) * w_view;
   float spec_est = (1.0 - metallic) * fr_view + metallic * (lum_base + (1.0 - lum_base) * w_view);
   float diff_est = (1.0 - metallic) * (1.0 - fr_view) * lum_base;
-  float p_spec = diff_est > 0.0 ? spec_est / (spec_est + diff_est) : 1.0;
+  s.p_spec = diff_est > 0.0 ? spec_est / (spec_est + diff_est) : 1.0;
+  return true;
+}
 
+// The two lobes for a direction wi (local frame, wi.z > 0): f cos =
+// spec_colour * spec + diff_colour * wi.z / pi, and pdf, the density of wi
+// under the lobe mixture that pbr_sample draws from. False where pdf is 0.
+struct PbrLobes {
+  float spec;  // D G2 / (4 zo zi) * zi, without the Fresnel colour
+  float pdf;
+  real3 spec_colour;
+  real3 diff_colour;
+};
+
+bool pbr_lobes(PbrSurface s, vec3 wi, out PbrLobes l) {
+  vec3 h = normalize(s.wo + wi);
+  float d = ggx_d(h, s.alpha);
+  float so = smith_s(s.wo.z, s.alpha), si = smith_s(wi.z, s.alpha);
+  // specular_brdf * cos = D G2 / (4 zo zi) * zi = D zi / (2 (so zi + si zo)).
+  l.spec = d * wi.z / (2.0 * (so * wi.z + si * s.wo.z));
+  // pdf of wi by the VNDF: D_wo(h) / (4 wo.h) with D_wo(h) = G1(wo) (wo.h)
+  // D(h) / zo (Heitz 2018 eq. 3 and the reflection Jacobian) = D / (2 (zo + so)).
+  l.pdf = s.p_spec * d / (2.0 * (s.wo.z + so)) + (1.0 - s.p_spec) * wi.z / PI;
+  float w = pow5(1.0 - clamp(dot(s.wo, h), 0.0, 1.0));
+  float fr = s.f0 + (1.0 - s.f0) * w;
+  l.spec_colour = real((1.0 - s.metallic) * fr) + real(s.metallic) * (s.base + (real(1.0) - s.base) * real(w));
+  l.diff_colour = real((1.0 - s.metallic) * (1.0 - fr)) * s.base;
+  return l.pdf > 0.0;
+}
+
+// f(wo, wi) cos and the sampling pdf of world direction `dir` off the
+// surface, for light sampling's MIS (Veach 1997 ch. 9); fp32. False where
+// the BRDF is 0 (below the shading normal) or the pdf is.
+bool pbr_eval(PbrSurface s, vec3 dir, out vec3 f_cos, out float pdf) {
+  f_cos = vec3(0.0);
+  pdf = 0.0;
+  vec3 wi = vec3(dot(dir, s.t), dot(dir, s.b), dot(dir, s.n));
+  if (!(wi.z > 0.0)) return false;
+  PbrLobes l;
+  if (!pbr_lobes(s, wi, l)) return false;
+  f_cos = vec3(l.spec_colour) * l.spec + vec3(l.diff_colour) * (wi.z / PI);
+  pdf = l.pdf;
+  return true;
+}
+
+// Samples a direction `dir` (world space) off pbr surface s, its weight
+// f cos / pdf and its pdf. False when there is none: the sample went below
+// the surface (where f = 0: the path ends, as the integral over the upper
+// hemisphere says). Draws three numbers from `rng` whatever happens.
+bool sample_pbr(PbrSurface s, inout Rng rng, out vec3 dir, out real3 weight, out float pdf) {
+  float u0 = rng_next(rng), u1 = rng_next(rng), u2 = rng_next(rng);
+  dir = s.n;
+  weight = real3(0.0);
+  pdf = 0.0;
   vec3 wi;
-  if (u0 < p_spec) {
-    wi = reflect(-wo, sample_ggx_vndf(wo, alpha, u1, u2));
+  if (u0 < s.p_spec) {
+    wi = reflect(-s.wo, sample_ggx_vndf(s.wo, s.alpha, u1, u2));
   } else {
     // Cosine-weighted (Malley's method): pdf cos / pi.
     float r = sqrt(u1), phi = 2.0 * PI * u2;
     wi = vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0, 1.0 - u1)));
   }
   if (!(wi.z > 0.0)) return false;
-  vec3 h = normalize(wo + wi);
-  float d = ggx_d(h, alpha);
-  float so = smith_s(wo.z, alpha), si = smith_s(wi.z, alpha);
-  // specular_brdf * cos = D G2 / (4 zo zi) * zi = D zi / (2 (so zi + si zo)).
-  float spec = d * wi.z / (2.0 * (so * wi.z + si * wo.z));
-  // pdf of wi by the VNDF: D_wo(h) / (4 wo.h) with D_wo(h) = G1(wo) (wo.h)
-  // D(h) / zo (Heitz 2018 eq. 3 and the reflection Jacobian) = D / (2 (zo + so)).
-  float pdf = p_spec * d / (2.0 * (wo.z + so)) + (1.0 - p_spec) * wi.z / PI;
-  if (!(pdf > 0.0)) return false;
-  float w = pow5(1.0 - clamp(dot(wo, h), 0.0, 1.0));
-  float fr = f0 + (1.0 - f0) * w;
-  real3 spec_colour = real((1.0 - metallic) * fr) + real(metallic) * (base + (real(1.0) - base) * real(w));
-  real3 diff_colour = real((1.0 - metallic) * (1.0 - fr)) * base;
+  PbrLobes l;
+  if (!pbr_lobes(s, wi, l)) return false;
+  pdf = l.pdf;
   // In fp32, then to `real`: a factor such as cos / (pi pdf) after an
   // unlikely lobe choice may exceed half's range although its product with
   // the lobe's colour does not (the fp16 variants saw Inf samples from it).
-  weight = real3(vec3(spec_colour) * (spec / pdf) + vec3(diff_colour) * (wi.z / (PI * pdf)));
-  dir = wi.x * t + wi.y * b + wi.z * n;
+  weight = real3(vec3(l.spec_colour) * (l.spec / l.pdf) + vec3(l.diff_colour) * (wi.z / (PI * l.pdf)));
+  dir = wi.x * s.t + wi.y * s.b + wi.z * s.n;
   return true;
 }
 
