@@ -395,6 +395,9 @@ void validate_scene(const Scene& scene, const std::string& source) {
   for (size_t i = 0; i < scene.meshes.size(); ++i) validate_mesh(scene.meshes[i], scene, source, i);
   for (size_t i = 0; i < scene.instances.size(); ++i) validate_instance(scene.instances[i], scene, source, i);
   for (size_t i = 0; i < scene.lights.size(); ++i) validate_light(scene.lights[i], source, i);
+  if (scene.mesh_file_lights > scene.lights.size())
+    invalid(source, "lights", std::to_string(scene.mesh_file_lights) + " from mesh files, but only " +
+                                  std::to_string(scene.lights.size()) + " in all");
   if (scene.mesh_file_materials > scene.materials.size())
     invalid(source, "materials", std::to_string(scene.mesh_file_materials) + " from mesh files, but only " +
                                      std::to_string(scene.materials.size()) + " in all");

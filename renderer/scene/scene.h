@@ -227,6 +227,9 @@ struct Scene {
   // (appended as each reference was loaded), not from the scene file: JSON
   // writes only the others, and loading the references adds these again.
   size_t mesh_file_materials = 0;
+  // Likewise the last `mesh_file_lights` of `lights` came from the mesh
+  // files (KHR_lights_punctual): JSON writes only the others.
+  size_t mesh_file_lights = 0;
 
   // Field by field with float ==, so -0 equals 0; tests that need bit-exactness compare bits.
   bool operator==(const Scene&) const = default;

@@ -660,9 +660,10 @@ std::string scene_to_json(const Scene& scene) {
   append(out, std::vector<Material>(scene.materials.begin(), scene.materials.begin() + ptrdiff_t(written)));
   out += ",\n  \"spheres\": ";
   append(out, scene.spheres);
-  if (!scene.lights.empty()) {
+  // The mesh files' lights come back when the references load.
+  if (scene.lights.size() > scene.mesh_file_lights) {
     out += ",\n  \"lights\": ";
-    append(out, scene.lights);
+    append(out, std::vector<Light>(scene.lights.begin(), scene.lights.end() - ptrdiff_t(scene.mesh_file_lights)));
   }
   if (!scene.mesh_refs.empty()) {
     out += ",\n  \"meshes\": ";
