@@ -46,6 +46,7 @@ def main():
     ap.add_argument("--size", default="96x54")
     ap.add_argument("--ref-spp", type=int, default=2048)
     ap.add_argument("--spps", default="16,32,64")
+    ap.add_argument("--repeats", type=int, default=5, help="timed runs per setting (median)")
     ap.add_argument("--out", default="docs/results/nee")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
@@ -61,10 +62,13 @@ def main():
     rows = []
     for spp in spps:
         row = {"spp": spp}
+        times = {"on": [], "off": []}
+        for _ in range(args.repeats):
+            for nee in ("on", "off"):
+                path = os.path.join(tmp, f"{nee}_{spp}.pfm")
+                times[nee].append(render(args, small, path, spp, nee, 1, args.size)["times_ms"]["render"])
         for nee in ("on", "off"):
-            path = os.path.join(tmp, f"{nee}_{spp}.pfm")
-            r = render(args, small, path, spp, nee, 1, args.size)
-            row[nee] = (r["times_ms"]["render"], rel_mse(args, path, ref))
+            row[nee] = (statistics.median(times[nee]), rel_mse(args, os.path.join(tmp, f"{nee}_{spp}.pfm"), ref))
         row["ratio"] = (row["off"][0] * row["off"][1]) / (row["on"][0] * row["on"][1])
         rows.append(row)
         print(f"spp {spp}: on {row['on']}, off {row['off']}, efficiency ratio {row['ratio']:.1f}", file=sys.stderr)
@@ -82,12 +86,15 @@ def main():
     scene["spheres"].append({"center": [0, 30, 0], "radius": 0.5, "material": len(scene["materials"]) - 1})
     with open(far, "w") as f:
         json.dump(scene, f)
-    for name, flags in (("rtiow, gradient sky", []), ("rtiow + one emitter far above", ["--scene", far])):
-        t = {}
-        for nee in ("on", "off"):
-            times = [render(args, flags, os.path.join(tmp, "cost.pfm"), 16, nee, 1, "160x90")["times_ms"]["render"]
-                     for _ in range(3)]
-            t[nee] = statistics.median(times)
+    for name, flags in (("rtiow, gradient sky (no light to sample: the same pipeline)", []),
+                        ("rtiow + one emitter far above", ["--scene", far])):
+        # Interleaved, so that a change in the machine's load hits both alike.
+        times = {"on": [], "off": []}
+        for _ in range(args.repeats):
+            for nee in ("on", "off"):
+                r = render(args, flags, os.path.join(tmp, "cost.pfm"), 16, nee, 1, "160x90")
+                times[nee].append(r["times_ms"]["render"])
+        t = {nee: statistics.median(v) for nee, v in times.items()}
         cost.append((name, t["on"], t["off"], t["on"] / t["off"]))
         print(f"{name}: on {t['on']:.1f} ms, off {t['off']:.1f} ms", file=sys.stderr)
 
@@ -98,14 +105,16 @@ def main():
                 f"--spps {args.spps}`.\n\n")
         f.write(f"Equal-time efficiency on tools/nee/small_light.json (a sphere light of radius 0.05, "
                 f"no sky), {args.size}, depth 50, against a reference with NEE on, {args.ref_spp} spp, "
-                f"sample seed 1000. Time: device time of the passes.\n\n")
+                f"sample seed 1000. Time: device time of the passes, median of {args.repeats} runs "
+                f"interleaved on/off.\n\n")
         f.write("| spp | NEE on: ms | rel MSE | NEE off: ms | rel MSE | (MSE x time) off / on |\n")
         f.write("|---:|---:|---:|---:|---:|---:|\n")
         for r in rows:
             f.write(f"| {r['spp']} | {r['on'][0]:.1f} | {r['on'][1]:.3g} | {r['off'][0]:.1f} | "
                     f"{r['off'][1]:.3g} | {r['ratio']:.1f} |\n")
         f.write(f"\nMedian efficiency gain: **{statistics.median(r['ratio'] for r in rows):.1f}x**.\n\n")
-        f.write("Cost where NEE helps little: device time of 16 spp at 160x90, median of 3.\n\n")
+        f.write(f"Cost where NEE helps little: device time of 16 spp at 160x90, median of {args.repeats} runs "
+                f"interleaved on/off.\n\n")
         f.write("| scene | NEE on ms | NEE off ms | on / off |\n|---|---:|---:|---:|\n")
         for name, on, off, ratio in cost:
             f.write(f"| {name} | {on:.1f} | {off:.1f} | {ratio:.2f} |\n")
