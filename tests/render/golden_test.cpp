@@ -52,8 +52,8 @@ struct GoldenCase {
   Scene (*make)();
   // Next-event estimation (RenderSettings::nee). The references of the
   // scenes with emitters from before light sampling hold the integrator
-  // without it (`--nee off`, unchanged bit for bit); the *_nee cases hold
-  // the default. That NEE on and off agree is the hard cases' to show
+  // without it (`--nee off`, unchanged bit for bit); lights_nee holds the
+  // default on every kind of light (a small sphere light among them). That NEE on and off agree is the hard cases' to show
   // (tests/hardcases: *_nee_on_off): a golden made without NEE cannot judge
   // pixels lit only through paths it almost never found (the far ground
   // under a small light), which NEE does find.
@@ -147,7 +147,7 @@ Scene engine() {
 const GoldenCase CASES[] = {
     {"rtiow", rtiow_small},          {"lambertian", lambertian_only}, {"metal", metal_only},
     {"glass", glass_only},           {"emissive", emissive_black_sky, false}, {"pbr", pbr_spheres},
-    {"engine", engine},              {"emissive_nee", emissive_black_sky}, {"lights_nee", lights},
+    {"engine", engine},              {"lights_nee", lights},
 };
 
 std::string golden_path(const std::string& name, const char* kind) {
