@@ -100,6 +100,7 @@ TimedRuns timed_runs(const VulkanContext& ctx, const Scene& scene, RenderSetting
   s.accel = accel;
   s.precision = precision;
   if (std::string w = software_loop_limit_warning(ctx.info, scene, s); !w.empty()) print_warning(w);
+  if (std::string w = punctual_without_nee_warning(scene, s); !w.empty()) print_warning(w);
   TimedRuns t;
   t.tracer = std::make_unique<PathTracer>(ctx, scene, s);
   for (uint32_t rep = 0; rep <= repeat; ++rep) {

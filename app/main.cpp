@@ -127,6 +127,7 @@ struct RenderOptions {
   std::string accel = "octree";
   std::string precision = "fp32";
   std::string effects = "auto";
+  std::string nee = "on";
   RenderSettings settings;
   std::string device = "auto";
   bool validation = false;
@@ -154,6 +155,10 @@ struct RenderOptions {
     cmd.add_option("--rr-depth", settings.rr_depth,
                    "Russian roulette from this bounce on (0: off; changes the noise, not the expectation)")
         ->capture_default_str();
+    cmd.add_option("--nee", nee,
+                   "Next-event estimation with MIS: on | off (off: light is found only by hitting it, and point, "
+                   "spot and directional lights add nothing)")
+        ->capture_default_str();
     cmd.add_option("--samples-per-dispatch", settings.samples_per_dispatch,
                    "Samples each GPU dispatch adds per pixel (0: a whole batch in one); same image, other speed")
         ->capture_default_str();
@@ -174,6 +179,8 @@ struct RenderOptions {
     if (effects != "auto" && effects != "all")
       throw SettingError("effects", ": expected auto or all, got \"" + effects + "\"");
     s.all_effects = effects == "all";
+    if (nee != "on" && nee != "off") throw SettingError("nee", ": expected on or off, got \"" + nee + "\"");
+    s.nee = nee == "on";
     parse_size(size, s);
     validate_settings(s);
     return s;
@@ -197,6 +204,7 @@ std::string message_for_cli(const SettingError& e) {
       {"precision", "--precision"},
       {"accel", "--accel"},
       {"effects", "--effects"},
+      {"nee", "--nee"},
       {"device", "--device"},
       {"rtiow.radius", "--radius"},
       {"rtiow.spheres", "--spheres"},
@@ -426,6 +434,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
   double device_ms = ms_since(start);
   if (ctx.info.software && !quiet && !as_json) std::fprintf(stderr, "octrace: %s\n", software_device_note(ctx.info).c_str());
   if (std::string w = software_loop_limit_warning(ctx.info, scene, settings); !w.empty()) print_warning(w);
+  if (std::string w = punctual_without_nee_warning(scene, settings); !w.empty()) print_warning(w);
 
   Progress progress(!quiet);
   RenderControl control;
@@ -558,6 +567,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
               {"precision", precision_name(settings.precision)},
               {"effects", settings.all_effects ? "all" : "auto"},
               {"rr_depth", settings.rr_depth},
+              {"nee", settings.nee ? "on" : "off"},
               {"samples_per_dispatch", settings.samples_per_dispatch},
               {"sample_lanes", settings.sample_lanes},
               {"features", feature_names(result.features)},

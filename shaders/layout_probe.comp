@@ -24,6 +24,7 @@ layout(std430, binding = 11) buffer B11 { GpuMesh meshes[2]; };
 layout(std430, binding = 12) buffer B12 { GpuTexture textures[2]; };
 layout(std430, binding = 13) buffer B13 { GpuTriangleUvs triangle_uvs[2]; };
 layout(std430, binding = 14) buffer B14 { GpuUvTransform uv_transforms[2]; };
+layout(std430, binding = 15) buffer B15 { GpuLight lights[2]; };
 
 void main() {
   scene.sky_a = vec3(1, 2, 3);
@@ -35,7 +36,7 @@ void main() {
   scene.vertex_normals = 11;
   scene.instance_count = 12;
   scene.triangle_uvs = 13;
-  scene.pad0 = 14;
+  scene.light_count = 14;
   scene.envmap_width = 15;
   scene.envmap_height = 16;
 
@@ -140,5 +141,19 @@ void main() {
     uv_transforms[i].x_axis = vec2(o + 109, o + 110);
     uv_transforms[i].y_axis = vec2(o + 111, o + 112);
     uv_transforms[i].offset = vec2(o + 113, o + 114);
+    lights[i].position = vec3(o + 121, o + 122, o + 123);
+    lights[i].type = u + 124;
+    lights[i].direction = vec3(o + 125, o + 126, o + 127);
+    lights[i].radius = o + 128;
+    lights[i].intensity = vec3(o + 129, o + 130, o + 131);
+    lights[i].sphere = u + 132;
+    lights[i].cos_inner = o + 133;
+    lights[i].cos_outer = o + 134;
+    lights[i].pmf = o + 135;
+    lights[i].alias_q = o + 136;
+    lights[i].alias = u + 137;
+    lights[i].pad0 = u + 138;
+    lights[i].pad1 = u + 139;
+    lights[i].pad2 = u + 140;
   }
 }

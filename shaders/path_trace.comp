@@ -25,6 +25,8 @@ layout(std430, binding = BINDING_TEXTURE_TRANSFORMS) readonly buffer TextureTran
 layout(std430, binding = BINDING_ENVMAP_TEXELS) readonly buffer EnvmapTexelBuf { float envmap_texels[]; };
 layout(std430, binding = BINDING_ENVMAP_MARGINAL) readonly buffer EnvmapMarginalBuf { float envmap_marginal[]; };
 layout(std430, binding = BINDING_ENVMAP_CONDITIONAL) readonly buffer EnvmapConditionalBuf { float envmap_conditional[]; };
+layout(std430, binding = BINDING_LIGHTS) readonly buffer LightBuf { GpuLight lights[]; };
+layout(std430, binding = BINDING_SPHERE_LIGHTS) readonly buffer SphereLightBuf { uint sphere_lights[]; };
 
 layout(push_constant) uniform Push { PassParams pass; };
 
@@ -52,6 +54,8 @@ layout(constant_id = SPEC_ALPHA) const bool HAS_ALPHA = true;
 layout(constant_id = SPEC_SINGLE_SIDED) const bool HAS_SINGLE_SIDED = true;
 layout(constant_id = SPEC_TRANSMISSION) const bool HAS_TRANSMISSION = true;
 layout(constant_id = SPEC_SAMPLE_LANES) const bool SAMPLE_LANES = true;
+layout(constant_id = SPEC_NEE) const bool NEE = true;
+layout(constant_id = SPEC_PUNCTUAL) const bool HAS_PUNCTUAL = true;
 
 #include "shared/rng.h"
 #include "sampling/warp.glsl"
@@ -60,6 +64,39 @@ layout(constant_id = SPEC_SAMPLE_LANES) const bool SAMPLE_LANES = true;
 #include "shading/materials.glsl"
 #include "shading/pbr.glsl"
 #include "shading/sky.glsl"
+#include "shading/lights.glsl"
+
+// Next-event estimation at a lambertian or pbr vertex (shading/lights.glsl).
+// The shadow ray is a segment of the path: a vertex at bounce b samples a
+// light only if b + 1 < the bounce limit, so that with NEE on and off the
+// same paths (of at most bounce_limit segments) carry light.
+// what a light sample adds, f cos L / pdf times its MIS weight, in fp32 (a
+// point light close to a surface may exceed half's range before the
+// throughput scales it down). `pbr`: which BSDF; albedo (lambertian) or s
+// (pbr) describe it. Draws from the bounce's NEE stream only.
+vec3 next_event(Surface surf, Hit hit, vec3 g, vec3 n, bool pbr, real3 albedo, PbrSurface s, uint pixel_index,
+                uint sample_index, uint bounce) {
+  Rng rng = rng_init(pass.sample_seed, pixel_index, sample_index, bounce | NEE_STREAM);
+  LightSample ls;
+  if (!sample_light(surf.p, rng, ls)) return vec3(0.0);
+  // A light below the geometric surface is not seen from it (no leak
+  // through a thin wall whose shading normal leans toward the light).
+  if (!(dot(ls.dir, g) > 0.0)) return vec3(0.0);
+  vec3 f_cos;
+  float bsdf_pdf;
+  if (pbr) {
+    if (!pbr_eval(s, ls.dir, f_cos, bsdf_pdf)) return vec3(0.0);
+  } else {
+    float c = dot(n, ls.dir);
+    if (!(c > 0.0)) return vec3(0.0);
+    f_cos = vec3(albedo) * (c / PI);
+    bsdf_pdf = c / PI;
+  }
+  if (HAS_ALPHA) alpha_key = pcg4d(uvec4(pixel_index, sample_index, bounce | NEE_STREAM | ALPHA_STREAM, pass.sample_seed)).x;
+  if (!light_visible(surf.p, surf.ng, hit.t, hit.prim, ls)) return vec3(0.0);
+  float w = ls.pdf > 0.0 ? power_heuristic(ls.pdf, bsdf_pdf) : 1.0;
+  return f_cos * ls.value * w;
+}
 
 // `segments`: how many rays the path traced (camera ray and bounces).
 vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments) {
@@ -68,6 +105,13 @@ vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments)
   real3 throughput = real3(1.0);
   uint from_prim = NO_PRIM;
   bool into_from = false;
+  // Next-event estimation: what light samples add (fp32), and of the last
+  // vertex, whether it sampled a light (then an emitter this path hits is
+  // weighted by MIS), where it was and the pdf of the direction it chose.
+  vec3 direct = vec3(0.0);
+  bool prev_nee = false;
+  vec3 prev_p = vec3(0.0);
+  float prev_pdf = 0.0;
   for (uint bounce = 0; bounce < pass.bounce_limit; ++bounce) {
     Hit hit;
     ++segments;
@@ -92,10 +136,16 @@ vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments)
     // would lose it): use the geometric normal there.
     if (((HAS_VERTEX_NORMALS && scene.vertex_normals != 0u) || mapped) && dot(ray.dir, n) >= 0.0) n = g;
 
+    // Light sampling at the last vertex could have found what this hit
+    // emits: its MIS weight (1 for a camera ray, after glass or metal, or
+    // for an emitter that is no light of the list).
+    float emit_w = 1.0;
+    if (NEE && prev_nee) emit_w = emission_weight(prev_p, prev_pdf, ray, hit, surf);
     if (HAS_EMISSIVE && m.type == MAT_EMISSIVE) {
-      radiance += throughput * m.color;
+      radiance += throughput * m.color * real(emit_w);
       break;
     }
+    prev_nee = false;
 
     Rng rng = rng_init(pass.sample_seed, pixel_index, sample_index, bounce);
     // Directions are worked out in dreal and re-normalised in fp32 for the
@@ -107,11 +157,17 @@ vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments)
     if (HAS_LAMBERTIAN && m.type == MAT_LAMBERTIAN) {
       // A glTF surface emits and reflects: its emission is added here and
       // the path goes on.
-      if (HAS_SURFACE_EMISSION) radiance += throughput * surface_emission(m, surf.uv);
+      if (HAS_SURFACE_EMISSION) radiance += throughput * surface_emission(m, surf.uv) * real(emit_w);
+      real3 albedo = base_color(m, surf.uv);
+      if (NEE && scene.light_count > 0u && bounce + 1u < pass.bounce_limit) {
+        PbrSurface none;
+        direct += vec3(throughput) * next_event(surf, hit, g, n, false, albedo, none, pixel_index, sample_index, bounce);
+        prev_nee = true;
+      }
       // Cosine-weighted: normal + uniform unit vector (book v4); the rare sum
       // that cancels to zero falls back to the normal.
       dir = safe_normalize(vec3(dn + dreal3(random_unit_vector(rng))), n);
-      throughput *= base_color(m, surf.uv);
+      throughput *= albedo;
     } else if (HAS_METAL && m.type == MAT_METAL) {
       dreal3 d = reflect(d_in, dn);
       if (HAS_FUZZ) d += dreal(m.fuzz) * dreal3(random_unit_vector(rng));
@@ -134,13 +190,22 @@ vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments)
       }
       dir = safe_normalize(vec3(d), reflect(ray.dir, n));
     } else if (HAS_PBR && m.type == MAT_PBR) {
-      if (HAS_SURFACE_EMISSION) radiance += throughput * surface_emission(m, surf.uv);
+      if (HAS_SURFACE_EMISSION) radiance += throughput * surface_emission(m, surf.uv) * real(emit_w);
       real3 weight;
+      PbrSurface s;
+      // No direction: the view is exactly grazing or below the shading normal.
+      if (!pbr_surface(m, surf.uv, n, -ray.dir, front_face, s)) break;
+      if (NEE && scene.light_count > 0u && bounce + 1u < pass.bounce_limit) {
+        direct += vec3(throughput) * next_event(surf, hit, g, n, true, real3(0.0), s, pixel_index, sample_index, bounce);
+        prev_nee = true;
+      }
       // Transmission's choice to reflect or pass through has a stream of its own.
       Rng layer = rng_init(pass.sample_seed, pixel_index, sample_index, bounce | TRANSMISSION_STREAM);
-      // No direction: the view is exactly grazing, or the sample went to a
-      // side where the BSDF is 0. A transmitted one leaves on the far side.
-      if (!sample_pbr(m, surf.uv, n, -ray.dir, front_face, rng, layer, dir, weight, refracted)) break;
+      // No direction: the sample went to a side where the BSDF is 0. A
+      // transmitted one leaves on the far side, where light sampling finds
+      // nothing (pbr_eval): an emitter it hits takes MIS weight 1.
+      if (!sample_pbr(s, rng, layer, dir, weight, prev_pdf, refracted)) break;
+      if (refracted) prev_nee = false;
       throughput *= weight;
     } else {
       break;  // not reached: the pipeline is specialised to the scene's materials
@@ -167,7 +232,13 @@ vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments)
     ray = Ray(offset_ray_origin(surf.p, inward ? -surf.ng : surf.ng, hit.t), dir);
     from_prim = hit.prim;
     into_from = inward;
+    if (NEE && prev_nee) {
+      prev_p = surf.p;
+      // The lambertian's cosine-weighted pdf; pbr's came from sample_pbr.
+      if (m.type == MAT_LAMBERTIAN) prev_pdf = max(dot(n, dir), 0.0) / PI;
+    }
   }
+  if (NEE) return vec3(radiance) + direct;
   return vec3(radiance);
 }
 

@@ -6,6 +6,8 @@ depth, recording the device render time (timestamp queries, from
 and SSIM, from `octrace compare --json`). Writes OUT/accuracy.csv,
 OUT/accuracy.md and OUT/accuracy.png (error against time, log-log, one line
 per precision and depth: for an error budget, read off the fastest setting).
+With --nee-off, fp32 at depth 50 with next-event estimation off is swept too
+(every other render uses the default, NEE on; the reference too).
 
 It also measures the precision targets of the fp16 variant:
   * the study's comparison: 10 spp at --study-size, same sample seed: SSIM of
@@ -72,9 +74,11 @@ def plot(rows, path, title):
             if not pts:
                 continue
             rr = "+rr" in precision
+            nee_off = "+nee-off" in precision
             ax.plot([float(p["render_ms"]) for p in pts], [max(float(p["rel_mse"]), 1e-12) for p in pts],
-                    "-." if rr else styles.get(precision, "-"), marker="o", markersize=3,
-                    color=rr_color if rr else colors.get(depth), label=f"{precision} depth {depth}")
+                    "-." if rr or nee_off else styles.get(precision, "-"), marker="o", markersize=3,
+                    color="tab:purple" if nee_off else rr_color if rr else colors.get(depth),
+                    label=f"{precision} depth {depth}")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("render time, ms (device)")
@@ -103,6 +107,9 @@ def main():
     ap.add_argument("--precisions", default=",".join(PRECISIONS))
     ap.add_argument("--rr-depth", type=int, default=3,
                     help="also sweep fp32 at depth 50 with Russian roulette from this bounce (0: no)")
+    ap.add_argument("--nee-off", action="store_true",
+                    help="also sweep fp32 at depth 50 with --nee off (the renders above use the default, on); "
+                         "for scenes with lights, e.g. --scene-flags '--scene tools/nee/small_light.json'")
     ap.add_argument("--scene-flags", default="", help="extra scene flags for octrace render, e.g. '--spheres 1000'")
     ap.add_argument("--out", default="docs/results/accuracy")
     ap.add_argument("--replot", metavar="DIR", help="only redraw DIR/accuracy.png from DIR/accuracy.csv")
@@ -152,6 +159,10 @@ def main():
         for spp in spps:
             measure(f"fp32+rr{args.rr_depth}", "fp32", 50, spp, ["--rr-depth", str(args.rr_depth)])
         progress("sweep: Russian roulette done")
+    if args.nee_off:
+        for spp in spps:
+            measure("fp32+nee-off", "fp32", 50, spp, ["--nee", "off"])
+        progress("sweep: NEE off done")
 
     with open(os.path.join(args.out, "accuracy.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))

@@ -9,7 +9,9 @@
 # 0.25, seed 7) and their four single-material scenes (tools/identity/*.json),
 # each in fp32, fp16 and fp16-all, with the octree and brute force, on the CPU
 # device (DEVICE=gpu for another). Prints one line per render and exits 1 if
-# any image differs.
+# any image differs. NEW_FLAGS are passed to the new binary only (e.g.
+# NEW_FLAGS="--nee off": the integrator without light sampling must render
+# the old images of scenes with emitters bit for bit).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 old=$1 new=$2 work=${3:-$(mktemp -d)}
@@ -31,7 +33,7 @@ for entry in "${scenes[@]}"; do
       # shellcheck disable=SC2086
       "$old" render --device "${DEVICE:-cpu}" --quiet $flags --precision $precision --accel $accel --out "$work/old/$out"
       # shellcheck disable=SC2086
-      "$new" render --device "${DEVICE:-cpu}" --quiet $flags --precision $precision --accel $accel --out "$work/new/$out"
+      "$new" render --device "${DEVICE:-cpu}" --quiet $flags ${NEW_FLAGS:-} --precision $precision --accel $accel --out "$work/new/$out"
       total=$((total + 1))
       if cmp -s "$work/old/$out" "$work/new/$out"; then
         echo "identical  $out"

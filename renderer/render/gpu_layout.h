@@ -91,10 +91,24 @@ static_assert(offsetof(SceneParams, triangle_count) == 36);
 static_assert(offsetof(SceneParams, vertex_normals) == 40);
 static_assert(offsetof(SceneParams, instance_count) == 44);
 static_assert(offsetof(SceneParams, triangle_uvs) == 48);
-static_assert(offsetof(SceneParams, pad0) == 52);
+static_assert(offsetof(SceneParams, light_count) == 52);
 static_assert(offsetof(SceneParams, envmap_width) == 56);
 static_assert(offsetof(SceneParams, envmap_height) == 60);
 
+static_assert(sizeof(GpuLight) == 80);
+static_assert(offsetof(GpuLight, type) == 12);
+static_assert(offsetof(GpuLight, direction) == 16);
+static_assert(offsetof(GpuLight, radius) == 28);
+static_assert(offsetof(GpuLight, intensity) == 32);
+static_assert(offsetof(GpuLight, sphere) == 44);
+static_assert(offsetof(GpuLight, cos_inner) == 48);
+static_assert(offsetof(GpuLight, cos_outer) == 52);
+static_assert(offsetof(GpuLight, pmf) == 56);
+static_assert(offsetof(GpuLight, alias_q) == 60);
+static_assert(offsetof(GpuLight, alias) == 64);
+static_assert(offsetof(GpuLight, pad2) == 76);
+static_assert(uint32_t(LightType::Point) + 1 == LIGHT_POINT && uint32_t(LightType::Spot) + 1 == LIGHT_SPOT &&
+              uint32_t(LightType::Directional) + 1 == LIGHT_DIRECTIONAL);
 static_assert(sizeof(GpuInstance) == 64);
 static_assert(offsetof(GpuInstance, to_object1) == 16);
 static_assert(offsetof(GpuInstance, to_object2) == 32);

@@ -17,6 +17,7 @@
 #include "core/text.h"
 #include "render/gpu_layout.h"
 #include "scene/envmap.h"
+#include "render/lights.h"
 
 namespace octrace {
 
@@ -403,8 +404,14 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   p.vertex_normals = any_normals ? 1u : 0u;
   p.instance_count = uint32_t(instances.size());
   p.triangle_uvs = uvs.empty() ? 0u : 1u;
+  const LightList lights = build_light_list(scene);
+  check_fits(ctx.limits.maxStorageBufferRange, lights.lights.size() * sizeof(gpu::GpuLight), std::to_string(lights.lights.size()) + " lights");
+  check_fits(ctx.limits.maxStorageBufferRange, lights.sphere_lights.size() * 4, "the light indices of " + std::to_string(scene.spheres.size()) + " spheres");
+  p.light_count = uint32_t(lights.lights.size());
 
   Hash64 hash;
+  // Scenes without lights keep the hash they had before lights existed (checkpoints).
+  if (!lights.lights.empty()) hash.add_vector(lights.lights);
   // Scenes without textures keep the hash they had before transforms existed (checkpoints).
   if (!uv_transforms.empty()) hash.add_vector(uv_transforms);
   // Nor do scenes without an envmap (its tables follow from its texels).
@@ -481,7 +488,8 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
                    meshes.size() * sizeof(gpu::GpuMesh) + textures.table.size() * sizeof(gpu::GpuTexture) + textures.texels.size() * sizeof(uint32_t) +
                    uv_transforms.size() * sizeof(gpu::GpuUvTransform) + g.part_addresses.size() * sizeof(glm::uvec2) +
                    (envmap_texels.size() + envmap_tables.marginal.size() + envmap_tables.conditional.size()) *
-                       sizeof(float);
+                       sizeof(float) +
+                   lights.lights.size() * sizeof(gpu::GpuLight) + lights.sphere_lights.size() * sizeof(uint32_t);
   for (const auto& a : arrays) total += a.bytes;
   const DeviceMemory memory = device_memory(ctx);
   if (total > memory.bytes) {
@@ -519,6 +527,10 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   upload_buffer(ctx, g.envmap_marginal, envmap_tables.marginal.data(), envmap_tables.marginal.size() * sizeof(float));
   upload_buffer(ctx, g.envmap_conditional, envmap_tables.conditional.data(),
                 envmap_tables.conditional.size() * sizeof(float));
+  create_buffer(g.lights, ctx, lights.lights.size() * sizeof(gpu::GpuLight), false, "light buffer");
+  create_buffer(g.sphere_lights, ctx, lights.sphere_lights.size() * 4, false, "sphere light buffer");
+  upload_buffer(ctx, g.lights, lights.lights.data(), lights.lights.size() * sizeof(gpu::GpuLight));
+  upload_buffer(ctx, g.sphere_lights, lights.sphere_lights.data(), lights.sphere_lights.size() * 4);
   create_buffer(g.nodes, ctx, 0, false, "octree node buffer");
   create_buffer(g.refs, ctx, 0, false, "octree reference buffer");
   upload_buffer(ctx, g.params, &p, sizeof p);
@@ -536,6 +548,7 @@ Scene bake_single_use_meshes(const Scene& scene) {
   out.materials = scene.materials;
   out.textures = scene.textures;
   out.spheres = scene.spheres;
+  out.lights = scene.lights;
   // Meshes placed more than once stay instanced, in their order.
   std::vector<uint32_t> remap(scene.meshes.size(), UINT32_MAX);
   for (size_t m = 0; m < scene.meshes.size(); ++m)

@@ -33,6 +33,8 @@ struct GpuScene {
   Buffer triangle_uvs;      // GpuTriangleUvs per triangle (placeholder without textures)
   Buffer texture_transforms;  // GpuUvTransform per material and texture slot (placeholder without textures)
   Buffer nodes, refs;       // the octree (16-byte placeholders without one)
+  Buffer lights;            // GpuLight per light (render/lights.h; placeholder without lights)
+  Buffer sphere_lights;     // per sphere, its light's index (placeholder when no sphere emits)
   // The environment map's texels (3 floats each) and sampling tables
   // (scene/envmap.h; placeholders without an envmap).
   Buffer envmap_texels, envmap_marginal, envmap_conditional;
@@ -46,7 +48,7 @@ struct GpuScene {
   std::vector<glm::uvec2> part_addresses;
   Buffer part_table;
   // A hash of every array above but the octree, as uploaded (spheres,
-  // materials, triangles, instances, textures, sky): the scene a checkpoint
+  // materials, triangles, instances, textures, sky, lights): the scene a checkpoint
   // belongs to.
   uint64_t content_hash = 0;
   bool has_octree = false;

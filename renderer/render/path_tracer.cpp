@@ -125,6 +125,8 @@ void PathTracer::State::create_pipeline() {
                            {gpu::SPEC_ALPHA, f.alpha},
                            {gpu::SPEC_SINGLE_SIDED, f.single_sided},
                            {gpu::SPEC_TRANSMISSION, f.transmission},
+                           {gpu::SPEC_NEE, settings.nee && (f.sphere_lights || f.punctual)},
+                           {gpu::SPEC_PUNCTUAL, f.punctual},
                            {gpu::SPEC_PART_LOG2, g.part_log2}});
   bind_buffers(p, {{gpu::BINDING_SCENE, &g.params},
                    {gpu::BINDING_SPHERES, &g.spheres},
@@ -140,6 +142,8 @@ void PathTracer::State::create_pipeline() {
                    {gpu::BINDING_TEXELS, &g.texels},
                    {gpu::BINDING_TRIANGLE_UVS, &g.triangle_uvs},
                    {gpu::BINDING_TEXTURE_TRANSFORMS, &g.texture_transforms},
+                   {gpu::BINDING_LIGHTS, &g.lights},
+                   {gpu::BINDING_SPHERE_LIGHTS, &g.sphere_lights},
                    {gpu::BINDING_ENVMAP_TEXELS, &g.envmap_texels},
                    {gpu::BINDING_ENVMAP_MARGINAL, &g.envmap_marginal},
                    {gpu::BINDING_ENVMAP_CONDITIONAL, &g.envmap_conditional},
@@ -379,6 +383,13 @@ std::string software_loop_limit_warning(const DeviceInfo& device, const Scene& s
          std::to_string(per_bounce) + " primitives cuts paths longer than " +
          std::to_string(kLoopLimit / per_bounce) + " bounces short (the image is wrong where paths are long; the "
          "octree is not affected)";
+}
+
+std::string punctual_without_nee_warning(const Scene& scene, const RenderSettings& settings) {
+  if (settings.nee || !scene_features(scene).punctual) return {};
+  return "next-event estimation is off: the scene's " + std::to_string(scene.lights.size()) +
+         (scene.lights.size() == 1 ? " punctual light adds" : " punctual lights add") +
+         " nothing (no ray can hit a point, spot or directional light)";
 }
 
 RenderResult render(const VulkanContext& ctx, const Scene& scene, const RenderSettings& settings,

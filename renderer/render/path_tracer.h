@@ -132,6 +132,10 @@ class PathTracer {
 // warning for such a render on a software device, or an empty string.
 std::string software_loop_limit_warning(const DeviceInfo& device, const Scene& scene, const RenderSettings& settings);
 
+// Punctual lights are reached by next-event estimation only: a one-line
+// warning for a scene that has some when it is off, or an empty string.
+std::string punctual_without_nee_warning(const Scene& scene, const RenderSettings& settings);
+
 // The mean, variance of the mean, counts, smallest count and rays of an
 // accumulation state, as PathTracer::read_result has them (the other fields
 // of `r` are left as they are).

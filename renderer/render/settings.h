@@ -41,6 +41,11 @@ struct RenderSettings {
   // probability p = min(max throughput, 0.95) and carries 1/p more, so the
   // expectation is unchanged and the noise grows; paths end sooner.
   uint32_t rr_depth = 0;
+  // Next-event estimation with MIS (shaders/shading/lights.glsl): at each
+  // lambertian or pbr vertex a light of the scene is sampled. Off, the
+  // integrator finds light only by hitting it (bit for bit the one before
+  // light sampling), and punctual lights, which no ray can hit, add nothing.
+  bool nee = true;
   // Samples one dispatch adds (each invocation loops over them for its
   // pixel); 0: every pass of a batch in one dispatch. The image is the same
   // whatever the value; only the time changes (docs/performance.md).

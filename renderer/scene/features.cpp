@@ -10,6 +10,15 @@ bool is_black(glm::vec3 c) { return c.r == 0.0f && c.g == 0.0f && c.b == 0.0f; }
 
 }  // namespace
 
+glm::vec3 sphere_radiance(const Material& m) {
+  switch (m.type) {
+    case MaterialType::Emissive: return m.radiance;
+    case MaterialType::Lambertian:
+    case MaterialType::Pbr: return m.emission_texture ? glm::vec3(0.0f) : m.emission;
+    default: return glm::vec3(0.0f);
+  }
+}
+
 SceneFeatures scene_features(const Scene& scene) {
   SceneFeatures f;
   std::vector<bool> used(scene.materials.size(), false);
@@ -66,7 +75,9 @@ SceneFeatures scene_features(const Scene& scene) {
                     std::all_of(scene.sky.image.rgb.begin(), scene.sky.image.rgb.end(), [](float c) { return c == 0.0f; });
       break;
   }
-  f.any_light = f.emissive || f.surface_emission || !f.sky_black;
+  for (const Sphere& s : scene.spheres) f.sphere_lights |= !is_black(sphere_radiance(scene.materials[s.material]));
+  for (const Light& l : scene.lights) f.punctual |= l.intensity > 0.0f && !is_black(l.color);
+  f.any_light = f.emissive || f.surface_emission || !f.sky_black || f.punctual;
   f.spheres = !scene.spheres.empty();
   f.empty = !f.spheres && !f.triangles;
   return f;
@@ -81,6 +92,7 @@ SceneFeatures all_features(const Scene& scene) {
   f.empty = false;
   f.spheres = f.triangles = f.vertex_normals = f.textures = f.surface_emission = f.normal_maps = f.alpha = f.single_sided = true;
   f.transmission = true;
+  f.sphere_lights = f.punctual = true;
   return f;
 }
 
@@ -101,6 +113,8 @@ std::vector<std::string> feature_names(const SceneFeatures& f) {
   if (f.alpha) names.push_back("alpha");
   if (f.single_sided) names.push_back("single_sided");
   if (f.transmission) names.push_back("transmission");
+  if (f.sphere_lights) names.push_back("sphere_lights");
+  if (f.punctual) names.push_back("punctual");
   constexpr const char* kSkyNames[] = {"sky_gradient", "sky_uniform", "sky_none", "sky_envmap"};
   names.push_back(kSkyNames[static_cast<uint32_t>(f.sky)]);
   if (f.sky_black) names.push_back("sky_black");

@@ -34,9 +34,19 @@ struct SceneFeatures {
   bool alpha = false;             // some mesh material is not opaque (alpha MASK or BLEND)
   bool single_sided = false;      // some mesh material is single-sided (back faces not hit)
   bool transmission = false;      // some pbr material transmits (refraction through a rough surface)
+  // Lights that next-event estimation samples (render/lights.h):
+  bool sphere_lights = false;     // some sphere emits (sphere_radiance not black)
+  bool punctual = false;          // some punctual light (point, spot, directional) is not black
 
   bool operator==(const SceneFeatures&) const = default;
 };
+
+// The radiance a sphere of material m emits, and so whether it is a light
+// (0 for none): an emissive material's radiance, a lambertian or pbr
+// material's emission. An emission texture makes it no light (NEE cannot
+// read the texture at a point it picks by direction only; such a sphere is
+// still found by the paths that hit it).
+glm::vec3 sphere_radiance(const Material& m);
 
 // Only the materials that primitives use count (an unused glass material in
 // the list does not make the scene need glass code); only meshes that some

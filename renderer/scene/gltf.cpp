@@ -267,7 +267,8 @@ struct SchemaCheck {
 // Extensions a file may require (extensionsRequired) that octrace reads.
 constexpr std::string_view kSupportedExtensions[] = {"KHR_mesh_quantization", "KHR_materials_emissive_strength",
                                                      "KHR_materials_ior", "KHR_materials_transmission",
-                                                     "KHR_materials_volume", "KHR_texture_transform"};
+                                                     "KHR_materials_volume", "KHR_texture_transform",
+                                                     "KHR_lights_punctual"};
 
 void check_schema(const Json& doc, const std::string& file) {
   const Where root;
@@ -1071,10 +1072,60 @@ struct Loaded {
   std::vector<Texture> textures;    // the materials' textures index these
   std::vector<Instance> instances;  // world transforms of the nodes
   std::vector<PlacedCamera> cameras;  // camera nodes in the order of the hierarchy
+  std::vector<Light> lights;          // KHR_lights_punctual, placed by their nodes
   size_t file_cameras = 0;
   size_t scene = 0;  // the scene placed (if the file has any)
   std::vector<std::string> warnings;
 };
+
+// KHR_lights_punctual's photometric units to octrace's radiometric ones: a
+// point or spot's intensity in candela (lm/sr) and a directional light's in
+// lux (lm/m^2), divided by 683 lm/W (the luminous efficacy that defines the
+// candela, at 555 nm). Exporters that start from watts (Blender: W x 683 /
+// 4 pi for a point light) come back to W / 4 pi, the radiant intensity of
+// that many watts spread evenly.
+constexpr double kLumensPerWatt = 683.0;
+
+// Light `index` of the file, placed by a node with transform `world`: a
+// light shines down the node's -Z (KHR_lights_punctual); the node's scale
+// moves it but changes none of its properties.
+Light read_light(const File& f, int index, const glm::dmat4& world, const std::string& at) {
+  const std::string path = "extensions.KHR_lights_punctual." + item("lights", size_t(index));
+  if (index < 0 || size_t(index) >= f.model.lights.size())
+    f.fail(at, "index " + std::to_string(index) + " out of range (" + plural(f.model.lights.size(), "light") + ")");
+  const tinygltf::Light& l = f.model.lights[size_t(index)];
+  Light out;
+  if (l.type == "point") out.type = LightType::Point;
+  else if (l.type == "spot") out.type = LightType::Spot;
+  else if (l.type == "directional") out.type = LightType::Directional;
+  else f.fail(path + ".type", "unknown light type \"" + l.type + "\" (expected point, spot, directional)");
+  if (!l.color.empty()) {
+    if (l.color.size() != 3) f.fail(path + ".color", "expected 3 numbers");
+    for (double c : l.color)
+      if (!(std::isfinite(c) && c >= 0.0)) f.fail(path + ".color", "must be 3 finite numbers >= 0");
+    out.color = glm::vec3(float(l.color[0]), float(l.color[1]), float(l.color[2]));
+  }
+  if (!(std::isfinite(l.intensity) && l.intensity >= 0.0))
+    f.fail(path + ".intensity", "must be a finite number >= 0, got " + float_string(float(l.intensity)));
+  out.intensity = float(l.intensity / kLumensPerWatt);
+  if (out.type == LightType::Spot) {
+    const double inner = l.spot.innerConeAngle, outer = l.spot.outerConeAngle;
+    if (!(outer > 0.0 && outer <= glm::half_pi<double>()))
+      f.fail(path + ".spot.outerConeAngle", "must be in (0, pi/2] radians, got " + float_string(float(outer)));
+    if (!(inner >= 0.0 && inner < outer))
+      f.fail(path + ".spot.innerConeAngle", "must be in [0, outerConeAngle) radians, got " + float_string(float(inner)));
+    out.inner_cone = float(glm::degrees(inner));
+    out.outer_cone = float(glm::degrees(outer));
+    // Rounding to degrees in float must keep inner < outer <= 90.
+    out.outer_cone = std::min(out.outer_cone, 90.0f);
+    if (!(out.inner_cone < out.outer_cone)) out.inner_cone = std::nextafter(out.outer_cone, 0.0f);
+  }
+  out.position = glm::vec3(world[3]);
+  const glm::dvec3 d = glm::dmat3(world) * glm::dvec3(0, 0, -1);
+  if (!(glm::length(d) > 0.0)) f.fail(at, "the node's transform flattens the light's direction");
+  out.direction = glm::vec3(glm::normalize(d));
+  return out;
+}
 
 // `own_materials`: read the file's materials and textures (not when the
 // scene replaces them).
@@ -1144,6 +1195,12 @@ Loaded read_gltf(const std::string& bytes, const std::string& path, std::optiona
       const tinygltf::Camera& c = f.get(model.cameras, gn.camera, "cameras", item("nodes", n) + ".camera");
       out.cameras.push_back({uint32_t(gn.camera), world, c.type == "perspective", c.perspective.yfov});
     }
+    if (const auto it = gn.extensions.find("KHR_lights_punctual"); it != gn.extensions.end()) {
+      const std::string at = item("nodes", n) + ".extensions.KHR_lights_punctual.light";
+      const tinygltf::Value& v = it->second;
+      if (!v.IsObject() || !v.Has("light") || !v.Get("light").IsInt()) f.fail(at, "expected a light index");
+      out.lights.push_back(read_light(f, v.Get("light").GetNumberAsInt(), world, at));
+    }
   };
   if (!model.scenes.empty()) {
     const tinygltf::Scene& scene = model.scenes[out.scene];
@@ -1205,6 +1262,7 @@ GltfPlacement append(Scene& scene, const Loaded& file, std::optional<uint32_t> m
   GltfPlacement placement;
   placement.mesh_base = mesh_base;
   for (const Instance& i : file.instances) placement.nodes.emplace_back(i.mesh, glm::dmat4(i.transform));
+  placement.lights = file.lights;
   place_again(scene, placement, transform);
   return placement;
 }
@@ -1285,6 +1343,13 @@ void place_again(Scene& scene, const GltfPlacement& placement, const glm::mat4& 
   const glm::dmat4 t(transform);
   for (const auto& [mesh, node] : placement.nodes)
     scene.instances.push_back({placement.mesh_base + mesh, glm::mat4(t * node)});
+  for (Light l : placement.lights) {
+    l.position = glm::vec3(t * glm::dvec4(glm::dvec3(l.position), 1.0));
+    const glm::dvec3 d = glm::dmat3(t) * glm::dvec3(l.direction);
+    l.direction = glm::vec3(glm::normalize(d));
+    scene.lights.push_back(l);
+  }
+  scene.mesh_file_lights += placement.lights.size();
 }
 
 Scene load_gltf_scene(const std::string& path, const GltfOptions& opts) {

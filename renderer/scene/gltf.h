@@ -89,6 +89,7 @@ Scene parse_gltf_scene(const std::string& bytes, const std::string& path, const 
 struct GltfPlacement {
   uint32_t mesh_base = 0;                             // the file's meshes start here in Scene::meshes
   std::vector<std::pair<uint32_t, glm::dmat4>> nodes;  // mesh (file index) and node transform, per instance
+  std::vector<Light> lights;                           // KHR_lights_punctual, in the file's space
 };
 GltfPlacement append_gltf(Scene& scene, const std::string& path, std::optional<uint32_t> material_override,
                           const glm::mat4& transform, const GltfOptions& opts = {});

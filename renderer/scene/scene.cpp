@@ -198,6 +198,27 @@ void validate_sky(const Sky& sky, const std::string& source) {
   invalid(source, "sky.type", "unknown sky type " + std::to_string(static_cast<uint32_t>(sky.type)));
 }
 
+void validate_light(const Light& l, const std::string& source, size_t index) {
+  const std::string path = "lights[" + std::to_string(index) + "]";
+  if (l.type != LightType::Point && l.type != LightType::Spot && l.type != LightType::Directional)
+    invalid(source, path + ".type", "unknown light type " + std::to_string(static_cast<uint32_t>(l.type)));
+  check_colour(l.color, source, path + ".color");
+  if (!(std::isfinite(l.intensity) && l.intensity >= 0.0f))
+    invalid(source, path + ".intensity", "must be a finite number >= 0, got " + format(l.intensity));
+  if (l.type != LightType::Directional) check_finite(l.position, source, path + ".position");
+  if (l.type != LightType::Point) {
+    check_finite(l.direction, source, path + ".direction");
+    if (std::abs(glm::length(glm::dvec3(l.direction)) - 1.0) > 1e-5)
+      invalid(source, path + ".direction", "must be a unit vector, got " + format(l.direction));
+  }
+  if (l.type == LightType::Spot) {
+    if (!(l.outer_cone > 0.0f && l.outer_cone <= 90.0f))
+      invalid(source, path + ".outer_cone", "must be a number in (0, 90] degrees, got " + format(l.outer_cone));
+    if (!(l.inner_cone >= 0.0f && l.inner_cone < l.outer_cone))
+      invalid(source, path + ".inner_cone", "must be a number in [0, outer_cone) degrees, got " + format(l.inner_cone));
+  }
+}
+
 // "index 9 out of range (3 materials)".
 std::string out_of_range(size_t index, size_t size, const char* one, const char* many) {
   return "index " + std::to_string(index) + " out of range (" + std::to_string(size) + " " + (size == 1 ? one : many) +
@@ -385,6 +406,10 @@ void validate_scene(const Scene& scene, const std::string& source) {
   }
   for (size_t i = 0; i < scene.meshes.size(); ++i) validate_mesh(scene.meshes[i], scene, source, i);
   for (size_t i = 0; i < scene.instances.size(); ++i) validate_instance(scene.instances[i], scene, source, i);
+  for (size_t i = 0; i < scene.lights.size(); ++i) validate_light(scene.lights[i], source, i);
+  if (scene.mesh_file_lights > scene.lights.size())
+    invalid(source, "lights", std::to_string(scene.mesh_file_lights) + " from mesh files, but only " +
+                                  std::to_string(scene.lights.size()) + " in all");
   if (scene.mesh_file_materials > scene.materials.size())
     invalid(source, "materials", std::to_string(scene.mesh_file_materials) + " from mesh files, but only " +
                                      std::to_string(scene.materials.size()) + " in all");

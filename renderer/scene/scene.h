@@ -176,6 +176,34 @@ struct Sky {
   bool operator==(const Sky&) const = default;
 };
 
+// A punctual light (glTF's KHR_lights_punctual; JSON's "lights"): a point,
+// a spot or a directional light, reached by next-event estimation only (a
+// ray can never hit it: with --nee off it adds nothing). Units are
+// octrace's radiometric ones (the radiance of a sky of 1 is 1):
+//   point, spot  color x intensity is the radiant intensity I (radiance
+//                scale x area, "W/sr"): a surface at distance r, at angle
+//                theta to the light, receives E = I cos(theta) / r^2;
+//   directional  color x intensity is the irradiance E ("W/m^2") on a
+//                surface facing the light.
+// glTF's photometric units are converted when a file is loaded (scene/gltf.h).
+// A spot lights the cone around `direction`, with glTF's smooth falloff
+// between inner_cone and outer_cone (degrees, as the JSON file's other
+// angles, so that a round trip is exact; 0 <= inner < outer <= 90).
+// `direction` (unit) is where the light travels: a directional light lights
+// surfaces that face -direction.
+enum class LightType : uint32_t { Point = 0, Spot = 1, Directional = 2 };
+
+struct Light {
+  LightType type = LightType::Point;
+  glm::vec3 position{0.0f};            // point, spot
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // spot, directional (unit)
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+  float inner_cone = 0.0f;             // spot, degrees
+  float outer_cone = 45.0f;            // spot, degrees (glTF's default, pi/4)
+
+  bool operator==(const Light&) const = default;
+};
 
 // A triangle mesh in its own (object) space, stored once however many times
 // it is placed. Triangle k is indices[3k..3k+2]; counter-clockwise seen from
@@ -222,11 +250,15 @@ struct Scene {
   std::vector<Sphere> spheres;
   std::vector<Mesh> meshes;
   std::vector<Instance> instances;
+  std::vector<Light> lights;       // punctual lights
   std::vector<MeshRef> mesh_refs;  // JSON scenes, and a glTF scene's reference to its file
   // The last `mesh_file_materials` of `materials` came from the mesh files
   // (appended as each reference was loaded), not from the scene file: JSON
   // writes only the others, and loading the references adds these again.
   size_t mesh_file_materials = 0;
+  // Likewise the last `mesh_file_lights` of `lights` came from the mesh
+  // files (KHR_lights_punctual): JSON writes only the others.
+  size_t mesh_file_lights = 0;
 
   // Field by field with float ==, so -0 equals 0; tests that need bit-exactness compare bits.
   bool operator==(const Scene&) const = default;

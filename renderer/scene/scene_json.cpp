@@ -19,6 +19,13 @@
 //                 "transmission" 0 (> 0: the material bounds a closed solid
 //                 of index "ior", on spheres and meshes alike) and "ior" 1.5.
 //   spheres[i]    "center", "radius" and "material" are all required.
+//   lights[i]     optional list of punctual lights (scene.h Light): "type"
+//                 (point | spot | directional) is required; point and spot
+//                 "position" and spot and directional "direction" (any
+//                 non-zero vector, normalised) are required; "color" [1, 1, 1]
+//                 and "intensity" 1 are optional (radiant intensity for point
+//                 and spot, irradiance for directional); spot "inner_cone" 0
+//                 and "outer_cone" 45 (degrees) are optional.
 //   meshes[i]     a glTF file: "file" (relative to the scene file) is required;
 //                 "material" (overrides the file's materials), "scene" (which
 //                 of the file's scenes) and "transform" ({"scale", "rotate",
@@ -68,6 +75,7 @@ using Json = nlohmann::basic_json<std::map, std::vector, std::string, bool, std:
 // Indexed by the enum values.
 constexpr std::string_view kMaterialNames[] = {"lambertian", "metal", "dielectric", "emissive", "pbr"};
 constexpr std::string_view kSkyNames[] = {"gradient", "uniform", "none", "envmap"};
+constexpr std::string_view kLightNames[] = {"point", "spot", "directional"};
 
 // ---------------------------------------------------------------------------
 // reading
@@ -214,6 +222,43 @@ Sky read_sky(const Node& n) {
     }
   }
   return sky;
+}
+
+// A unit direction: any non-zero vector, normalised (in double, then rounded
+// once); one already unit to 1e-6 is kept as written, so that what
+// scene_to_json wrote reads back bit for bit.
+glm::vec3 read_direction(const Node& n) {
+  const glm::vec3 v = read_vec3(n);
+  const glm::dvec3 d(v);
+  const double len = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+  if (!(len > 0.0) || !std::isfinite(len)) n.fail("must be a non-zero vector, got " + describe_json(*n.value));
+  return std::abs(len - 1.0) <= 1e-6 ? v : glm::vec3(d / len);
+}
+
+Light read_light(const Node& n) {
+  require_object(n);
+  Light l;
+  l.type = static_cast<LightType>(read_type(n, kLightNames, "light"));
+  switch (l.type) {
+    case LightType::Point:
+      check_keys(n, {"type", "position", "color", "intensity"});
+      l.position = read_vec3(n.require("position"));
+      break;
+    case LightType::Spot:
+      check_keys(n, {"type", "position", "direction", "color", "intensity", "inner_cone", "outer_cone"});
+      l.position = read_vec3(n.require("position"));
+      l.direction = read_direction(n.require("direction"));
+      read_optional(n, "inner_cone", l.inner_cone);
+      read_optional(n, "outer_cone", l.outer_cone);
+      break;
+    case LightType::Directional:
+      check_keys(n, {"type", "direction", "color", "intensity"});
+      l.direction = read_direction(n.require("direction"));
+      break;
+  }
+  read_optional(n, "color", l.color);
+  read_optional(n, "intensity", l.intensity);
+  return l;
 }
 
 Material read_material(const Node& n) {
@@ -412,6 +457,19 @@ void append(std::string& out, const Sky& sky) {
   out += '}';
 }
 
+void append(std::string& out, const Light& l) {
+  append_type(out, kLightNames[static_cast<uint32_t>(l.type)]);
+  if (l.type != LightType::Directional) append_field(out, "position", l.position);
+  if (l.type != LightType::Point) append_field(out, "direction", l.direction);
+  append_field(out, "color", l.color);
+  append_field(out, "intensity", l.intensity);
+  if (l.type == LightType::Spot) {
+    append_field(out, "inner_cone", l.inner_cone);
+    append_field(out, "outer_cone", l.outer_cone);
+  }
+  out += '}';
+}
+
 void append(std::string& out, const Material& m) {
   append_type(out, kMaterialNames[static_cast<uint32_t>(m.type)]);
   switch (m.type) {
@@ -561,13 +619,17 @@ Scene parse_scene_json(const std::string& text, const std::string& source) {
 
   const Node root{&doc, &source};
   if (!doc.is_object()) root.fail("expected a JSON object at the top level, got " + describe_json(doc));
-  check_keys(root, {"camera", "sky", "materials", "spheres", "meshes"});
+  check_keys(root, {"camera", "sky", "materials", "spheres", "meshes", "lights"});
   std::vector<std::string> warnings;
   if (const std::optional<Node> camera = root.find("camera")) scene.camera = read_camera(*camera);
   if (const std::optional<Node> sky = root.find("sky")) scene.sky = read_sky(*sky);
   // If they are arrays, the parser has already moved their elements into `scene`.
   require_array(root.require("materials"));
   if (const std::optional<Node> spheres = root.find("spheres")) require_array(*spheres);
+  if (const std::optional<Node> lights = root.find("lights")) {
+    require_array(*lights);
+    for (size_t i = 0; i < lights->value->size(); ++i) scene.lights.push_back(read_light(lights->element(i)));
+  }
   if (const std::optional<Node> meshes = root.find("meshes")) {
     require_array(*meshes);
     // Validated before any file is read, so that the scene file's own errors come first.
@@ -614,6 +676,11 @@ std::string scene_to_json(const Scene& scene) {
   append(out, std::vector<Material>(scene.materials.begin(), scene.materials.begin() + ptrdiff_t(written)));
   out += ",\n  \"spheres\": ";
   append(out, scene.spheres);
+  // The mesh files' lights come back when the references load.
+  if (scene.lights.size() > scene.mesh_file_lights) {
+    out += ",\n  \"lights\": ";
+    append(out, std::vector<Light>(scene.lights.begin(), scene.lights.end() - ptrdiff_t(scene.mesh_file_lights)));
+  }
   if (!scene.mesh_refs.empty()) {
     out += ",\n  \"meshes\": ";
     append(out, scene.mesh_refs);

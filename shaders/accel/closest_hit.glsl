@@ -163,8 +163,11 @@ void test_primitive(Ray ray, uint i, uint from_prim, bool into_from, inout Hit h
 #undef OCTREE_WALK_NAME
 #undef OCTREE_LEAF
 
-bool closest_hit(Ray ray, uint from_prim, bool into_from, out Hit hit) {
-  hit.t = INF;
+// The nearest hit before t_max (INF: anywhere): shadow rays toward a
+// punctual light look only up to it. Alpha cut-outs and back-face culling
+// apply as to any ray.
+bool closest_hit_within(Ray ray, uint from_prim, bool into_from, float t_max, out Hit hit) {
+  hit.t = t_max;
   hit.prim = NO_PRIM;
   hit.kind = PRIM_SPHERE;
   hit.inst = 0u;
@@ -181,6 +184,10 @@ bool closest_hit(Ray ray, uint from_prim, bool into_from, out Hit hit) {
   RayShear no_shear;
   traverse_top(0u, ray, no_shear, from_prim, into_from, InstanceRef(0u, 0u, 0u), hit);
   return hit.prim != NO_PRIM;
+}
+
+bool closest_hit(Ray ray, uint from_prim, bool into_from, out Hit hit) {
+  return closest_hit_within(ray, from_prim, into_from, INF, hit);
 }
 
 // The surface at a hit that closest_hit returned.

@@ -134,40 +134,57 @@ float layer_fresnel(float c, float f0, float eta, bool thin) {
   return f0 + (1.0 - f0) * pow5(1.0 - clamp(c, 0.0, 1.0));
 }
 
-// Samples a direction `dir` (world space) off a pbr surface with shading
-// normal n (on the viewer's side) seen from `to_viewer`, and its weight
-// f cos / pdf. front_face: the viewer is outside the surface (for a solid,
-// outside the solid). `transmitted`: dir passes to the far side. False when
-// there is none: the view is exactly grazing, or the sample went to a side
-// where f = 0 (below a reflection, above a transmission: the path ends, as
-// the integral says). Draws three numbers from `rng` whatever happens, and
-// one from `layer` when the material transmits (TRANSMISSION_STREAM).
-bool sample_pbr(Material m, vec2 uv, vec3 n, vec3 to_viewer, bool front_face, inout Rng rng, inout Rng layer,
-                out vec3 dir, out real3 weight, out bool transmitted) {
-  float u0 = rng_next(rng), u1 = rng_next(rng), u2 = rng_next(rng);
-  dir = n;
-  weight = real3(0.0);
-  transmitted = false;
-  real3 base = base_color(m, uv);
+// A pbr surface at a hit, as sampling and evaluation need it: its
+// parameters after the textures, its local frame (t, b, n) with n the
+// shading normal on the viewer's side, the view wo in that frame, the
+// probability p_spec of sampling the specular lobe, and its transmission.
+struct PbrSurface {
+  real3 base;
+  float metallic;
+  float alpha;
+  float f0;
+  vec3 t;
+  vec3 b;
+  vec3 n;
+  vec3 wo;
+  float p_spec;
+  float lum_base;      // luminance of base
+  float transmission;  // KHR_materials_transmission's factor (0: none)
+  bool thin;           // thin-walled (else the boundary of a solid)
+  float eta;           // index on the viewer's side over the far side's
+};
+
+// Whether s transmits (the transmission code compiles out without
+// SPEC_TRANSMISSION).
+bool pbr_transmits(PbrSurface s) { return HAS_TRANSMISSION && s.transmission > 0.0; }
+
+// front_face: the viewer is outside the surface (for a solid, outside the
+// solid). False when the view is exactly grazing or below the shading normal
+// (no reflection is defined there).
+bool pbr_surface(Material m, vec2 uv, vec3 n, vec3 to_viewer, bool front_face, out PbrSurface s) {
+  s.base = base_color(m, uv);
   float metallic = float(m.metallic), roughness = float(m.roughness);
   if (HAS_TEXTURES && m.metallic_roughness_texture != NO_TEXTURE) {
     vec3 mr = sample_material_texture(m, TEXTURE_SLOT_METALLIC_ROUGHNESS, m.metallic_roughness_texture, uv, false);
     roughness *= mr.g;
     metallic *= mr.b;
   }
-  float alpha = max(roughness * roughness, PBR_MIN_ALPHA);
-  vec3 t, b;
-  pbr_basis(n, t, b);
-  vec3 wo = vec3(dot(to_viewer, t), dot(to_viewer, b), dot(to_viewer, n));
-  if (!(wo.z > 0.0)) return false;
+  s.metallic = metallic;
+  s.alpha = max(roughness * roughness, PBR_MIN_ALPHA);
+  s.n = n;
+  pbr_basis(n, s.t, s.b);
+  s.wo = vec3(dot(to_viewer, s.t), dot(to_viewer, s.b), dot(to_viewer, n));
+  s.p_spec = 1.0;
+  s.f0 = 0.0;
+  s.lum_base = 0.0;
   float ior = float(m.ior);
-  float f0 = (ior - 1.0) / (ior + 1.0);
-  f0 *= f0;
   // Transmission t in the fuzz slot, negated when thin-walled (shared.h).
-  float transmission = HAS_TRANSMISSION ? abs(float(m.fuzz)) : 0.0;
-  bool transmits = HAS_TRANSMISSION && transmission > 0.0;
-  bool thin = transmits && float(m.fuzz) < 0.0;
-  float eta = thin ? 1.0 : front_face ? 1.0 / ior : ior;
+  s.transmission = HAS_TRANSMISSION ? abs(float(m.fuzz)) : 0.0;
+  s.thin = pbr_transmits(s) && float(m.fuzz) < 0.0;
+  s.eta = s.thin ? 1.0 : front_face ? 1.0 / ior : ior;
+  if (!(s.wo.z > 0.0)) return false;
+  float f0 = (ior - 1.0) / (ior + 1.0);
+  s.f0 = f0 * f0;
 
   // Lobe choice: each lobe's weight estimated with Fresnel at the macro
   // normal (n.wo in place of h.wo), in luminance. The metal's Schlick colour
@@ -181,45 +198,127 @@ bool sample_pbr(Material m, vec2 uv, vec3 n, vec3 to_viewer, bool front_face, in
   // weight was ~1: each reflection of a path held by TIR multiplied it by
   // 1 / p_spec, and the fp16 variants saw Inf samples.) A diffuse estimate
   // of 0 still leaves no direction unsampled: the VNDF covers the hemisphere.
-  float w_view = pow5(1.0 - wo.z);
-  float lum_base = dot(vec3(base), PBR_LUMINANCE);
-  float fr_view = f0 + (1.0 - f0) * w_view;
+  float w_view = pow5(1.0 - s.wo.z);
+  float lum_base = dot(vec3(s.base), PBR_LUMINANCE);
+  s.lum_base = lum_base;
+  float fr_view = s.f0 + (1.0 - s.f0) * w_view;
   float spec_est = (1.0 - metallic) * fr_view + metallic * (lum_base + (1.0 - lum_base) * w_view);
   float diff_est = (1.0 - metallic) * (1.0 - fr_view) * lum_base;
-  if (transmits) {
-    float fr_layer = layer_fresnel(wo.z, f0, eta, thin);
-    spec_est = (1.0 - metallic) * (fr_layer + (1.0 - fr_layer) * transmission * lum_base) +
+  if (pbr_transmits(s)) {
+    float fr_layer = layer_fresnel(s.wo.z, s.f0, s.eta, s.thin);
+    spec_est = (1.0 - metallic) * (fr_layer + (1.0 - fr_layer) * s.transmission * lum_base) +
                metallic * (lum_base + (1.0 - lum_base) * w_view);
-    diff_est = (1.0 - metallic) * (1.0 - fr_layer) * (1.0 - transmission) * lum_base;
+    diff_est = (1.0 - metallic) * (1.0 - fr_layer) * (1.0 - s.transmission) * lum_base;
   }
-  float p_spec = diff_est > 0.0 ? spec_est / (spec_est + diff_est) : 1.0;
+  s.p_spec = diff_est > 0.0 ? spec_est / (spec_est + diff_est) : 1.0;
+  return true;
+}
 
+// The two lobes for a direction wi on the viewer's side (local frame, wi.z >
+// 0): f cos = spec_colour * spec + diff_colour * wi.z / pi, and pdf, the
+// density of wi under the lobe mixture that sample_pbr draws from (with
+// transmission: times the probability of reflecting at wi's microfacet
+// normal). False where pdf is 0.
+struct PbrLobes {
+  float spec;  // D G2 / (4 zo zi) * zi, without the Fresnel colour
+  float pdf;
+  real3 spec_colour;
+  real3 diff_colour;
+};
+
+bool pbr_lobes(PbrSurface s, vec3 wi, out PbrLobes l) {
+  vec3 h = normalize(s.wo + wi);
+  float d = ggx_d(h, s.alpha);
+  float so = smith_s(s.wo.z, s.alpha), si = smith_s(wi.z, s.alpha);
+  // specular_brdf * cos = D G2 / (4 zo zi) * zi = D zi / (2 (so zi + si zo)).
+  l.spec = d * wi.z / (2.0 * (so * wi.z + si * s.wo.z));
+  float w = pow5(1.0 - clamp(dot(s.wo, h), 0.0, 1.0));
+  float fr = s.f0 + (1.0 - s.f0) * w;
+  float p_spec_here = s.p_spec;
+  float diff_share = 1.0;
+  if (pbr_transmits(s)) {
+    // Reflection was chosen at h with probability 1 - p_trans; past the
+    // critical angle the layer reflects everything (Fr = 1).
+    fr = layer_fresnel(dot(s.wo, h), s.f0, s.eta, s.thin);
+    float refl = (1.0 - s.metallic) * fr + s.metallic * (s.lum_base + (1.0 - s.lum_base) * w);
+    float trans = (1.0 - s.metallic) * (1.0 - fr) * s.transmission * s.lum_base;
+    if (trans > 0.0) p_spec_here *= refl / (refl + trans);
+    // Inside a solid past the critical angle at the macro normal nothing
+    // reaches the diffuse base either (diff_est is 0 there, so it is never
+    // sampled). glTF's mix weighs the diffuse term by 1 - Fr at the pair's
+    // own half vector, which for a diffuse direction lies far from the
+    // normal, below the critical angle: it would add (1 - t) base to a
+    // reflection that already returns everything, so that a path held by
+    // TIR gained energy at every bounce, and the diffuse term, reached only
+    // through the specular lobe's pdf, weighed 1 / pdf_vndf (unbounded).
+    diff_share = layer_fresnel(s.wo.z, s.f0, s.eta, s.thin) == 1.0 ? 0.0 : 1.0 - s.transmission;
+  }
+  // pdf of wi by the VNDF: D_wo(h) / (4 wo.h) with D_wo(h) = G1(wo) (wo.h)
+  // D(h) / zo (Heitz 2018 eq. 3 and the reflection Jacobian) = D / (2 (zo + so)).
+  l.pdf = p_spec_here * d / (2.0 * (s.wo.z + so)) + (1.0 - s.p_spec) * wi.z / PI;
+  l.spec_colour = real((1.0 - s.metallic) * fr) + real(s.metallic) * (s.base + (real(1.0) - s.base) * real(w));
+  l.diff_colour = real((1.0 - s.metallic) * (1.0 - fr)) * s.base;
+  if (pbr_transmits(s)) l.diff_colour *= real(diff_share);
+  return l.pdf > 0.0;
+}
+
+// f(wo, wi) cos and the sampling pdf of world direction `dir` off the
+// surface, for light sampling's MIS (Veach 1997 ch. 9); fp32. False where
+// the BSDF is 0 or the pdf is, and for a direction on the far side: light
+// sampling does not evaluate transmission (a transmitted path that hits an
+// emitter keeps MIS weight 1; path_trace.comp).
+bool pbr_eval(PbrSurface s, vec3 dir, out vec3 f_cos, out float pdf) {
+  f_cos = vec3(0.0);
+  pdf = 0.0;
+  vec3 wi = vec3(dot(dir, s.t), dot(dir, s.b), dot(dir, s.n));
+  if (!(wi.z > 0.0)) return false;
+  PbrLobes l;
+  if (!pbr_lobes(s, wi, l)) return false;
+  f_cos = vec3(l.spec_colour) * l.spec + vec3(l.diff_colour) * (wi.z / PI);
+  pdf = l.pdf;
+  return true;
+}
+
+// Samples a direction `dir` (world space) off pbr surface s, its weight
+// f cos / pdf and its pdf (0 for a transmitted direction, which light
+// sampling never produces). `transmitted`: dir passes to the far side. False
+// when there is none: the sample went to a side where f = 0 (below a
+// reflection, above a transmission: the path ends, as the integral says).
+// Draws three numbers from `rng` whatever happens, and one from `layer` when
+// the material transmits and the specular lobe is chosen (TRANSMISSION_STREAM).
+bool sample_pbr(PbrSurface s, inout Rng rng, inout Rng layer, out vec3 dir, out real3 weight, out float pdf,
+                out bool transmitted) {
+  float u0 = rng_next(rng), u1 = rng_next(rng), u2 = rng_next(rng);
+  dir = s.n;
+  weight = real3(0.0);
+  pdf = 0.0;
+  transmitted = false;
   vec3 wi;
-  if (u0 < p_spec) {
-    vec3 h = sample_ggx_vndf(wo, alpha, u1, u2);
-    wi = reflect(-wo, h);
-    if (transmits) {
+  if (u0 < s.p_spec) {
+    vec3 h = sample_ggx_vndf(s.wo, s.alpha, u1, u2);
+    wi = reflect(-s.wo, h);
+    if (pbr_transmits(s)) {
       // Reflect or transmit at h, in proportion to the two weights there.
-      float c = dot(wo, h);
-      float fr = layer_fresnel(c, f0, eta, thin);
+      float c = dot(s.wo, h);
+      float fr = layer_fresnel(c, s.f0, s.eta, s.thin);
       float w = pow5(1.0 - clamp(c, 0.0, 1.0));
-      float refl = (1.0 - metallic) * fr + metallic * (lum_base + (1.0 - lum_base) * w);
-      float trans = (1.0 - metallic) * (1.0 - fr) * transmission * lum_base;
+      float refl = (1.0 - s.metallic) * fr + s.metallic * (s.lum_base + (1.0 - s.lum_base) * w);
+      float trans = (1.0 - s.metallic) * (1.0 - fr) * s.transmission * s.lum_base;
       float p_trans = trans > 0.0 ? trans / (refl + trans) : 0.0;
       if (rng_next(layer) < p_trans) {
         // The far side: a solid refracts about h (Walter eq. 40; no TIR
         // here, where trans > 0 needs fr < 1); a thin wall mirrors the
         // microfacet reflection through the macro surface.
-        wi = thin ? vec3(wi.xy, -wi.z) : refract(-wo, h, eta);
+        wi = s.thin ? vec3(wi.xy, -wi.z) : refract(-s.wo, h, s.eta);
         float zi = -wi.z;
         if (!(zi > 0.0)) return false;
         // f cos / pdf = (1 - metallic) (1 - Fr) t base G2 / G1 / (p_spec
         // p_trans), G2 / G1 = zi (zo + so) / (so zi + si zo) (smith_s), and
         // (1 - metallic) (1 - Fr) t / p_trans = (refl + trans) / lum(base).
-        float so = smith_s(wo.z, alpha), si = smith_s(zi, alpha);
-        float g2_g1 = zi * (wo.z + so) / (so * zi + si * wo.z);
-        weight = real3(vec3(base) * ((refl + trans) / lum_base * g2_g1 / p_spec));
-        dir = wi.x * t + wi.y * b + wi.z * n;
+        float so = smith_s(s.wo.z, s.alpha), si = smith_s(zi, s.alpha);
+        float g2_g1 = zi * (s.wo.z + so) / (so * zi + si * s.wo.z);
+        weight = real3(vec3(s.base) * ((refl + trans) / s.lum_base * g2_g1 / s.p_spec));
+        dir = wi.x * s.t + wi.y * s.b + wi.z * s.n;
         transmitted = true;
         return true;
       }
@@ -230,44 +329,14 @@ bool sample_pbr(Material m, vec2 uv, vec3 n, vec3 to_viewer, bool front_face, in
     wi = vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0, 1.0 - u1)));
   }
   if (!(wi.z > 0.0)) return false;
-  vec3 h = normalize(wo + wi);
-  float d = ggx_d(h, alpha);
-  float so = smith_s(wo.z, alpha), si = smith_s(wi.z, alpha);
-  // specular_brdf * cos = D G2 / (4 zo zi) * zi = D zi / (2 (so zi + si zo)).
-  float spec = d * wi.z / (2.0 * (so * wi.z + si * wo.z));
-  float w = pow5(1.0 - clamp(dot(wo, h), 0.0, 1.0));
-  float fr = f0 + (1.0 - f0) * w;
-  float p_spec_here = p_spec;
-  float diff_share = 1.0;
-  if (transmits) {
-    // Reflection was chosen at h with probability 1 - p_trans; past the
-    // critical angle the layer reflects everything (Fr = 1).
-    fr = layer_fresnel(dot(wo, h), f0, eta, thin);
-    float refl = (1.0 - metallic) * fr + metallic * (lum_base + (1.0 - lum_base) * w);
-    float trans = (1.0 - metallic) * (1.0 - fr) * transmission * lum_base;
-    if (trans > 0.0) p_spec_here *= refl / (refl + trans);
-    // Inside a solid past the critical angle at the macro normal nothing
-    // reaches the diffuse base either (diff_est is 0 there, so it is never
-    // sampled). glTF's mix weighs the diffuse term by 1 - Fr at the pair's
-    // own half vector, which for a diffuse direction lies far from the
-    // normal, below the critical angle: it would add (1 - t) base to a
-    // reflection that already returns everything, so that a path held by
-    // TIR gained energy at every bounce, and the diffuse term, reached only
-    // through the specular lobe's pdf, weighed 1 / pdf_vndf (unbounded).
-    diff_share = layer_fresnel(wo.z, f0, eta, thin) == 1.0 ? 0.0 : 1.0 - transmission;
-  }
-  // pdf of wi by the VNDF: D_wo(h) / (4 wo.h) with D_wo(h) = G1(wo) (wo.h)
-  // D(h) / zo (Heitz 2018 eq. 3 and the reflection Jacobian) = D / (2 (zo + so)).
-  float pdf = p_spec_here * d / (2.0 * (wo.z + so)) + (1.0 - p_spec) * wi.z / PI;
-  if (!(pdf > 0.0)) return false;
-  real3 spec_colour = real((1.0 - metallic) * fr) + real(metallic) * (base + (real(1.0) - base) * real(w));
-  real3 diff_colour = real((1.0 - metallic) * (1.0 - fr)) * base;
-  if (transmits) diff_colour *= real(diff_share);
+  PbrLobes l;
+  if (!pbr_lobes(s, wi, l)) return false;
+  pdf = l.pdf;
   // In fp32, then to `real`: a factor such as cos / (pi pdf) after an
   // unlikely lobe choice may exceed half's range although its product with
   // the lobe's colour does not (the fp16 variants saw Inf samples from it).
-  weight = real3(vec3(spec_colour) * (spec / pdf) + vec3(diff_colour) * (wi.z / (PI * pdf)));
-  dir = wi.x * t + wi.y * b + wi.z * n;
+  weight = real3(vec3(l.spec_colour) * (l.spec / l.pdf) + vec3(l.diff_colour) * (wi.z / (PI * l.pdf)));
+  dir = wi.x * s.t + wi.y * s.b + wi.z * s.n;
   return true;
 }
 

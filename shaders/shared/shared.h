@@ -94,6 +94,12 @@ OCT_CONST(uint, BINDING_TEXTURES, 14u);
 OCT_CONST(uint, BINDING_TEXELS, 15u);
 OCT_CONST(uint, BINDING_TRIANGLE_UVS, 16u);
 OCT_CONST(uint, BINDING_TEXTURE_TRANSFORMS, 17u);
+// Light sampling (shading/lights.glsl): the light list (GpuLight, with its
+// alias table), and per sphere the index of its light in that list
+// (NO_LIGHT for a sphere that does not emit), for the MIS weight of a
+// BSDF-sampled ray that hits it. 20 is kept for emissive triangles.
+OCT_CONST(uint, BINDING_LIGHTS, 18u);
+OCT_CONST(uint, BINDING_SPHERE_LIGHTS, 19u);
 // The environment map (SKY_ENVMAP; renderer/scene/envmap.h): its texels, 3
 // floats (linear rgb, fp32) per texel, row 0 the top (+y); and the sampling
 // tables: the marginal CDF over rows (height + 1 floats, then the density
@@ -167,12 +173,54 @@ OCT_CONST(uint, SPEC_TRANSMISSION, 19u);
 // log2 of the largest part of a split scene, in bytes (the split pipeline
 // only, path_trace_*_split; scene_buffers.glsl).
 OCT_CONST(uint, SPEC_PART_LOG2, 27u);
+// Next-event estimation (--nee on and a scene with lights to sample): off,
+// the integrator is the one without light sampling, bit for bit.
+OCT_CONST(uint, SPEC_NEE, 20u);
+// Whether the scene has punctual lights (point, spot, directional).
+OCT_CONST(uint, SPEC_PUNCTUAL, 21u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 255u);
 
 // Acceleration structures (specialization constant ACCEL).
 OCT_CONST(uint, ACCEL_BRUTE, 0u);
 OCT_CONST(uint, ACCEL_OCTREE, 1u);
+
+// Kinds of light (GpuLight.type).
+OCT_CONST(uint, LIGHT_SPHERE, 0u);       // an emissive sphere, sampled by solid angle
+OCT_CONST(uint, LIGHT_POINT, 1u);
+OCT_CONST(uint, LIGHT_SPOT, 2u);
+OCT_CONST(uint, LIGHT_DIRECTIONAL, 3u);
+OCT_CONST(uint, NO_LIGHT, 0xffffffffu);
+
+// 80 bytes. One light of the light list (render/lights.h builds it), which
+// is also the alias table that picks a light in proportion to its power
+// (Walker 1977; Vose 1991): draw i uniform in [0, n) and u in [0, 1), take
+// light i if u < alias_q, else light alias. pmf is the probability that this
+// pick returns this light, for the estimator's 1 / pmf and the MIS weights.
+//   sphere       position = centre, radius; the radiance is the sphere's
+//                material's (read where it is used, as a hit reads it);
+//                sphere = its index in the sphere array
+//   point, spot  position; intensity = radiant intensity (rgb)
+//   spot         direction (unit, where the light travels); cos_inner,
+//                cos_outer: the cosines of glTF's cone angles
+//   directional  direction (unit, where the light travels); intensity =
+//                irradiance (rgb)
+struct GpuLight {
+  vec3 position;
+  uint type;  // LIGHT_*
+  vec3 direction;
+  float radius;
+  vec3 intensity;
+  uint sphere;
+  float cos_inner;
+  float cos_outer;
+  float pmf;
+  float alias_q;
+  uint alias;
+  uint pad0;
+  uint pad1;
+  uint pad2;
+};
 
 // 16 bytes. Sphere i's material index is sphere_materials[i] (a separate array,
 // so the intersection loop reads only centres and radii).
@@ -386,7 +434,7 @@ struct SceneParams {
   uint vertex_normals;  // 1: triangle_normals holds every triangle's normals; 0: it is empty
   uint instance_count;
   uint triangle_uvs;    // 1: triangle_uvs holds every triangle's uvs; 0: it is empty
-  uint pad0;
+  uint light_count;     // lights in the light list (0: nothing to sample)
   uint envmap_width;    // envmap: texels per row (0 without one)
   uint envmap_height;   // envmap: rows
 };
@@ -431,6 +479,10 @@ OCT_CONST(uint, RR_STREAM, 0x40000000u);
 // with the pixel, sample and seed; path_trace.comp) with the triangle's id:
 // no stream's numbers are drawn, so alpha changes no other random number.
 OCT_CONST(uint, ALPHA_STREAM, 0x20000000u);
+// Next-event estimation at bounce b draws from (bounce | NEE_STREAM), and
+// its shadow ray's BLEND cut-out key from (bounce | NEE_STREAM |
+// ALPHA_STREAM): turning it on or off changes no other random number.
+OCT_CONST(uint, NEE_STREAM, 0x10000000u);
 // A transmissive pbr surface's choice between reflecting and transmitting
 // (shading/pbr.glsl) draws from a stream of its own (bounce |
 // TRANSMISSION_STREAM), so transmission changes no other random number.

@@ -1292,6 +1292,175 @@ void transmission_grazing(CaseRun& run) {
 }
 
 // ---------------------------------------------------------------------------
+// Light sampling (issue 14; shaders/shading/lights.glsl).
+
+// A Lambertian ground (albedo 0.5: a sphere of radius 1000, its top at the
+// origin) under one punctual light, seen from above, no sky.
+Scene punctual_scene(const Light& light) {
+  Scene s;
+  s.sky.type = SkyType::None;
+  s.camera.lookfrom = {0, 3, 3};
+  s.camera.lookat = {0, 0, 0};
+  s.camera.vfov = 60;
+  s.camera.aperture = 0;
+  s.camera.focus_dist = 4;
+  s.materials = {lambertian(0.5f)};
+  s.spheres = {{{0, -1000, 0}, 1000, 0}};
+  s.lights = {light};
+  return s;
+}
+
+Light point_light(glm::vec3 position, float intensity) {
+  Light l;
+  l.position = position;
+  l.intensity = intensity;
+  return l;
+}
+
+// What the camera ray through image point (x, y) sees of the ground lit by
+// `l` alone (in double): albedo / pi x the irradiance, E = I cos(theta) / r^2
+// for a point light (times KHR_lights_punctual's spot falloff), E cos(theta)
+// for a directional one; 0 off the ground or where the light is below the
+// point's horizon.
+double punctual_radiance(const CameraFrame& cam, const Light& l, double x, double y) {
+  const glm::dvec3 d = cam.dir(x, y), centre(0, -1000, 0);
+  const double t = test::ray_sphere(cam.origin, d, centre, 1000);
+  if (!std::isfinite(t)) return 0;
+  const glm::dvec3 p = cam.origin + t * d, n = glm::normalize(p - centre);
+  glm::dvec3 wi;
+  double e = double(l.intensity);
+  if (l.type == LightType::Directional) {
+    wi = -glm::dvec3(l.direction);
+  } else {
+    const glm::dvec3 w = glm::dvec3(l.position) - p;
+    const double r2 = glm::dot(w, w);
+    wi = w / std::sqrt(r2);
+    e /= r2;
+    if (l.type == LightType::Spot) {
+      const double ci = std::cos(glm::radians(double(l.inner_cone))), co = std::cos(glm::radians(double(l.outer_cone)));
+      const double a = std::clamp((glm::dot(glm::dvec3(l.direction), -wi) - co) / std::max(1e-3, ci - co), 0.0, 1.0);
+      e *= a * a;
+    }
+  }
+  return std::max(0.0, glm::dot(n, wi)) * e * 0.5 / glm::pi<double>();
+}
+
+// 7. A ground lit only by a punctual light: NEE is the only way light
+// arrives (no ray can hit a point), and at depth 2 (the camera ray and the
+// shadow ray) the image is the direct light alone, which is known in closed form (punctual_radiance). Expected
+// per pixel: the mean of 8 x 8 points over the pixel (the camera jitters the
+// ray within it), for the pixels lit all over. Bound: every pixel within 5 standard errors of its mean
+// (the jitter's variance; the sample is otherwise deterministic: one light,
+// picked with probability 1) plus 1e-3 of the value for rounding (the hit
+// point, normal and 1/r^2 in fp32; the fp16 variants' albedo 0.5 and
+// throughput 1 are exact in half, and NEE's sum is fp32 in every variant).
+// A wrong cos, 1/r^2, 1/pi or falloff is off by far more. Cases: a light 2
+// above the ground; one 2e-3 above its top, behind the camera (the ground in
+// view lit at grazing angles, cos <= 3e-4, and the light's horizon, where
+// the ground curves away, in view); one 1e4 away (intensity 3e8); a spot
+// (its cone's edges in view); a directional light.
+void punctual_analytic(CaseRun& run, const Light& light) {
+  const Scene s = punctual_scene(light);
+  const int w = 48, h = 32, sub = 8;
+  const RenderResult r = run.render(s, settings(w, h, 16, 2));
+  const CameraFrame cam = camera_frame(s.camera, w, h);
+  double worst = 0, lit = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      double expected = 0;
+      bool whole = true;
+      for (int j = 0; j < sub; ++j)
+        for (int i = 0; i < sub; ++i) {
+          const double v = punctual_radiance(cam, light, x + (i + 0.5) / sub, y + (j + 0.5) / sub);
+          whole &= v > 0;
+          expected += v;
+        }
+      // Only pixels lit all over: where a light's edge (a spot's cone, the
+      // horizon) crosses a pixel, the 16 jittered rays may all miss a lit
+      // sliver that the average over the pixel counts.
+      if (!whole) continue;
+      expected /= sub * sub;
+      ++lit;
+      const double measured = r.mean.pixel(x, y)[0];
+      const double sigma = std::sqrt(double(r.variance_of_mean.pixel(x, y)[0]));
+      worst = std::max(worst, std::abs(measured - expected) / (5 * sigma + 1e-3 * expected));
+    }
+  run.at_least("pixels lit all over", lit, w * h / 16);
+  run.at_most("max over them |mean - analytic| / (5 sigma + 1e-3 analytic)", worst, 1.0);
+}
+
+// 8. A point light below the ground's surface (inside the ground sphere):
+// no shading point above it may see it. Every pixel exactly 0.
+void punctual_behind(CaseRun& run) {
+  const RenderResult r = run.render(punctual_scene(point_light({0.3f, -0.05f, 0.2f}, 100)), settings(48, 32, 8, 4));
+  run.equals("max pixel (light below the surface)", max_value(r.mean), 0.0);
+}
+
+// 9. Sphere lights: NEE on and off estimate the same image. Bound: the
+// image means (channel 0) of the two renders differ by at most 5 standard
+// errors of their difference, sqrt(se_on^2 + se_off^2), each se from the
+// per-pixel variances (pixels are independent). Without NEE the estimate
+// is heavy-tailed (few paths find a small light); its sample variance then
+// tends to be low, so the bound is if anything strict for that render.
+// `se_ratio` (> 0): also require that NEE cuts the standard error to at
+// most that fraction of the one without (NEE is working, not just agreeing).
+void nee_on_off(CaseRun& run, const Scene& s, uint32_t spp, uint32_t depth, double se_ratio) {
+  RenderSettings on = settings(24, 16, spp, depth);
+  RenderSettings off = on;
+  off.nee = false;
+  const RenderResult a = run.render(s, on), b = run.render(s, off);
+  const auto mean_se = [](const RenderResult& r) {
+    double m = 0, v = 0;
+    const double n = double(r.mean.width * r.mean.height);
+    for (int y = 0; y < r.mean.height; ++y)
+      for (int x = 0; x < r.mean.width; ++x) {
+        m += r.mean.pixel(x, y)[0];
+        v += r.variance_of_mean.pixel(x, y)[0];
+      }
+    return std::pair{m / n, std::sqrt(v) / n};
+  };
+  const auto [ma, sa] = mean_se(a);
+  const auto [mb, sb] = mean_se(b);
+  run.at_least("image mean", ma, 1e-3);
+  run.at_most("|mean(nee on) - mean(nee off)| / (5 se)", std::abs(ma - mb) / (5 * std::sqrt(sa * sa + sb * sb)), 1.0);
+  if (se_ratio > 0) run.at_most("se(nee on) / se(nee off)", sa / sb, se_ratio);
+}
+
+// A small emissive sphere (r = 0.05, radiance 400) 2.2 above the ground of
+// punctual_scene, just out of view (pixels that see the light itself would
+// dominate both renders' noise), beside a diffuse sphere that casts a shadow.
+Scene small_sphere_light() {
+  Scene s = punctual_scene(Light{});
+  s.lights.clear();
+  s.materials.push_back(emitter(glm::vec3(400)));
+  s.materials.push_back(lambertian({0.8f, 0.3f, 0.2f}));
+  s.spheres.push_back({{0.3f, 2.2f, -1.0f}, 0.05f, 1});
+  s.spheres.push_back({{-0.5f, 0.4f, 0}, 0.4f, 2});
+  return s;
+}
+
+// The camera and the ground inside an emissive sphere (r = 3, radiance 1):
+// NEE from points inside the light samples its area.
+Scene inside_sphere_light() {
+  Scene s = small_sphere_light();
+  s.spheres = {{{0, -1000, 0}, 1000, 0}, {{0, 0, 0}, 3, 1}, {{-0.5f, 0.4f, 0}, 0.4f, 2}};
+  s.materials[1] = emitter(glm::vec3(1));
+  s.camera.lookfrom = {0, 1.5f, 2};
+  return s;
+}
+
+// A lambertian sphere that emits (emission 2) on the ground: NEE from its
+// own surface (on the light's sphere) and from the ground beside it.
+Scene on_sphere_light() {
+  Scene s = small_sphere_light();
+  Material m = lambertian(0.5f);
+  m.emission = glm::vec3(2);
+  s.materials[1] = m;
+  s.spheres = {{{0, -1000, 0}, 1000, 0}, {{0.3f, 0.5f, 0}, 0.5f, 1}};
+  return s;
+}
+
+// ---------------------------------------------------------------------------
 
 // Environment maps (shading/envmap.glsl; no NEE yet: paths find the map by
 // escaping).
@@ -1423,6 +1592,28 @@ const HardCase CASES[] = {
     {"transmission_ior1_invisible", transmission_ior1},
     {"transmission_grazing_views", transmission_grazing},
     {"transmission_tir_with_diffuse", transmission_tir_with_diffuse},
+    {"point_light_analytic", [](CaseRun& r) { punctual_analytic(r, point_light({0.5f, 2, -0.3f}, 10)); }},
+    {"point_light_grazing_2e-3", [](CaseRun& r) { punctual_analytic(r, point_light({0, 2e-3f, 6}, 1000)); }},
+    {"point_light_1e4_away", [](CaseRun& r) { punctual_analytic(r, point_light({3e3f, 9.5e3f, 0}, 3e8f)); }},
+    {"spot_light_analytic", [](CaseRun& r) {
+       Light l = point_light({0.2f, 2, 0}, 20);
+       l.type = LightType::Spot;
+       l.direction = glm::normalize(glm::vec3(-0.2f, -1, 0.1f));
+       l.inner_cone = 20;
+       l.outer_cone = 35;
+       punctual_analytic(r, l);
+     }},
+    {"directional_light_analytic", [](CaseRun& r) {
+       Light l;
+       l.type = LightType::Directional;
+       l.direction = glm::normalize(glm::vec3(1, -2, 0.5f));
+       l.intensity = 2;
+       punctual_analytic(r, l);
+     }},
+    {"point_light_behind_surface", punctual_behind},
+    {"sphere_light_r0.05_nee_on_off", [](CaseRun& r) { nee_on_off(r, small_sphere_light(), 512, 4, 0.5); }},
+    {"inside_sphere_light_nee_on_off", [](CaseRun& r) { nee_on_off(r, inside_sphere_light(), 64, 4, 0); }},
+    {"on_sphere_light_nee_on_off", [](CaseRun& r) { nee_on_off(r, on_sphere_light(), 128, 4, 0); }},
 };
 
 class HardCaseTest : public test::VulkanTest,

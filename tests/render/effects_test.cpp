@@ -50,7 +50,38 @@ const EffectsCase CASES[] = {
        s.sky.type = SkyType::None;
        return s;
      },
-     {"lambertian", "emissive", "sky_none", "sky_black"}},
+     {"lambertian", "emissive", "sphere_lights", "sky_none", "sky_black"}},
+    {"punctual_lights_only",
+     [] {
+       Scene s = family(test::pbr(0.8f, 0.0f, 0.5f));
+       s.sky.type = SkyType::None;
+       Light point;
+       point.position = {1, 2, 1};
+       Light spot;
+       spot.type = LightType::Spot;
+       spot.position = {0, 3, 0};
+       Light sun;
+       sun.type = LightType::Directional;
+       sun.direction = glm::normalize(glm::vec3(1, -1, 0));
+       s.lights = {point, spot, sun};
+       return s;
+     },
+     {"pbr", "punctual", "sky_none", "sky_black"}},
+    {"sphere_and_punctual_lights_under_sky",
+     [] {
+       Scene s = family(lambertian({0.5f, 0.5f, 0.5f}));
+       Material glowing = lambertian(0.5f);
+       glowing.emission = {1, 2, 3};
+       s.materials.push_back(glowing);
+       s.materials.push_back(emitter({40, 30, 20}));
+       s.spheres[2].material = 1;
+       s.spheres.push_back({{0, 2, 0}, 0.1f, 2});
+       Light point;
+       point.position = {1, 2, 1};
+       s.lights = {point};
+       return s;
+     },
+     {"lambertian", "emissive", "surface_emission", "sphere_lights", "punctual", "sky_gradient"}},
     {"lens_rtiow", [] { return make_rtiow_scene({60, 0.25f, 3}); },
      {"lambertian", "metal", "fuzzy_metal", "dielectric", "defocus", "sky_gradient"}},
     {"pinhole_rtiow",
@@ -137,7 +168,7 @@ const EffectsCase CASES[] = {
                                 glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)));
        return s;
      },
-     {"pbr", "triangles", "vertex_normals", "textures", "surface_emission", "normal_maps", "sky_gradient"}},
+     {"pbr", "triangles", "vertex_normals", "textures", "surface_emission", "normal_maps", "sphere_lights", "sky_gradient"}},
     {"alpha_mask_single_sided_and_blend_meshes",
      [] {
        // Two icospheres over the spheres: one MASK through a texture whose

@@ -50,6 +50,14 @@ constexpr int BIN = 4;  // z-tests run on BIN x BIN pixel blocks
 struct GoldenCase {
   const char* name;
   Scene (*make)();
+  // Next-event estimation (RenderSettings::nee). The references of the
+  // scenes with emitters from before light sampling hold the integrator
+  // without it (`--nee off`, unchanged bit for bit); lights_nee holds the
+  // default on every kind of light (a small sphere light among them). That NEE on and off agree is the hard cases' to show
+  // (tests/hardcases: *_nee_on_off): a golden made without NEE cannot judge
+  // pixels lit only through paths it almost never found (the far ground
+  // under a small light), which NEE does find.
+  bool nee = true;
 };
 void PrintTo(const GoldenCase& c, std::ostream* os) { *os << c.name; }
 
@@ -81,6 +89,38 @@ Scene emissive_black_sky() {
   Scene s = single_material(m);
   s.sky.type = SkyType::None;
   s.spheres[2].material = 0;
+  return s;
+}
+
+// Every kind of light: a small emissive sphere, a lambertian sphere that
+// emits, a point light, a spot and a directional light, over the ground and
+// a pbr sphere, black sky.
+Scene lights() {
+  Scene s = single_material(test::pbr(1.0f, 0.0f, 0.4f));
+  s.sky.type = SkyType::None;
+  s.materials[1].albedo = {0.3f, 0.6f, 0.2f};
+  s.materials.push_back(test::emitter({40, 30, 20}));
+  Material glowing = test::lambertian(0.5f);
+  glowing.emission = {0.2f, 0.4f, 1.0f};
+  s.materials.push_back(glowing);
+  s.spheres.push_back({{-0.6f, 1.6f, 0.8f}, 0.1f, 2});
+  s.spheres.push_back({{-1.4f, 0.3f, 0.4f}, 0.3f, 3});
+  Light point;
+  point.position = {1.0f, 1.5f, 1.5f};
+  point.intensity = 2;
+  Light spot;
+  spot.type = LightType::Spot;
+  spot.position = {0.5f, 3, 0};
+  spot.direction = glm::normalize(glm::vec3(-0.2f, -1, 0.1f));
+  spot.color = {1, 0.5f, 0.2f};
+  spot.intensity = 10;
+  spot.inner_cone = 10;
+  spot.outer_cone = 20;
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.direction = glm::normalize(glm::vec3(1, -2, -1));
+  sun.intensity = 0.3f;
+  s.lights = {point, spot, sun};
   return s;
 }
 
@@ -135,9 +175,9 @@ Scene envmap_sky() {
 
 const GoldenCase CASES[] = {
     {"rtiow", rtiow_small},          {"lambertian", lambertian_only}, {"metal", metal_only},
-    {"glass", glass_only},           {"emissive", emissive_black_sky}, {"pbr", pbr_spheres},
+    {"glass", glass_only},           {"emissive", emissive_black_sky, false}, {"pbr", pbr_spheres},
     {"engine", engine},              {"envmap", envmap_sky},
-    {"transmission", transmission_spheres},
+    {"transmission", transmission_spheres}, {"lights_nee", lights},
 };
 
 std::string golden_path(const std::string& name, const char* kind) {
@@ -150,6 +190,7 @@ RenderResult render_case(const GoldenCase& c, uint32_t spp, uint32_t seed) {
   s.height = HEIGHT;
   s.spp = spp;
   s.sample_seed = seed;
+  s.nee = c.nee;
   return render(test::shared_context(), c.make(), s);
 }
 

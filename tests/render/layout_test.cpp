@@ -21,7 +21,7 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   // every device the suite runs on (lavapipe, the H100) has.
   ASSERT_TRUE(ctx.fp16_enabled) << ctx.info.name << " lacks 16-bit storage";
   Buffer scene_buf, pass_buf, resolve_buf, sphere_buf, material_buf, half_buf, node_buf, stats_buf, tri_buf, normal_buf,
-      inst_buf, mesh_buf, texture_buf, uv_buf, uv_transform_buf;
+      inst_buf, mesh_buf, texture_buf, uv_buf, uv_transform_buf, light_buf;
   create_buffer(scene_buf, ctx, sizeof(gpu::SceneParams), false, "probe");
   create_buffer(pass_buf, ctx, sizeof(gpu::PassParams), false, "probe");
   create_buffer(resolve_buf, ctx, sizeof(gpu::ResolveParams), false, "probe");
@@ -37,12 +37,13 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   create_buffer(texture_buf, ctx, 2 * sizeof(gpu::GpuTexture), false, "probe");
   create_buffer(uv_buf, ctx, 2 * sizeof(gpu::GpuTriangleUvs), false, "probe");
   create_buffer(uv_transform_buf, ctx, 2 * sizeof(gpu::GpuUvTransform), false, "probe");
+  create_buffer(light_buf, ctx, 2 * sizeof(gpu::GpuLight), false, "probe");
   ComputePipeline pipeline;
-  create_compute_pipeline(pipeline, ctx, layout_probe_spv, sizeof(layout_probe_spv), 15, 0);
+  create_compute_pipeline(pipeline, ctx, layout_probe_spv, sizeof(layout_probe_spv), 16, 0);
   bind_buffers(pipeline, {{0, &scene_buf}, {1, &pass_buf}, {2, &resolve_buf}, {3, &sphere_buf},
                           {4, &material_buf}, {5, &half_buf}, {6, &node_buf}, {7, &stats_buf},
                           {8, &tri_buf},   {9, &normal_buf}, {10, &inst_buf}, {11, &mesh_buf},
-                          {12, &texture_buf}, {13, &uv_buf}, {14, &uv_transform_buf}});
+                          {12, &texture_buf}, {13, &uv_buf}, {14, &uv_transform_buf}, {15, &light_buf}});
   submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout, 0, 1, &pipeline.set, 0, nullptr);
@@ -61,7 +62,7 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   EXPECT_EQ(sc.vertex_normals, 11u);
   EXPECT_EQ(sc.instance_count, 12u);
   EXPECT_EQ(sc.triangle_uvs, 13u);
-  EXPECT_EQ(sc.pad0, 14u);
+  EXPECT_EQ(sc.light_count, 14u);
   EXPECT_EQ(sc.envmap_width, 15u);
   EXPECT_EQ(sc.envmap_height, 16u);
 
@@ -110,6 +111,8 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   download_buffer(ctx, uv_buf, uvs, sizeof uvs);
   gpu::GpuUvTransform uv_transforms[2];
   download_buffer(ctx, uv_transform_buf, uv_transforms, sizeof uv_transforms);
+  gpu::GpuLight lights[2];
+  download_buffer(ctx, light_buf, lights, sizeof lights);
   download_buffer(ctx, sphere_buf, spheres, sizeof spheres);
   download_buffer(ctx, material_buf, materials, sizeof materials);
   download_buffer(ctx, half_buf, halves, sizeof halves);
@@ -197,6 +200,20 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(uv_transforms[i].x_axis, glm::vec2(o + 109, o + 110)) << "uv transform " << i;
     EXPECT_EQ(uv_transforms[i].y_axis, glm::vec2(o + 111, o + 112)) << "uv transform " << i;
     EXPECT_EQ(uv_transforms[i].offset, glm::vec2(o + 113, o + 114)) << "uv transform " << i;
+    EXPECT_EQ(lights[i].position, glm::vec3(o + 121, o + 122, o + 123)) << "light " << i;
+    EXPECT_EQ(lights[i].type, u + 124) << "light " << i;
+    EXPECT_EQ(lights[i].direction, glm::vec3(o + 125, o + 126, o + 127)) << "light " << i;
+    EXPECT_EQ(lights[i].radius, o + 128) << "light " << i;
+    EXPECT_EQ(lights[i].intensity, glm::vec3(o + 129, o + 130, o + 131)) << "light " << i;
+    EXPECT_EQ(lights[i].sphere, u + 132) << "light " << i;
+    EXPECT_EQ(lights[i].cos_inner, o + 133) << "light " << i;
+    EXPECT_EQ(lights[i].cos_outer, o + 134) << "light " << i;
+    EXPECT_EQ(lights[i].pmf, o + 135) << "light " << i;
+    EXPECT_EQ(lights[i].alias_q, o + 136) << "light " << i;
+    EXPECT_EQ(lights[i].alias, u + 137) << "light " << i;
+    EXPECT_EQ(lights[i].pad0, u + 138) << "light " << i;
+    EXPECT_EQ(lights[i].pad1, u + 139) << "light " << i;
+    EXPECT_EQ(lights[i].pad2, u + 140) << "light " << i;
   }
 }
 

@@ -126,6 +126,74 @@ TEST(Gltf, QuadLoadsAsOneMeshPlacedOnce) {
   EXPECT_TRUE(s.spheres.empty());
 }
 
+// KHR_lights_punctual: three lights placed by nodes (the spot's node
+// rotated and moved, the sun's node rotated), in photometric units.
+GltfBuilder lights_gltf() {
+  GltfBuilder b = test::quad_gltf();
+  b.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+  b.doc["extensions"]["KHR_lights_punctual"]["lights"] = {
+      {{"type", "point"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 683.0}},
+      {{"type", "spot"}, {"intensity", 1366.0}, {"spot", {{"innerConeAngle", 0.25}, {"outerConeAngle", 0.5}}}},
+      {{"type", "directional"}, {"intensity", 6830.0}}};
+  // Rotated -90 degrees about x: the node's -Z (where a light shines) turns to -Y.
+  const double h = std::sqrt(0.5);
+  b.add("nodes", {{"translation", {1, 2, 3}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+  b.add("nodes", {{"translation", {0, 4, 0}}, {"rotation", {-h, 0, 0, h}},
+                  {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+  b.add("nodes", {{"rotation", {-h, 0, 0, h}}, {"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}});
+  b.set_scene({0, 1, 2, 3});
+  return b;
+}
+
+TEST(Gltf, PunctualLightsArePlacedByTheirNodesIn683thsOfTheirUnits) {
+  const Scene s = load(lights_gltf(), "lights.gltf");
+  ASSERT_EQ(s.lights.size(), 3u);
+  EXPECT_EQ(s.mesh_file_lights, 3u);
+  const Light& point = s.lights[0];
+  EXPECT_EQ(point.type, LightType::Point);
+  EXPECT_EQ(point.position, glm::vec3(1, 2, 3));
+  EXPECT_EQ(point.color, glm::vec3(1.0f, 0.5f, 0.25f));
+  EXPECT_EQ(point.intensity, 1.0f);  // 683 cd: 1 W/sr
+  const Light& spot = s.lights[1];
+  EXPECT_EQ(spot.type, LightType::Spot);
+  EXPECT_NEAR(glm::distance(spot.position, glm::vec3(0, 4, 0)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::distance(spot.direction, glm::vec3(0, -1, 0)), 0.0f, 1e-6f);
+  EXPECT_EQ(spot.intensity, 2.0f);
+  EXPECT_NEAR(spot.inner_cone, 0.25 * 180 / glm::pi<double>(), 1e-4);
+  EXPECT_NEAR(spot.outer_cone, 0.5 * 180 / glm::pi<double>(), 1e-4);
+  EXPECT_EQ(s.lights[2].type, LightType::Directional);
+  EXPECT_NEAR(glm::distance(s.lights[2].direction, glm::vec3(0, -1, 0)), 0.0f, 1e-6f);
+  EXPECT_EQ(s.lights[2].intensity, 10.0f);  // 6830 lux: 10 W/m^2
+}
+
+TEST(Gltf, PunctualLightsFollowAJsonMeshReferenceAndAreNotWrittenBack) {
+  const std::string gltf = test::tmp_path("lights_ref.gltf");
+  test::write_bytes(gltf, lights_gltf().gltf());
+  const Scene s = parse_scene_json(R"({"materials": [], "lights": [{"type": "point", "position": [0, 9, 0]}],
+      "meshes": [{"file": ")" + gltf + R"(", "transform": {"translate": [10, 0, 0]}}]})", "scene.json");
+  ASSERT_EQ(s.lights.size(), 4u);
+  EXPECT_EQ(s.lights[0].position, glm::vec3(0, 9, 0));
+  EXPECT_EQ(s.lights[1].position, glm::vec3(11, 2, 3));
+  const std::string json = scene_to_json(s);
+  const Scene again = parse_scene_json(json, "scene.json");
+  EXPECT_EQ(again.lights, s.lights);
+}
+
+TEST(GltfErrors, BadPunctualLights) {
+  GltfBuilder b = lights_gltf();
+  b.doc["extensions"]["KHR_lights_punctual"]["lights"][1]["spot"]["innerConeAngle"] = 0.5;
+  EXPECT_EQ(load_error(b, "l.gltf"),
+            "PATH: extensions.KHR_lights_punctual.lights[1].spot.innerConeAngle: must be in [0, outerConeAngle) "
+            "radians, got 0.5");
+  b = lights_gltf();
+  b.doc["nodes"][1]["extensions"]["KHR_lights_punctual"]["light"] = 7;
+  EXPECT_EQ(load_error(b, "l.gltf"), "PATH: nodes[1].extensions.KHR_lights_punctual.light: index 7 out of range (3 lights)");
+  b = lights_gltf();
+  b.doc["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] = -1.0;
+  EXPECT_EQ(load_error(b, "l.gltf"),
+            "PATH: extensions.KHR_lights_punctual.lights[0].intensity: must be a finite number >= 0, got -1");
+}
+
 TEST(Gltf, GlbEqualsGltf) {
   EXPECT_EQ(load(cube_gltf(), "cube.glb").meshes, load(cube_gltf(), "cube.gltf").meshes);
 }

@@ -481,10 +481,73 @@ TEST(JsonErrors, UnknownKeys) {
             "scene.json: materials[0].fuzz: unknown key (expected type, ior)");
   EXPECT_EQ(parse_error(one_sphere(R"({"center": [0, 0, 0], "radius": 1, "material": 0, "colour": 1})")),
             "scene.json: spheres[0].colour: unknown key (expected center, radius, material)");
-  EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "lights": []})"),
-            "scene.json: lights: unknown key (expected camera, sky, materials, spheres, meshes)");
+  EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "light": []})"),
+            "scene.json: light: unknown key (expected camera, sky, materials, spheres, meshes, lights)");
   EXPECT_EQ(parse_error(R"({"materials": [], "spheres": [], "spheres": []})"), "scene.json: spheres: appears twice");
   EXPECT_EQ(parse_error(R"({"materials": [], "materials": [], "spheres": []})"), "scene.json: materials: appears twice");
+}
+
+Scene with_lights() {
+  Scene s;
+  Light point;
+  point.position = {1.0f / 3.0f, 2.0f, -0.0f};
+  point.color = {1.0f, 0.9f, 0.7f};
+  point.intensity = 12.5f;
+  Light spot;
+  spot.type = LightType::Spot;
+  spot.position = {0.0f, 4.0f, 1e-7f};
+  spot.direction = glm::normalize(glm::vec3(0.1f, -1.0f, 0.2f));
+  spot.intensity = 1e6f;
+  spot.inner_cone = 12.3f;
+  spot.outer_cone = 30.0f;
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.direction = glm::normalize(glm::vec3(1.0f, -3.0f, 0.5f));
+  sun.color = {1.0f, 0.95f, 0.9f};
+  sun.intensity = 3.0f;
+  s.lights = {point, spot, sun};
+  return s;
+}
+
+TEST(Json, LightsRoundTripBitExactly) {
+  const Scene s = with_lights();
+  EXPECT_EQ(parse_scene_json(scene_to_json(s), "rt.json"), s);
+}
+
+TEST(Json, LightsTakeGltfDefaultsAndDirectionsAreNormalised) {
+  const Scene s = parse_scene_json(R"({"materials": [], "lights": [
+      {"type": "point", "position": [0, 1, 0]},
+      {"type": "spot", "position": [0, 1, 0], "direction": [0, -2, 0]},
+      {"type": "directional", "direction": [3, 0, 4]}]})", "l.json");
+  ASSERT_EQ(s.lights.size(), 3u);
+  EXPECT_EQ(s.lights[0].color, glm::vec3(1.0f));
+  EXPECT_EQ(s.lights[0].intensity, 1.0f);
+  EXPECT_EQ(s.lights[1].inner_cone, 0.0f);
+  EXPECT_EQ(s.lights[1].outer_cone, 45.0f);
+  EXPECT_EQ(s.lights[1].direction, glm::vec3(0, -1, 0));
+  EXPECT_EQ(s.lights[2].direction, glm::vec3(0.6f, 0, 0.8f));
+}
+
+TEST(JsonErrors, LightValues) {
+  const auto light = [](const std::string& l) {
+    return parse_error(R"({"materials": [], "lights": [)" + l + "]}");
+  };
+  EXPECT_EQ(light(R"({"type": "area"})"),
+            "scene.json: lights[0].type: unknown light type \"area\" (expected point, spot, directional)");
+  EXPECT_EQ(light(R"({"type": "point"})"), "scene.json: lights[0].position: missing required field");
+  EXPECT_EQ(light(R"({"type": "point", "position": [0, 0, 0], "direction": [0, 1, 0]})"),
+            "scene.json: lights[0].direction: unknown key (expected type, position, color, intensity)");
+  EXPECT_EQ(light(R"({"type": "directional", "direction": [0, 0, 0]})"),
+            "scene.json: lights[0].direction: must be a non-zero vector, got [0,0,0]");
+  EXPECT_EQ(light(R"({"type": "point", "position": [0, 0, 0], "intensity": -1})"),
+            "scene.json: lights[0].intensity: must be a finite number >= 0, got -1");
+  EXPECT_EQ(light(R"({"type": "point", "position": [0, 0, 0], "color": [1, -1, 1]})"),
+            "scene.json: lights[0].color: must be 3 finite numbers >= 0, got [1, -1, 1]");
+  EXPECT_EQ(light(R"({"type": "spot", "position": [0, 0, 0], "direction": [0, -1, 0], "outer_cone": 91})"),
+            "scene.json: lights[0].outer_cone: must be a number in (0, 90] degrees, got 91");
+  EXPECT_EQ(light(R"({"type": "spot", "position": [0, 0, 0], "direction": [0, -1, 0], "inner_cone": 30, "outer_cone": 30})"),
+            "scene.json: lights[0].inner_cone: must be a number in [0, outer_cone) degrees, got 30");
+  EXPECT_EQ(parse_error(R"({"materials": [], "lights": {}})"), "scene.json: lights: expected an array, got {}");
 }
 
 TEST(JsonErrors, SyntaxErrorsGiveLineAndColumn) {

@@ -1,0 +1,195 @@
+// Light sampling for next-event estimation (NEE): pick a light from the
+// light list by power (its alias table; render/lights.h), sample a direction
+// toward it, and the shadow ray that says whether it is seen. With BSDF
+// sampling the two strategies are combined by multiple importance sampling
+// with the power heuristic (Veach 1997, "Robust Monte Carlo Methods for
+// Light Transport Simulation", ch. 9; beta = 2): a light's contribution
+// found by NEE is weighted by pl^2 / (pl^2 + pb^2), the same light reached by
+// a BSDF-sampled ray by pb^2 / (pl^2 + pb^2), with pl the light strategy's
+// and pb the BSDF's solid-angle density of the direction. Delta lights
+// (point, spot, directional) are reached by NEE only: weight 1.
+// The includer declares `scene`, `lights`, `sphere_lights`, `spheres`,
+// `sphere_materials`, the specialization constant HAS_PUNCTUAL, and includes
+// accel/closest_hit.glsl before this file.
+#ifndef OCTRACE_LIGHTS_GLSL
+#define OCTRACE_LIGHTS_GLSL
+
+#include "shading/materials.glsl"
+#include "shading/pbr.glsl"
+#include "shared/rng.h"
+
+// The power heuristic's weight of a strategy of density a against one of
+// density b, written as 1 / (1 + (b/a)^2) so that neither square overflows;
+// 0 where a is 0.
+float power_heuristic(float a, float b) {
+  if (!(a > 0.0)) return 0.0;
+  float r = b / a;
+  return 1.0 / (1.0 + r * r);
+}
+
+// sin^2 of the cone's half-angle below which the cone is sampled in the
+// small-angle form (1.5 degrees; pbrt-v4, Sphere::Sample): there 1 - cos
+// cancels in fp32.
+const float SPHERE_SMALL_CONE = 0.00068523;
+
+// 1 - cos(theta_max) of the cone that a sphere of radius r whose centre is
+// dist2 (squared) away subtends, as the sampler uses it.
+float cone_one_minus_cos(float r, float dist2) {
+  float sin2_max = r * r / dist2;
+  if (sin2_max < SPHERE_SMALL_CONE) return 0.5 * sin2_max;
+  return 1.0 - sqrt(max(0.0, 1.0 - sin2_max));
+}
+
+// Samples a direction from p toward a sphere light (centre c, radius r), and
+// its solid-angle pdf (pbrt-v4, section 6.2.4, Sphere::Sample(ctx, u)):
+// from outside, uniformly in the cone of directions that see the sphere
+// (pdf 1 / (2 pi (1 - cos theta_max))), by the direction only: the shadow
+// ray finds the point. From inside or on the sphere (every direction sees
+// it) a point uniform on its area, pdf 1 / A converted to solid angle by
+// dist^2 / |cos| at the point. False when no direction comes of it (p at
+// the sampled point, or a sample seen edge-on).
+bool sample_sphere_light(vec3 p, vec3 c, float r, float u1, float u2, out vec3 dir, out float pdf) {
+  vec3 d = c - p;
+  float dist2 = dot(d, d);
+  dir = vec3(0.0, 0.0, 1.0);
+  pdf = 0.0;
+  if (dist2 <= r * r) {
+    float z = 1.0 - 2.0 * u1;
+    float phi = 2.0 * PI * u2;
+    float s = sqrt(max(0.0, 1.0 - z * z));
+    vec3 nl = vec3(s * cos(phi), s * sin(phi), z);
+    vec3 w = c + r * nl - p;
+    float l2 = dot(w, w);
+    if (!(l2 > 0.0)) return false;
+    dir = w * inversesqrt(l2);
+    float cos_l = abs(dot(nl, dir));
+    if (!(cos_l > 0.0)) return false;
+    pdf = l2 / (cos_l * 4.0 * PI * r * r);
+    return !isinf(pdf);
+  }
+  float sin2_max = r * r / dist2;
+  float cos_t, sin2_t;
+  if (sin2_max < SPHERE_SMALL_CONE) {
+    // sin^2 uniform over [0, sin^2 theta_max]: for small angles the same as
+    // cos uniform over [cos theta_max, 1], without the cancellation.
+    sin2_t = sin2_max * u1;
+    cos_t = sqrt(1.0 - sin2_t);
+  } else {
+    float cos_max = sqrt(max(0.0, 1.0 - sin2_max));
+    cos_t = (cos_max - 1.0) * u1 + 1.0;
+    sin2_t = max(0.0, 1.0 - cos_t * cos_t);
+  }
+  float sin_t = sqrt(sin2_t);
+  float phi = 2.0 * PI * u2;
+  vec3 axis = d * inversesqrt(dist2);
+  vec3 t, b;
+  pbr_basis(axis, t, b);
+  dir = normalize(sin_t * cos(phi) * t + sin_t * sin(phi) * b + cos_t * axis);
+  pdf = 1.0 / (2.0 * PI * cone_one_minus_cos(r, dist2));
+  return !isinf(pdf);
+}
+
+// The solid-angle pdf with which sample_sphere_light, from p, gives the
+// direction `dir` that meets the sphere at distance t, where its unit normal
+// is `nl`.
+float sphere_light_pdf(vec3 p, vec3 c, float r, vec3 dir, float t, vec3 nl) {
+  vec3 d = c - p;
+  float dist2 = dot(d, d);
+  if (dist2 <= r * r) {
+    float cos_l = abs(dot(nl, dir));
+    return cos_l > 0.0 ? t * t / (cos_l * 4.0 * PI * r * r) : 0.0;
+  }
+  return 1.0 / (2.0 * PI * cone_one_minus_cos(r, dist2));
+}
+
+// What a sphere light emits: its material's radiance (emissive) or emission
+// (lambertian, pbr), as a path that hits it reads it.
+real3 sphere_light_radiance(uint sphere) {
+  Material m = load_material(sphere_material_at(sphere));
+  return m.type == MAT_EMISSIVE ? m.color : m.emission;
+}
+
+// A light sample seen from a shading point.
+struct LightSample {
+  vec3 dir;      // unit, toward the light
+  float t_max;   // how far the shadow ray looks (INF: sphere lights, directional)
+  vec3 value;    // what the light brings along dir, over the sample's density: L / (pmf pdf) or I / (pmf r^2)
+  float pdf;     // pmf x solid-angle pdf, for MIS; 0 for a delta light
+  uint sphere;   // a sphere light's sphere; NO_PRIM for a punctual light
+};
+
+// Picks a light (alias table: two numbers) and samples it from p (two more):
+// four numbers from `rng` whatever happens. False when the sample brings
+// nothing (p outside a spot's cone, or no direction).
+bool sample_light(vec3 p, inout Rng rng, out LightSample ls) {
+  float u_pick = rng_next(rng), u_alias = rng_next(rng), u1 = rng_next(rng), u2 = rng_next(rng);
+  uint i = min(uint(u_pick * float(scene.light_count)), scene.light_count - 1u);
+  if (u_alias >= lights[i].alias_q) i = lights[i].alias;
+  GpuLight l = lights[i];
+  ls.dir = vec3(0.0, 0.0, 1.0);
+  ls.t_max = INF;
+  ls.value = vec3(0.0);
+  ls.pdf = 0.0;
+  ls.sphere = NO_PRIM;
+  if (l.type == LIGHT_SPHERE) {
+    float pdf;
+    if (!sample_sphere_light(p, l.position, l.radius, u1, u2, ls.dir, pdf)) return false;
+    ls.pdf = l.pmf * pdf;
+    ls.value = vec3(sphere_light_radiance(l.sphere)) / ls.pdf;
+    ls.sphere = l.sphere;
+    return true;
+  }
+  if (!HAS_PUNCTUAL) return false;
+  if (l.type == LIGHT_DIRECTIONAL) {
+    ls.dir = -l.direction;
+    ls.value = l.intensity / l.pmf;
+    return true;
+  }
+  // Point and spot: irradiance I / r^2 at normal incidence.
+  vec3 w = l.position - p;
+  float r2 = dot(w, w);
+  if (!(r2 > 0.0)) return false;
+  float r = sqrt(r2);
+  ls.dir = w / r;
+  ls.t_max = r;
+  float falloff = 1.0;
+  if (l.type == LIGHT_SPOT) {
+    // KHR_lights_punctual's spot attenuation: smoothstep-like in cos between
+    // the cones, squared (the extension's README, "Inner and Outer Cone Angles").
+    float scale = 1.0 / max(0.001, l.cos_inner - l.cos_outer);
+    float a = clamp(dot(l.direction, -ls.dir) * scale - l.cos_outer * scale, 0.0, 1.0);
+    falloff = a * a;
+    if (!(falloff > 0.0)) return false;
+  }
+  ls.value = l.intensity * (falloff / (l.pmf * r2));
+  return true;
+}
+
+// Whether the light sample is seen from the surface point p (geometric
+// normal ng, the primitive `prim` hit at distance hit_t): the shadow ray
+// leaves as a bounce would. A sphere light is seen when the first thing the
+// ray meets is its sphere, or nothing (a direction that grazes the sphere's
+// edge may miss it by rounding; nothing lies between); a punctual light
+// when nothing lies before it.
+bool light_visible(vec3 p, vec3 ng, float hit_t, uint prim, LightSample ls) {
+  bool inward = dot(ls.dir, ng) < 0.0;
+  Ray shadow = Ray(offset_ray_origin(p, inward ? -ng : ng, hit_t), ls.dir);
+  Hit h;
+  bool blocked = closest_hit_within(shadow, prim, inward, ls.t_max, h);
+  if (ls.sphere != NO_PRIM) return !blocked || (h.kind == PRIM_SPHERE && h.prim == ls.sphere);
+  return !blocked;
+}
+
+// The MIS weight of what a BSDF-sampled ray from p (with solid-angle pdf
+// bsdf_pdf) finds emitted at its hit, where light sampling from p could have
+// found it too; 1 for an emitter that is no light of the list.
+float emission_weight(vec3 p, float bsdf_pdf, Ray ray, Hit hit, Surface surf) {
+  if (!(HAS_SPHERES && (!HAS_TRIANGLES || hit.kind == PRIM_SPHERE))) return 1.0;
+  uint li = sphere_lights[hit.prim];
+  if (li == NO_LIGHT) return 1.0;
+  GpuLight l = lights[li];
+  float pl = l.pmf * sphere_light_pdf(p, l.position, l.radius, ray.dir, hit.t, surf.ng);
+  return power_heuristic(bsdf_pdf, pl);
+}
+
+#endif

@@ -1,0 +1,128 @@
+#!/usr/bin/python3
+"""What next-event estimation buys: equal-time efficiency of `--nee on`
+against `--nee off`, and what it costs where it does not help.
+
+Efficiency: for each setting, renders at a few sample counts and takes
+relative MSE x device time against a reference (NEE on, --ref-spp samples,
+another sample seed); the ratio off / on of that product is how many times
+less time NEE needs for the same error (the product is constant in spp for
+an unbiased estimator, so the ratio is read at each spp and its median
+reported). Cost: device time per sample with NEE on over off, on scenes
+where light sampling adds little.
+
+  tools/nee_efficiency.py [--octrace build/app/octrace] [--device cpu] [--out docs/results/nee_lavapipe]
+
+Writes OUT/nee.md. Default settings run in a few minutes on lavapipe.
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+
+
+def run(cmd):
+    out = subprocess.run(cmd, capture_output=True, text=True)
+    if out.returncode != 0:
+        sys.exit(f"nee_efficiency: {' '.join(cmd)} failed: {out.stderr.strip()}")
+    return out.stdout
+
+
+def render(args, scene_flags, path, spp, nee, seed, size):
+    cmd = [args.octrace, "render", "--json", "--quiet", "--device", args.device, "--size", size,
+           "--spp", str(spp), "--sample-seed", str(seed), "--nee", nee, "--out", path] + scene_flags
+    return json.loads(run(cmd))
+
+
+def rel_mse(args, test, ref):
+    return json.loads(run([args.octrace, "compare", "--json", test, ref]))["rel_mse"]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--octrace", default="build/app/octrace")
+    ap.add_argument("--device", default="auto")
+    ap.add_argument("--size", default="96x54")
+    ap.add_argument("--ref-spp", type=int, default=2048)
+    ap.add_argument("--spps", default="16,32,64")
+    ap.add_argument("--repeats", type=int, default=5, help="timed runs per setting (median)")
+    ap.add_argument("--out", default="docs/results/nee")
+    args = ap.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    tmp = os.path.join(args.out, "tmp")
+    os.makedirs(tmp, exist_ok=True)
+    here = os.path.dirname(os.path.abspath(__file__))
+    small = ["--scene", os.path.join(here, "nee", "small_light.json")]
+    spps = [int(s) for s in args.spps.split(",")]
+
+    ref = os.path.join(tmp, "ref.pfm")
+    info = render(args, small, ref, args.ref_spp, "on", 1000, args.size)
+    device = info["device"]
+    rows = []
+    for spp in spps:
+        row = {"spp": spp}
+        times = {"on": [], "off": []}
+        for _ in range(args.repeats):
+            for nee in ("on", "off"):
+                path = os.path.join(tmp, f"{nee}_{spp}.pfm")
+                times[nee].append(render(args, small, path, spp, nee, 1, args.size)["times_ms"]["render"])
+        for nee in ("on", "off"):
+            row[nee] = (statistics.median(times[nee]), rel_mse(args, os.path.join(tmp, f"{nee}_{spp}.pfm"), ref))
+        row["ratio"] = (row["off"][0] * row["off"][1]) / (row["on"][0] * row["on"][1])
+        rows.append(row)
+        print(f"spp {spp}: on {row['on']}, off {row['off']}, efficiency ratio {row['ratio']:.1f}", file=sys.stderr)
+
+    # Cost where NEE does not help: the rtiow field under the gradient sky (no
+    # light is sampled: the sky is not a light yet, so NEE compiles out), and
+    # the same field with one small emitter far above, which lights little.
+    cost = []
+    far = os.path.join(tmp, "rtiow_far_light.json")
+    run([args.octrace, "render", "--quiet", "--device", args.device, "--size", "8x8", "--spp", "1",
+         "--dump-scene", far, "--out", os.path.join(tmp, "dump.png")])
+    with open(far) as f:
+        scene = json.load(f)
+    scene["materials"].append({"type": "emissive", "radiance": [50, 50, 50]})
+    scene["spheres"].append({"center": [0, 30, 0], "radius": 0.5, "material": len(scene["materials"]) - 1})
+    with open(far, "w") as f:
+        json.dump(scene, f)
+    for name, flags in (("rtiow, gradient sky (no light to sample: the same pipeline)", []),
+                        ("rtiow + one emitter far above", ["--scene", far])):
+        # Interleaved, so that a change in the machine's load hits both alike.
+        times = {"on": [], "off": []}
+        for _ in range(args.repeats):
+            for nee in ("on", "off"):
+                r = render(args, flags, os.path.join(tmp, "cost.pfm"), 16, nee, 1, "160x90")
+                times[nee].append(r["times_ms"]["render"])
+        t = {nee: statistics.median(v) for nee, v in times.items()}
+        cost.append((name, t["on"], t["off"], t["on"] / t["off"]))
+        print(f"{name}: on {t['on']:.1f} ms, off {t['off']:.1f} ms", file=sys.stderr)
+
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+    with open(os.path.join(args.out, "nee.md"), "w") as f:
+        f.write(f"Device: {device['name']} ({device['type']}); commit {commit}; "
+                f"`tools/nee_efficiency.py --device {args.device} --size {args.size} --ref-spp {args.ref_spp} "
+                f"--spps {args.spps}`.\n\n")
+        f.write(f"Equal-time efficiency on tools/nee/small_light.json (a sphere light of radius 0.05, "
+                f"no sky), {args.size}, depth 50, against a reference with NEE on, {args.ref_spp} spp, "
+                f"sample seed 1000. Time: device time of the passes, median of {args.repeats} runs "
+                f"interleaved on/off.\n\n")
+        f.write("| spp | NEE on: ms | rel MSE | NEE off: ms | rel MSE | (MSE x time) off / on |\n")
+        f.write("|---:|---:|---:|---:|---:|---:|\n")
+        for r in rows:
+            f.write(f"| {r['spp']} | {r['on'][0]:.1f} | {r['on'][1]:.3g} | {r['off'][0]:.1f} | "
+                    f"{r['off'][1]:.3g} | {r['ratio']:.1f} |\n")
+        f.write(f"\nMedian efficiency gain: **{statistics.median(r['ratio'] for r in rows):.1f}x**.\n\n")
+        f.write(f"Cost where NEE helps little: device time of 16 spp at 160x90, median of {args.repeats} runs "
+                f"interleaved on/off.\n\n")
+        f.write("| scene | NEE on ms | NEE off ms | on / off |\n|---|---:|---:|---:|\n")
+        for name, on, off, ratio in cost:
+            f.write(f"| {name} | {on:.1f} | {off:.1f} | {ratio:.2f} |\n")
+    for name in os.listdir(tmp):
+        os.remove(os.path.join(tmp, name))
+    os.rmdir(tmp)
+    print(open(os.path.join(args.out, "nee.md")).read())
+
+
+if __name__ == "__main__":
+    main()
