@@ -1,5 +1,6 @@
 #include "render/gpu_scene.h"
 
+#include "accel/bvh.h"
 #include "accel/clip.h"
 
 #include <algorithm>
@@ -49,12 +50,14 @@ uint64_t texel_count(const Scene& scene) {
 }  // namespace
 
 // The device's view of the scene (bake_single_use_meshes applied).
-static void upload_octree_of(GpuScene& g, const VulkanContext& ctx, const Scene& scene, const OctreeParams& params) {
+// `accel` (Octree or Bvh) picks the builder; both fill the same arrays.
+static void upload_octree_of(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel,
+                             const OctreeParams& params) {
   auto start = Clock::now();
   // The top level over spheres and instances, then one octree per mesh in
   // object space, appended: their `first` fields are moved by where they land.
   const std::vector<Aabb> boxes = primitive_boxes(scene);
-  Octree octree = build_octree(boxes, params);
+  Octree octree = accel == Accel::Bvh ? build_bvh(boxes) : build_octree(boxes, params);
   OctreeStats& st = octree.stats;
   std::vector<gpu::GpuMesh> meshes = gpu_meshes(scene);
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -64,7 +67,8 @@ static void upload_octree_of(GpuScene& g, const VulkanContext& ctx, const Scene&
       const uint32_t* v = &mesh.indices[3 * size_t(t)];
       return clip_triangle(mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]], cell, part);
     };
-    const Octree mesh_tree = build_octree(mesh_triangle_boxes(mesh), params, clip);
+    const Octree mesh_tree = accel == Accel::Bvh ? build_bvh(mesh_triangle_boxes(mesh))
+                                                 : build_octree(mesh_triangle_boxes(mesh), params, clip);
     const uint32_t node_base = uint32_t(octree.nodes.size()), ref_base = uint32_t(octree.refs.size());
     for (gpu::GpuOctreeNode n : mesh_tree.nodes) {
       n.first += (n.count_or_mask & gpu::OCTREE_INTERNAL) ? node_base : ref_base;
@@ -98,7 +102,7 @@ static void upload_octree_of(GpuScene& g, const VulkanContext& ctx, const Scene&
   upload_buffer(ctx, g.meshes, meshes.data(), meshes.size() * sizeof(gpu::GpuMesh));
   g.values.big_count = octree.big_count;
   upload_buffer(ctx, g.params, &g.values, sizeof g.values);
-  g.has_octree = true;
+  g.tree = accel;
   g.upload_ms += ms_since(start);
 }
 
@@ -368,7 +372,7 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   upload_buffer(ctx, g.materials, materials.data(), materials.size() * sizeof(gpu::GpuMaterial));
   upload_buffer(ctx, g.materials_half, materials_half.data(), materials_half.size() * sizeof(gpu::GpuMaterialHalf));
   g.upload_ms = ms_since(start);
-  if (accel == Accel::Octree) upload_octree_of(g, ctx, scene, params);
+  if (accel != Accel::Brute) upload_octree_of(g, ctx, scene, accel, params);
 }
 
 Scene bake_single_use_meshes(const Scene& scene) {
@@ -437,9 +441,10 @@ Scene bake_single_use_meshes(const Scene& scene) {
   return out;
 }
 
-void upload_octree(GpuScene& g, const VulkanContext& ctx, const Scene& scene, const OctreeParams& params) {
-  if (scene.meshes.empty()) upload_octree_of(g, ctx, scene, params);
-  else upload_octree_of(g, ctx, bake_single_use_meshes(scene), params);
+void upload_octree(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel,
+                   const OctreeParams& params) {
+  if (scene.meshes.empty()) upload_octree_of(g, ctx, scene, accel, params);
+  else upload_octree_of(g, ctx, bake_single_use_meshes(scene), accel, params);
 }
 
 void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel, const OctreeParams& params) {

@@ -34,9 +34,9 @@ struct GpuScene {
   // materials, triangles, instances, textures, sky): the scene a checkpoint
   // belongs to.
   uint64_t content_hash = 0;
-  bool has_octree = false;
-  OctreeStats octree;
-  double accel_build_ms = 0;  // octree build on the CPU (wall)
+  Accel tree = Accel::Brute;  // what nodes and refs hold: Brute = placeholders, an octree or a BVH
+  OctreeStats octree;  // of the octree or the BVH in nodes and refs
+  double accel_build_ms = 0;  // octree or BVH build on the CPU (wall)
   double upload_ms = 0;       // packing, buffer creation and copies (wall)
 };
 
@@ -71,14 +71,16 @@ struct GpuTextures {
 };
 GpuTextures gpu_textures(const Scene& scene);
 
-// Packs and uploads `scene`; with Accel::Octree also builds and uploads its
-// octree. Throws InputError when an array does not fit one storage buffer of
+// Packs and uploads `scene`; with Accel::Octree or Accel::Bvh also builds and
+// uploads that structure. Throws InputError when an array does not fit one storage buffer of
 // the device (naming the array, its size and the limit).
 void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel, const OctreeParams& params);
 
-// Builds the octree over the scene's primitives and uploads it (for a scene
-// uploaded with Accel::Brute that then switches to the octree).
-void upload_octree(GpuScene& g, const VulkanContext& ctx, const Scene& scene, const OctreeParams& params);
+// Builds the octree (accel Octree) or the BVH (Bvh) over the scene's
+// primitives and uploads it into nodes and refs (for a scene uploaded with
+// another structure that then switches).
+void upload_octree(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel,
+                   const OctreeParams& params);
 
 // Throws InputError when a value of the scene does not fit the precision
 // (a radiance or emission beyond half's largest value, 65504, would be inf in fp16).

@@ -85,7 +85,9 @@ void PathTracer::State::create_pipeline() {
   // SPEC_SKY: the sky's type, or SKY_RUNTIME for the general pipeline; a
   // black sky of any type is specialised to none.
   const uint32_t sky = settings.all_effects ? gpu::SKY_RUNTIME : f.sky_black ? gpu::SKY_NONE : uint32_t(f.sky);
-  const uint32_t accel = settings.accel == Accel::Octree ? gpu::ACCEL_OCTREE : gpu::ACCEL_BRUTE;
+  const uint32_t accel = settings.accel == Accel::Octree ? gpu::ACCEL_OCTREE
+                         : settings.accel == Accel::Bvh ? gpu::ACCEL_BVH
+                                                        : gpu::ACCEL_BRUTE;
   const uint32_t* spirv = path_trace_fp32_spv;
   size_t spirv_bytes = sizeof(path_trace_fp32_spv);
   if (settings.precision == Precision::FP16) {
@@ -198,8 +200,8 @@ void PathTracer::reconfigure(const Scene& scene, Accel accel, Precision precisio
     s.settings.accel = accel;
     s.settings.precision = precision;
     s.settings.all_effects = all_effects;
-    if (accel == Accel::Octree && !s.scene.has_octree) {
-      upload_octree(s.scene, s.ctx, scene, s.settings.octree);
+    if (accel != Accel::Brute && s.scene.tree != accel) {
+      upload_octree(s.scene, s.ctx, scene, accel, s.settings.octree);
       s.timings.accel_build_ms = s.scene.accel_build_ms;
     }
     s.create_pipeline();
