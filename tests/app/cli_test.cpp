@@ -93,7 +93,7 @@ const BadInput BAD_INPUTS[] = {
     {"device_unknown", "--device banana", "--device"},
     {"device_index", "--device 99", "--device: index 99 out of range"},
     {"unknown_flag", "--frobnicate", "frobnicate"},
-    {"accel_unknown", "--accel kdtree", "--accel: expected octree or brute"},
+    {"accel_unknown", "--accel kdtree", "--accel: expected octree, bvh or brute"},
     {"precision_unknown", "--precision fp8", "--precision: expected fp32, fp16 or fp16-all"},
     {"effects_unknown", "--effects some", "--effects: expected auto or all"},
     {"first_sample_overflow", "--first-sample 4294967295 --spp 2", "--first-sample"},
