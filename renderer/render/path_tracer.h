@@ -67,7 +67,7 @@ using ProgressFn = std::function<void(uint32_t done, uint32_t total)>;
 class PathTracer {
  public:
   // Validates the settings, uploads the scene (and the octree for
-  // Accel::Octree), creates the pipeline of settings.precision and
+  // Accel::Octree, the BVH for Accel::Bvh), creates the pipeline of settings.precision and
   // all_effects, and a cleared accumulation state of width x height.
   PathTracer(const VulkanContext& ctx, const Scene& scene, const RenderSettings& settings);
   ~PathTracer();
