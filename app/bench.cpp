@@ -229,14 +229,14 @@ int run_scene_bench(const VulkanContext& ctx, const BenchOptions& o, const Rende
   }
   print_header(ctx, settings, o.repeat, "; paths/s and rays/s (every segment: camera rays and bounces) of the last run");
   std::printf("| scene | spheres | triangles | accel | precision | render ms (median) | min | max | paths/s | rays/s | "
-              "octree build ms | octree bytes/primitive |\n");
+              "build ms | bytes/primitive |\n");
   std::printf("|---|---:|---:|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const SceneRow& r : rows)
     std::printf("| %s | %llu | %llu | %s | %s | %.2f | %.2f | %.2f | %.3g | %.3g | %s | %s |\n", r.name.c_str(),
                 (unsigned long long)r.spheres, (unsigned long long)r.triangles, accel_name(r.accel),
                 precision_name(r.precision), r.median_ms, r.min_ms, r.max_ms, r.paths_per_s, r.rays_per_s,
-                r.accel == Accel::Octree ? fmt("%.1f", r.build_ms).c_str() : "",
-                r.accel == Accel::Octree ? fmt("%.1f", r.bytes_per_primitive).c_str() : "");
+                r.accel != Accel::Brute ? fmt("%.1f", r.build_ms).c_str() : "",
+                r.accel != Accel::Brute ? fmt("%.1f", r.bytes_per_primitive).c_str() : "");
   if (!o.csv.empty()) {
     std::ostringstream f;
     f << "device,software,width,height,spp,depth,repeat,scene,spheres,triangles,accel,precision,median_ms,min_ms,"
@@ -316,7 +316,7 @@ int run_bench(const BenchOptions& o) {
     }
   }
   for (Row& r : rows) {
-    if (r.accel != Accel::Octree || r.skipped) continue;
+    if (r.accel == Accel::Brute || r.skipped) continue;
     for (const Row& b : rows)
       if (b.accel == Accel::Brute && !b.skipped && b.spheres == r.spheres && b.radius == r.radius &&
           b.precision == r.precision)
@@ -325,7 +325,7 @@ int run_bench(const BenchOptions& o) {
 
   print_header(ctx, settings, o.repeat, "");
   std::printf("| spheres | radius | accel | precision | render ms (median) | min | max | speedup vs brute | "
-              "octree build ms | octree bytes/sphere |\n");
+              "build ms | bytes/sphere |\n");
   std::printf("|---:|---:|---|---|---:|---:|---:|---:|---:|---:|\n");
   for (const Row& r : rows) {
     std::printf("| %llu | %g | %s | %s | ", (unsigned long long)r.spheres, r.radius, accel_name(r.accel),
@@ -336,8 +336,8 @@ int run_bench(const BenchOptions& o) {
     }
     std::printf("%.2f | %.2f | %.2f | %s | %s | %s |\n", r.median_ms, r.min_ms, r.max_ms,
                 r.speedup ? fmt("%.1fx", *r.speedup).c_str() : "",
-                r.accel == Accel::Octree ? fmt("%.1f", r.build_ms).c_str() : "",
-                r.accel == Accel::Octree ? fmt("%.1f", r.bytes_per_sphere).c_str() : "");
+                r.accel != Accel::Brute ? fmt("%.1f", r.build_ms).c_str() : "",
+                r.accel != Accel::Brute ? fmt("%.1f", r.bytes_per_sphere).c_str() : "");
   }
 
   if (!o.csv.empty()) {

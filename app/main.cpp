@@ -134,7 +134,7 @@ struct RenderOptions {
   bool pipeline_stats = false;
 
   void add_to(CLI::App& cmd) {
-    cmd.add_option("--accel", accel, "Acceleration structure: octree | brute")->capture_default_str();
+    cmd.add_option("--accel", accel, "Acceleration structure: octree | bvh | brute")->capture_default_str();
     cmd.add_option("--precision", precision, "Shading precision: fp32 | fp16 | fp16-all (see README)")
         ->capture_default_str();
     cmd.add_option("--effects", effects,
@@ -602,6 +602,13 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       j["times_ms"]["reduce"] = gathered.reduce_ms;
       j["times_ms"]["reduce_receive"] = gathered.receive_ms;
     }
+    if (settings.accel == Accel::Bvh) {
+      const OctreeStats& o = result.octree;
+      j["bvh"] = {{"build_ms", o.build_ms}, {"nodes", o.nodes},           {"leaves", o.leaves},
+                  {"depth_reached", o.max_depth_reached},                  {"refs", o.refs},
+                  {"bytes", o.bytes},       {"refs_per_primitive", o.refs_per_primitive},
+                  {"bytes_per_primitive", o.bytes_per_primitive}};
+    }
     if (settings.accel == Accel::Octree) {
       const OctreeStats& o = result.octree;
       j["octree"] = {{"leaf_size", settings.octree.leaf_size}, {"max_depth", settings.octree.max_depth},
@@ -633,6 +640,9 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
     if (result.buffer_parts)
       std::printf("buffers   the scene's arrays split over %u buffers of at most %s (larger than one storage buffer)\n",
                   result.buffer_parts, mib_string(result.buffer_part_bytes).c_str());
+    if (settings.accel == Accel::Bvh)
+      std::printf("bvh       %u nodes, %u leaves, depth %u, %.1f bytes/primitive\n", result.octree.nodes,
+                  result.octree.leaves, result.octree.max_depth_reached, result.octree.bytes_per_primitive);
     std::printf("times     scene %.1f ms, %s build %.1f ms, upload %.1f ms, pipeline %.1f ms, render %.1f ms (device)\n",
                 scene_ms, accel_name(settings.accel), t.accel_build_ms, t.upload_ms, t.pipeline_ms,
                 t.render_device_ms);
@@ -836,7 +846,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bench_cmd->add_option("--radius", bench_radii, "Radii of the small spheres (comma-separated)")->delimiter(',')
       ->capture_default_str();
-  bench_cmd->add_option("--accel", bench_accels, "octree,brute")->delimiter(',')->capture_default_str();
+  bench_cmd->add_option("--accel", bench_accels, "Acceleration structures (comma-separated): octree, bvh, brute")->delimiter(',')->capture_default_str();
   bench_cmd->add_option("--precision", bench_precisions, "Precisions (comma-separated)")->delimiter(',')
       ->capture_default_str();
   bench_cmd->add_option("--size", bench_size, "Image size (default 1200x800 on a GPU, 400x225 on a CPU device)");

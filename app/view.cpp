@@ -382,7 +382,9 @@ void Viewer::on_key(int key, int action) {
       reconfigure_ = true;
       break;
     case GLFW_KEY_B:
-      settings_.accel = settings_.accel == Accel::Octree ? Accel::Brute : Accel::Octree;
+      settings_.accel = settings_.accel == Accel::Octree ? Accel::Bvh
+                        : settings_.accel == Accel::Bvh  ? Accel::Brute
+                                                         : Accel::Octree;
       reconfigure_ = true;
       break;
     case GLFW_KEY_E:

@@ -18,7 +18,7 @@ inline constexpr const char* kViewKeys =
     "Mouse: left drag orbits around the look-at point, right (or middle) drag pans,\n"
     "       the wheel zooms; any camera move restarts the accumulation.\n"
     "Keys:  P          next precision (fp32 / fp16 / fp16-all)\n"
-    "       B          toggle the acceleration structure (octree / brute)\n"
+    "       B          next acceleration structure (octree / bvh / brute)\n"
     "       E          toggle the effects: specialised pipeline (auto) / general (all)\n"
     "       Up / Down  bounce limit +1 / -1 (PageUp / PageDown: x2 / /2)\n"
     "       R          restart the accumulation\n"

@@ -1,5 +1,6 @@
 #include "render/gpu_scene.h"
 
+#include "accel/bvh.h"
 #include "accel/clip.h"
 
 #include <algorithm>
@@ -96,19 +97,20 @@ uint64_t texel_count(const Scene& scene) {
 
 }  // namespace
 
-// The octree of the device's view of the scene (bake_single_use_meshes
-// applied), with the meshes' roots filled in; records its statistics and
-// build time in `g`.
+// The octree or BVH (`accel`: both fill the same arrays) of the device's
+// view of the scene (bake_single_use_meshes applied), with the meshes' roots
+// filled in; records its statistics and build time in `g`.
 struct SceneOctree {
   Octree octree;
   std::vector<gpu::GpuMesh> meshes;
 };
 
-static SceneOctree build_scene_octree(GpuScene& g, const Scene& scene, const OctreeParams& params) {
+static SceneOctree build_scene_octree(GpuScene& g, const Scene& scene, Accel accel, const OctreeParams& params) {
   auto start = Clock::now();
-  // The top level over spheres and instances, then one octree per mesh in
+  // The top level over spheres and instances, then one tree per mesh in
   // object space, appended: their `first` fields are moved by where they land.
-  SceneOctree t{build_octree(primitive_boxes(scene), params), gpu_meshes(scene)};
+  const std::vector<Aabb> boxes = primitive_boxes(scene);
+  SceneOctree t{accel == Accel::Bvh ? build_bvh(boxes) : build_octree(boxes, params), gpu_meshes(scene)};
   Octree& octree = t.octree;
   OctreeStats& st = octree.stats;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -118,7 +120,8 @@ static SceneOctree build_scene_octree(GpuScene& g, const Scene& scene, const Oct
       const uint32_t* v = &mesh.indices[3 * size_t(t)];
       return clip_triangle(mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]], cell, part);
     };
-    const Octree mesh_tree = build_octree(mesh_triangle_boxes(mesh), params, clip);
+    const Octree mesh_tree = accel == Accel::Bvh ? build_bvh(mesh_triangle_boxes(mesh))
+                                                 : build_octree(mesh_triangle_boxes(mesh), params, clip);
     const uint32_t node_base = uint32_t(octree.nodes.size()), ref_base = uint32_t(octree.refs.size());
     for (gpu::GpuOctreeNode n : mesh_tree.nodes) {
       n.first += (n.count_or_mask & gpu::OCTREE_INTERNAL) ? node_base : ref_base;
@@ -151,7 +154,7 @@ static std::string octree_what(const Scene& scene, const char* array) {
          " primitives (a larger leaf size needs fewer)";
 }
 
-static void upload_scene_octree(GpuScene& g, const VulkanContext& ctx, SceneOctree&& t) {
+static void upload_scene_octree(GpuScene& g, const VulkanContext& ctx, SceneOctree&& t, Accel accel) {
   const auto start = Clock::now();
   Octree& octree = t.octree;
   upload_array(g, ctx, gpu::SPLIT_OCTREE_NODES, g.nodes, std::move(octree.nodes), "octree node buffer");
@@ -160,12 +163,13 @@ static void upload_scene_octree(GpuScene& g, const VulkanContext& ctx, SceneOctr
   g.values.big_count = octree.big_count;
   upload_buffer(ctx, g.params, &g.values, sizeof g.values);
   upload_part_table(g, ctx);
-  g.has_octree = true;
+  g.tree = accel;
   g.upload_ms += ms_since(start);
 }
 
-static void upload_octree_of(GpuScene& g, const VulkanContext& ctx, const Scene& scene, const OctreeParams& params) {
-  SceneOctree t = build_scene_octree(g, scene, params);
+static void upload_octree_of(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel,
+                             const OctreeParams& params) {
+  SceneOctree t = build_scene_octree(g, scene, accel, params);
   if (g.part_log2 == 0) {
     // Uploaded whole, the scene's pipeline reads one buffer per array.
     check_fits(max_buffer_bytes(ctx), t.octree.nodes.size() * sizeof(gpu::GpuOctreeNode), octree_what(scene, "nodes"),
@@ -173,7 +177,7 @@ static void upload_octree_of(GpuScene& g, const VulkanContext& ctx, const Scene&
     check_fits(max_buffer_bytes(ctx), t.octree.refs.size() * sizeof(uint32_t), octree_what(scene, "references"),
                " (render with the octree from the start to split the scene)");
   }
-  upload_scene_octree(g, ctx, std::move(t));
+  upload_scene_octree(g, ctx, std::move(t), accel);
 }
 
 std::vector<gpu::GpuMesh> gpu_meshes(const Scene& scene) {
@@ -431,7 +435,7 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
                       .value();
   const double pack_ms = ms_since(start);
   std::optional<SceneOctree> tree;
-  if (accel == Accel::Octree) tree = build_scene_octree(g, scene, params);
+  if (accel != Accel::Brute) tree = build_scene_octree(g, scene, accel, params);
   start = Clock::now();
 
   // The big arrays, each in one storage buffer, or the whole scene split
@@ -536,7 +540,7 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   upload_buffer(ctx, g.params, &p, sizeof p);
   upload_part_table(g, ctx);
   g.upload_ms = pack_ms + ms_since(start);
-  if (tree) upload_scene_octree(g, ctx, std::move(*tree));
+  if (tree) upload_scene_octree(g, ctx, std::move(*tree), accel);
 }
 
 Scene bake_single_use_meshes(const Scene& scene) {
@@ -606,9 +610,10 @@ Scene bake_single_use_meshes(const Scene& scene) {
   return out;
 }
 
-void upload_octree(GpuScene& g, const VulkanContext& ctx, const Scene& scene, const OctreeParams& params) {
-  if (scene.meshes.empty()) upload_octree_of(g, ctx, scene, params);
-  else upload_octree_of(g, ctx, bake_single_use_meshes(scene), params);
+void upload_octree(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel,
+                   const OctreeParams& params) {
+  if (scene.meshes.empty()) upload_octree_of(g, ctx, scene, accel, params);
+  else upload_octree_of(g, ctx, bake_single_use_meshes(scene), accel, params);
 }
 
 void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel, const OctreeParams& params,

@@ -51,9 +51,9 @@ struct GpuScene {
   // materials, triangles, instances, textures, sky, lights): the scene a checkpoint
   // belongs to.
   uint64_t content_hash = 0;
-  bool has_octree = false;
-  OctreeStats octree;
-  double accel_build_ms = 0;  // octree build on the CPU (wall)
+  Accel tree = Accel::Brute;  // what nodes and refs hold: Brute = placeholders, an octree or a BVH
+  OctreeStats octree;  // of the octree or the BVH in nodes and refs
+  double accel_build_ms = 0;  // octree or BVH build on the CPU (wall)
   double upload_ms = 0;       // packing, buffer creation and copies (wall)
 };
 
@@ -88,22 +88,25 @@ struct GpuTextures {
 };
 GpuTextures gpu_textures(const Scene& scene);
 
-// Packs and uploads `scene`; with Accel::Octree also builds and uploads its
-// octree. An array larger than one storage buffer (max_buffer_bytes) splits
-// the whole scene into parts (GpuScene::part_log2), where the device has
-// buffer device addresses. Throws InputError when the scene, with the
-// `reserved_bytes` already allocated for the render (the accumulation), needs
-// more than the device's memory (device_memory), when an array needs more
-// than MAX_PARTS parts, or, without buffer device addresses, when an array
-// does not fit one storage buffer (naming the array, its size and the limit).
+// Packs and uploads `scene`; with Accel::Octree or Accel::Bvh also builds
+// and uploads that structure. An array larger than one storage buffer
+// (max_buffer_bytes) splits the whole scene into parts (GpuScene::part_log2),
+// where the device has buffer device addresses. Throws InputError when the
+// scene, with the `reserved_bytes` already allocated for the render (the
+// accumulation), needs more than the device's memory (device_memory), when an
+// array needs more than MAX_PARTS parts, or, without buffer device addresses,
+// when an array does not fit one storage buffer (naming the array, its size
+// and the limit).
 void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel, const OctreeParams& params,
                   uint64_t reserved_bytes = 0);
 
-// Builds the octree over the scene's primitives and uploads it (for a scene
-// uploaded with Accel::Brute that then switches to the octree; a scene
-// uploaded whole whose octree would need splitting is refused: render it
-// with the octree from the start).
-void upload_octree(GpuScene& g, const VulkanContext& ctx, const Scene& scene, const OctreeParams& params);
+// Builds the octree (accel Octree) or the BVH (Bvh) over the scene's
+// primitives and uploads it into nodes and refs (for a scene uploaded with
+// another structure that then switches; a scene uploaded whole whose tree
+// would need splitting is refused: render it with that structure from the
+// start).
+void upload_octree(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel,
+                   const OctreeParams& params);
 
 // Throws InputError when a value of the scene does not fit the precision
 // (a radiance or emission beyond half's largest value, 65504, would be inf in

@@ -88,7 +88,9 @@ void PathTracer::State::create_pipeline() {
   // SPEC_SKY: the sky's type, or SKY_RUNTIME for the general pipeline; a
   // black sky of any type is specialised to none.
   const uint32_t sky = settings.all_effects ? gpu::SKY_RUNTIME : f.sky_black ? gpu::SKY_NONE : uint32_t(f.sky);
-  const uint32_t accel = settings.accel == Accel::Octree ? gpu::ACCEL_OCTREE : gpu::ACCEL_BRUTE;
+  const uint32_t accel = settings.accel == Accel::Octree ? gpu::ACCEL_OCTREE
+                         : settings.accel == Accel::Bvh ? gpu::ACCEL_BVH
+                                                        : gpu::ACCEL_BRUTE;
   // A scene split over several buffers (GpuScene::part_log2) has a pipeline
   // of its own (shaders/shared/scene_buffers.glsl), so that one in one
   // buffer per array runs the code it always has.
@@ -220,8 +222,8 @@ void PathTracer::reconfigure(const Scene& scene, Accel accel, Precision precisio
     s.settings.accel = accel;
     s.settings.precision = precision;
     s.settings.all_effects = all_effects;
-    if (accel == Accel::Octree && !s.scene.has_octree) {
-      upload_octree(s.scene, s.ctx, scene, s.settings.octree);
+    if (accel != Accel::Brute && s.scene.tree != accel) {
+      upload_octree(s.scene, s.ctx, scene, accel, s.settings.octree);
       s.timings.accel_build_ms = s.scene.accel_build_ms;
     }
     s.create_pipeline();

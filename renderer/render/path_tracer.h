@@ -33,7 +33,7 @@ struct PassSettings {
 PassSettings pass_settings(const Scene& scene, const RenderSettings& settings);
 
 struct RenderTimings {
-  double accel_build_ms = 0;   // octree build on the CPU (wall)
+  double accel_build_ms = 0;   // octree or BVH build on the CPU (wall)
   double upload_ms = 0;        // buffer creation and scene upload (wall)
   double pipeline_ms = 0;      // compute pipeline creation (wall)
   double render_device_ms = 0; // path-tracing passes, timestamp queries (device)
@@ -50,7 +50,7 @@ struct RenderResult {
   uint64_t nonfinite_samples = 0; // NaN/Inf samples rejected (0 for a clean render)
   uint64_t rays = 0;              // ray segments traced (camera rays and bounces)
   RenderTimings timings;
-  OctreeStats octree;             // zeros for Accel::Brute
+  OctreeStats octree;             // of the octree or the BVH; zeros for Accel::Brute
   SceneFeatures features;         // what the pipeline was specialised to
   // The driver's statistics of the path-tracing pipeline (ComputePipeline::statistics).
   std::vector<std::pair<std::string, std::string>> pipeline_statistics;
@@ -71,7 +71,7 @@ using ProgressFn = std::function<void(uint32_t done, uint32_t total)>;
 class PathTracer {
  public:
   // Validates the settings, uploads the scene (and the octree for
-  // Accel::Octree), creates the pipeline of settings.precision and
+  // Accel::Octree, the BVH for Accel::Bvh), creates the pipeline of settings.precision and
   // all_effects, and a cleared accumulation state of width x height.
   PathTracer(const VulkanContext& ctx, const Scene& scene, const RenderSettings& settings);
   ~PathTracer();

@@ -5,12 +5,19 @@
 
 namespace octrace {
 
-const char* accel_name(Accel a) { return a == Accel::Octree ? "octree" : "brute"; }
+const char* accel_name(Accel a) {
+  switch (a) {
+    case Accel::Octree: return "octree";
+    case Accel::Bvh: return "bvh";
+    case Accel::Brute: break;
+  }
+  return "brute";
+}
 
 Accel parse_accel(const std::string& name) {
-  for (Accel a : {Accel::Octree, Accel::Brute})
+  for (Accel a : {Accel::Octree, Accel::Bvh, Accel::Brute})
     if (name == accel_name(a)) return a;
-  throw SettingError("accel", ": expected octree or brute, got \"" + name + "\"");
+  throw SettingError("accel", ": expected octree, bvh or brute, got \"" + name + "\"");
 }
 
 const char* precision_name(Precision p) {

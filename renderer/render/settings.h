@@ -10,9 +10,9 @@
 
 namespace octrace {
 
-enum class Accel { Brute, Octree };
+enum class Accel { Brute, Octree, Bvh };
 const char* accel_name(Accel a);
-// "octree" | "brute"; throws SettingError("accel").
+// "octree" | "bvh" | "brute"; throws SettingError("accel").
 Accel parse_accel(const std::string& name);
 
 // Which quantities the shading code keeps in half (shaders/shading/precision.glsl).

@@ -38,4 +38,7 @@ bool hit_box(vec3 lo, vec3 hi, vec3 origin, vec3 inv_dir, float t_max, out float
 // entries behind: 7 * 20 + 1 entries for the deepest octree (depth 20).
 const uint STACK_SIZE = 141u;
 
+// The BVH walk's stack (accel/bvh_walk.glsl): one entry per level and the root.
+const uint BVH_STACK_SIZE = BVH_MAX_DEPTH + 1u;
+
 #endif

@@ -2,8 +2,13 @@
 // defines OCTREE_WALK_NAME (the function's name) and OCTREE_LEAF(ref) (what a
 // leaf's reference is tested with; it may use the walk's parameters), then
 // undefines them. The walk is the same at both levels; only the leaf differs.
+// With ACCEL == ACCEL_BVH the arrays hold a BVH and accel/bvh_walk.glsl walks it.
 void OCTREE_WALK_NAME(uint root_index, Ray ray, RayShear sh, uint from_prim, bool into_from, InstanceRef ir,
                       inout Hit hit) {
+  if (ACCEL == ACCEL_BVH) {
+#include "accel/bvh_walk.glsl"
+    return;
+  }
   vec3 inv_dir = safe_inverse(ray.dir);
   uint sign_mask = (floatBitsToUint(ray.dir.x) >> 31) | ((floatBitsToUint(ray.dir.y) >> 31) << 1) |
                    ((floatBitsToUint(ray.dir.z) >> 31) << 2);

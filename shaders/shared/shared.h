@@ -184,6 +184,9 @@ OCT_CONST(uint, SKY_RUNTIME, 255u);
 // Acceleration structures (specialization constant ACCEL).
 OCT_CONST(uint, ACCEL_BRUTE, 0u);
 OCT_CONST(uint, ACCEL_OCTREE, 1u);
+OCT_CONST(uint, ACCEL_BVH, 2u);  // the octree's arrays hold a BVH (renderer/accel/bvh.h)
+// The BVH's depth limit: its shader walk's stack holds BVH_MAX_DEPTH + 1 entries.
+OCT_CONST(uint, BVH_MAX_DEPTH, 48u);
 
 // Kinds of light (GpuLight.type).
 OCT_CONST(uint, LIGHT_SPHERE, 0u);       // an emissive sphere, sampled by solid angle

@@ -1,6 +1,6 @@
-// Octree and brute force find the same closest hit, so with the same random
-// numbers they render the same image. Both run the same intersect_sphere on
-// the same spheres and keep the nearest; the octree only changes which
+// Octree, BVH and brute force find the same closest hit, so with the same
+// random numbers they render the same image. All run the same intersect_sphere
+// on the same spheres and keep the nearest; a tree only changes which
 // spheres are tested and in which order. Exact ties (two spheres at the same
 // t: coincident spheres, the wedge where a small sphere touches the ground)
 // go to the lower sphere index in both (test_sphere in scene_hit.glsl).
@@ -92,6 +92,19 @@ Scene meshes_and_spheres() {
   return s;
 }
 
+// Nothing but the sky; one sphere alone (a tree of one leaf).
+Scene empty() {
+  Scene s = test::furnace_scene();
+  s.sky.type = SkyType::Gradient;
+  return s;
+}
+Scene one_sphere() {
+  Scene s = empty();
+  s.materials = {{MaterialType::Metal, {0.9f, 0.8f, 0.7f}, 0.2f}};
+  s.spheres.push_back({{0.2f, -0.1f, 0.0f}, 1.5f, 0});
+  return s;
+}
+
 // Only triangles, the same mesh placed many times (a mirrored one too).
 Scene only_triangles() {
   Scene s = test::furnace_scene();
@@ -127,6 +140,8 @@ const AccelCase CASES[] = {
     {"camera_inside_root", camera_inside},
     {"camera_outside_root", [] { return rtiow(488, 0.2f, 1); }},
     {"axis_aligned_rays", axis_aligned},
+    {"empty", empty},
+    {"one_sphere", one_sphere},
 };
 
 class AccelTest : public test::VulkanTest, public ::testing::WithParamInterface<AccelCase> {};
@@ -144,7 +159,8 @@ std::pair<double, double> agreement(const RenderResult& a, const RenderResult& b
   return {double(same) / double(a.mean.rgb.size()), std::abs(sum_a - sum_b) / std::max(sum_b, 1e-30)};
 }
 
-TEST_P(AccelTest, OctreeImageMatchesBruteForce) {
+// Each tree against one brute-force render per depth.
+TEST_P(AccelTest, TreeImagesMatchBruteForce) {
   Scene scene = GetParam().make();
   for (uint32_t depth : {8u, 50u}) {
     RenderSettings s;
@@ -154,17 +170,20 @@ TEST_P(AccelTest, OctreeImageMatchesBruteForce) {
     s.bounce_limit = depth;
     s.accel = Accel::Brute;
     RenderResult brute = render(test::shared_context(), scene, s);
-    s.accel = Accel::Octree;
-    s.octree.leaf_size = 2;  // a deep tree: many cells, many straddling spheres
-    RenderResult octree = render(test::shared_context(), scene, s);
     ASSERT_EQ(brute.nonfinite_samples, 0u);
-    ASSERT_EQ(octree.nonfinite_samples, 0u);
-    auto [identical, mean_diff] = agreement(octree, brute);
-    if (depth <= 8) {
-      EXPECT_EQ(identical, 1.0) << "depth " << depth << ": only " << identical * 100 << "% bit-identical";
-    } else {
-      EXPECT_GE(identical, 0.98) << "depth " << depth << ": only " << identical * 100 << "% bit-identical";
-      EXPECT_LE(mean_diff, 0.01) << "depth " << depth << ": image means differ by " << mean_diff * 100 << "%";
+    for (Accel accel : {Accel::Octree, Accel::Bvh}) {
+      s.accel = accel;
+      s.octree.leaf_size = 2;  // octree: a deep tree, many cells, many straddling spheres
+      RenderResult tree = render(test::shared_context(), scene, s);
+      ASSERT_EQ(tree.nonfinite_samples, 0u);
+      auto [identical, mean_diff] = agreement(tree, brute);
+      const std::string what = std::string(accel_name(accel)) + ", depth " + std::to_string(depth);
+      if (depth <= 8) {
+        EXPECT_EQ(identical, 1.0) << what << ": only " << identical * 100 << "% bit-identical";
+      } else {
+        EXPECT_GE(identical, 0.98) << what << ": only " << identical * 100 << "% bit-identical";
+        EXPECT_LE(mean_diff, 0.01) << what << ": image means differ by " << mean_diff * 100 << "%";
+      }
     }
   }
 }

@@ -93,7 +93,7 @@ const BadInput BAD_INPUTS[] = {
     {"device_unknown", "--device banana", "--device"},
     {"device_index", "--device 99", "--device: index 99 out of range"},
     {"unknown_flag", "--frobnicate", "frobnicate"},
-    {"accel_unknown", "--accel kdtree", "--accel: expected octree or brute"},
+    {"accel_unknown", "--accel kdtree", "--accel: expected octree, bvh or brute"},
     {"precision_unknown", "--precision fp8", "--precision: expected fp32, fp16 or fp16-all"},
     {"effects_unknown", "--effects some", "--effects: expected auto or all"},
     {"first_sample_overflow", "--first-sample 4294967295 --spp 2", "--first-sample"},
@@ -167,6 +167,16 @@ TEST(Cli, JsonSummaryHasTimingsAndDevice) {
                           "\"paths_per_second\"", "\"rays_per_second\"", "\"nonfinite_samples\": 0", "\"spp\": 2",
                           "\"depth\": 50"})
     EXPECT_NE(r.output.find(key), std::string::npos) << key << " missing in " << r.output;
+}
+
+// With --accel bvh the summary carries the BVH's statistics (10 spheres, 3
+// big ones and the ground: one reference per primitive).
+TEST(Cli, JsonSummaryHasBvhStats) {
+  RunResult r = run_octrace("render --size 16x8 --spp 1 --spheres 10 --accel bvh --json --out " + tmp("bvh.png"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* key : {"\"bvh\"", "\"nodes\"", "\"bytes_per_primitive\"", "\"refs\": 14", "\"accel\": \"bvh\""})
+    EXPECT_NE(r.output.find(key), std::string::npos) << key << " missing in " << r.output;
+  EXPECT_EQ(r.output.find("\"octree\""), std::string::npos) << r.output;
 }
 
 // glTF scenes: bad files, and the flags that only glTF scenes take.
@@ -266,9 +276,10 @@ TEST(Cli, BenchTimesSceneFiles) {
   const std::string quad = octrace::test::quad_gltf().write(tmp("gltf/bench_quad.glb"));
   const std::string json = write_file("bench_scene.json", VALID_SCENE);
   RunResult r = run_octrace("bench --device cpu --scene " + quad + "," + json +
-                            " --accel octree,brute --size 16x8 --spp 1 --repeat 1 --quiet");
+                            " --accel octree,bvh,brute --size 16x8 --spp 1 --repeat 1 --quiet");
   ASSERT_EQ(r.code, 0) << r.output;
   for (const char* row : {"| bench_quad.glb | 0 | 2 | octree | fp32 |", "| bench_quad.glb | 0 | 2 | brute | fp32 |",
+                          "| bench_quad.glb | 0 | 2 | bvh | fp32 |",
                           "bench_scene.json | 1 | 0 | brute | fp32 |", "rays/s"})
     EXPECT_NE(r.output.find(row), std::string::npos) << row << " missing in " << r.output;
 }

@@ -155,12 +155,12 @@ TEST_F(RenderTest, ResizeAndReconfigureMatchAFreshTracer) {
   s.width = 32;
   s.height = 24;
   s.spp = 2;
-  s.accel = Accel::Brute;  // the octree is built when asked for
+  s.accel = Accel::Brute;  // the octree (the BVH) is built when asked for, and again when switched back
   PathTracer tracer(ctx, scene, s);
   tracer.run_passes(pass_settings(scene, s), 0, 2);
   for (const auto& [accel, precision, all] :
        {std::tuple{Accel::Brute, Precision::FP16, true}, std::tuple{Accel::Octree, Precision::FP16All, false},
-        std::tuple{Accel::Octree, Precision::FP32, true}}) {
+        std::tuple{Accel::Bvh, Precision::FP32, false}, std::tuple{Accel::Octree, Precision::FP32, true}}) {
     RenderSettings want = s;
     want.width = 40;
     want.height = 20;

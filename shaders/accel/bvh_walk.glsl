@@ -1,0 +1,52 @@
+// The BVH walk (renderer/accel/bvh.h has the encoding): the body of the
+// walk for ACCEL == ACCEL_BVH, included at the top of accel/octree_walk.glsl
+// inside `if (ACCEL == ACCEL_BVH) { ... return; }`, so that both levels (top
+// and meshes) take it with the same parameters and OCTREE_LEAF(ref); a
+// pipeline specialised to one structure compiles only its walk.
+//
+// Stack-based, front to back: of an internal node's two children, those
+// whose box the ray meets before the nearest hit are pushed, the farther
+// first, so the nearer (by entry distance) is popped next. A popped node
+// whose box starts beyond the nearest hit found since it was pushed is
+// skipped (the early exit), with the same widening as the octree's.
+// Stack bound: each level leaves at most one entry behind (the farther
+// child), so a tree of depth BVH_MAX_DEPTH (shared.h) needs BVH_MAX_DEPTH + 1.
+vec3 bvh_inv_dir = safe_inverse(ray.dir);
+uint bvh_node[BVH_STACK_SIZE];
+float bvh_entry[BVH_STACK_SIZE];  // where the ray enters the node's box
+uint bvh_sp = 0;
+float bvh_t;
+GpuOctreeNode bvh_root = node_at(root_index);
+if (hit_box(bvh_root.lo, bvh_root.hi, ray.origin, bvh_inv_dir, hit.t, bvh_t)) {
+  bvh_node[0] = root_index;
+  bvh_entry[0] = bvh_t;
+  bvh_sp = 1;
+}
+while (bvh_sp > 0) {
+  --bvh_sp;
+  if (bvh_entry[bvh_sp] > hit.t * WIDEN) continue;
+  GpuOctreeNode node = node_at(bvh_node[bvh_sp]);
+  if (node.count_or_mask < OCTREE_INTERNAL) {
+    for (uint k = node.first; k < node.first + node.count_or_mask; ++k)
+      OCTREE_LEAF(ref_at(k));
+    continue;
+  }
+  GpuOctreeNode left = node_at(node.first);
+  GpuOctreeNode right = node_at(node.first + 1u);
+  float t_left, t_right;
+  bool hit_left = hit_box(left.lo, left.hi, ray.origin, bvh_inv_dir, hit.t, t_left);
+  bool hit_right = hit_box(right.lo, right.hi, ray.origin, bvh_inv_dir, hit.t, t_right);
+  if (hit_left && hit_right) {
+    // Farther first; equal entries keep the left child nearer.
+    bool right_first = t_right < t_left;
+    bvh_node[bvh_sp] = right_first ? node.first : node.first + 1u;
+    bvh_entry[bvh_sp] = right_first ? t_left : t_right;
+    bvh_node[bvh_sp + 1u] = right_first ? node.first + 1u : node.first;
+    bvh_entry[bvh_sp + 1u] = right_first ? t_right : t_left;
+    bvh_sp += 2u;
+  } else if (hit_left || hit_right) {
+    bvh_node[bvh_sp] = hit_left ? node.first : node.first + 1u;
+    bvh_entry[bvh_sp] = hit_left ? t_left : t_right;
+    ++bvh_sp;
+  }
+}
