@@ -139,10 +139,14 @@ vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments)
     // Light sampling at the last vertex could have found what this hit
     // emits: its MIS weight (1 for a camera ray, after glass or metal, or
     // for an emitter that is no light of the list).
+    // emit_w multiplies the emission before the throughput does: an emission
+    // times 1 is the emission, so the pipelines with and without light
+    // sampling contract throughput * emission + radiance alike (auto == all
+    // on drivers that fuse multiply-adds, as NVIDIA's does).
     float emit_w = 1.0;
     if (NEE && prev_nee) emit_w = emission_weight(prev_p, prev_pdf, ray, hit, surf);
     if (HAS_EMISSIVE && m.type == MAT_EMISSIVE) {
-      radiance += throughput * m.color * real(emit_w);
+      radiance += throughput * (m.color * real(emit_w));
       break;
     }
     prev_nee = false;
@@ -157,7 +161,7 @@ vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments)
     if (HAS_LAMBERTIAN && m.type == MAT_LAMBERTIAN) {
       // A glTF surface emits and reflects: its emission is added here and
       // the path goes on.
-      if (HAS_SURFACE_EMISSION) radiance += throughput * surface_emission(m, surf.uv) * real(emit_w);
+      if (HAS_SURFACE_EMISSION) radiance += throughput * (surface_emission(m, surf.uv) * real(emit_w));
       real3 albedo = base_color(m, surf.uv);
       if (NEE && scene.light_count > 0u && bounce + 1u < pass.bounce_limit) {
         PbrSurface none;
@@ -190,7 +194,7 @@ vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments)
       }
       dir = safe_normalize(vec3(d), reflect(ray.dir, n));
     } else if (HAS_PBR && m.type == MAT_PBR) {
-      if (HAS_SURFACE_EMISSION) radiance += throughput * surface_emission(m, surf.uv) * real(emit_w);
+      if (HAS_SURFACE_EMISSION) radiance += throughput * (surface_emission(m, surf.uv) * real(emit_w));
       real3 weight;
       PbrSurface s;
       // No direction: the view is exactly grazing or below the shading normal.
