@@ -154,16 +154,7 @@ Octree build_bvh(std::span<const Aabb> boxes) {
     Builder(std::move(items), tree).build(0, 0, boxes.size(), 0);
   }
 
-  OctreeStats& st = tree.stats;
-  st.nodes = static_cast<uint32_t>(tree.nodes.size());
-  st.refs = tree.refs.size();
-  st.big_primitives = 0;
-  st.bytes = tree.nodes.size() * sizeof(gpu::GpuOctreeNode) + tree.refs.size() * sizeof(uint32_t);
-  if (!boxes.empty()) {
-    st.refs_per_primitive = static_cast<double>(st.refs) / static_cast<double>(boxes.size());
-    st.bytes_per_primitive = static_cast<double>(st.bytes) / static_cast<double>(boxes.size());
-  }
-  st.build_ms = ms_since(start);
+  finish_tree_stats(tree, boxes.size(), ms_since(start));
   return tree;
 }
 

@@ -415,17 +415,21 @@ Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params, con
     tree.stats.max_depth_reached = std::max(tree.stats.max_depth_reached, s.max_depth);
   }
 
+  finish_tree_stats(tree, boxes.size(), ms_since(start));
+  return tree;
+}
+
+void finish_tree_stats(Octree& tree, size_t primitives, double build_ms) {
   OctreeStats& st = tree.stats;
   st.nodes = static_cast<uint32_t>(tree.nodes.size());
   st.refs = tree.refs.size();
   st.big_primitives = tree.big_count;
   st.bytes = tree.nodes.size() * sizeof(gpu::GpuOctreeNode) + tree.refs.size() * sizeof(uint32_t);
-  if (!boxes.empty()) {
-    st.refs_per_primitive = static_cast<double>(st.refs) / static_cast<double>(boxes.size());
-    st.bytes_per_primitive = static_cast<double>(st.bytes) / static_cast<double>(boxes.size());
+  if (primitives > 0) {
+    st.refs_per_primitive = static_cast<double>(st.refs) / static_cast<double>(primitives);
+    st.bytes_per_primitive = static_cast<double>(st.bytes) / static_cast<double>(primitives);
   }
-  st.build_ms = ms_since(start);
-  return tree;
+  st.build_ms = build_ms;
 }
 
 }  // namespace octrace

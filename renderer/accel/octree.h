@@ -128,6 +128,11 @@ struct Octree {
   OctreeStats stats;
 };
 
+// Fills tree.stats' sizes from its arrays (nodes, refs, big primitives,
+// bytes, and the per-primitive figures over `primitives`) and its build
+// time: what every builder of these arrays (octree, BVH) reports.
+void finish_tree_stats(Octree& tree, size_t primitives, double build_ms);
+
 inline constexpr uint32_t kMaxBigPrimitives = 16;
 inline constexpr uint32_t kMaxOctreeDepth = 20;  // 2^-20 of the root extent is near float resolution
 
