@@ -324,25 +324,8 @@ struct Job {
     return decision;
   }
 
-  static json info_json(const CheckpointInfo& i) {
-    return {{"scene_hash", i.scene_hash}, {"width", i.width}, {"height", i.height},
-            {"sample_seed", i.sample_seed}, {"first_sample", i.first_sample}, {"bounce_limit", i.bounce_limit},
-            {"rr_depth", i.rr_depth}, {"precision", i.precision}, {"accel", i.accel}};
-  }
-  static CheckpointInfo info_of(const json& j) {
-    CheckpointInfo i;
-    if (j.is_null()) return i;
-    i.scene_hash = j.at("scene_hash");
-    i.width = j.at("width");
-    i.height = j.at("height");
-    i.sample_seed = j.at("sample_seed");
-    i.first_sample = j.at("first_sample");
-    i.bounce_limit = j.at("bounce_limit");
-    i.rr_depth = j.at("rr_depth");
-    i.precision = j.at("precision");
-    i.accel = j.at("accel");
-    return i;
-  }
+  // A rank reports its info as a checkpoint's header holds it (null: none).
+  static CheckpointInfo info_of(const json& j) { return j.is_null() ? CheckpointInfo{} : checkpoint_info_of(j); }
 };
 
 Job g_job;
@@ -510,7 +493,7 @@ bool gather(const Accumulation& acc, uint64_t nonfinite, const RankShare& share,
             Gathered& out) {
   Job& job = g_job;
   if (job.rank == 0) job.join_server();
-  json report = {{"share", share_json(share)}, {"info", Job::info_json(info)}, {"nonfinite", nonfinite}};
+  json report = {{"share", share_json(share)}, {"info", checkpoint_info_json(info)}, {"nonfinite", nonfinite}};
   std::vector<json> reports;
   const int decision = job.decide(0, "", report, &reports);
   job.phase = Phase::Final;

@@ -111,14 +111,32 @@ std::string checkpoint_mismatch(const CheckpointInfo& saved, const CheckpointInf
   return {};
 }
 
+nlohmann::json checkpoint_info_json(const CheckpointInfo& info) {
+  return {{"scene_hash", hex(info.scene_hash)}, {"width", info.width},
+          {"height", info.height},              {"sample_seed", info.sample_seed},
+          {"first_sample", info.first_sample},  {"bounce_limit", info.bounce_limit},
+          {"rr_depth", info.rr_depth},          {"precision", info.precision},
+          {"accel", info.accel},                {"samples", info.samples}};
+}
+
+CheckpointInfo checkpoint_info_of(const nlohmann::json& j) {
+  CheckpointInfo info;
+  info.scene_hash = std::stoull(j.at("scene_hash").get<std::string>(), nullptr, 16);
+  info.width = j.at("width").get<int>();
+  info.height = j.at("height").get<int>();
+  info.sample_seed = j.at("sample_seed").get<uint32_t>();
+  info.first_sample = j.at("first_sample").get<uint32_t>();
+  info.bounce_limit = j.at("bounce_limit").get<uint32_t>();
+  info.rr_depth = j.at("rr_depth").get<uint32_t>();
+  info.precision = j.at("precision").get<std::string>();
+  info.accel = j.at("accel").get<std::string>();
+  info.samples = j.at("samples").get<uint32_t>();
+  return info;
+}
+
 void write_checkpoint(const std::string& prefix, const Accumulation& acc, const CheckpointInfo& info,
                       const RenderState& state) {
-  const nlohmann::json j = {{"scene_hash", hex(info.scene_hash)}, {"width", info.width},
-                            {"height", info.height},              {"sample_seed", info.sample_seed},
-                            {"first_sample", info.first_sample},  {"bounce_limit", info.bounce_limit},
-                            {"rr_depth", info.rr_depth},          {"precision", info.precision},
-                            {"accel", info.accel},                {"samples", info.samples}};
-  std::string bytes = kAccumMagic + j.dump() + "\n";
+  std::string bytes = kAccumMagic + checkpoint_info_json(info).dump() + "\n";
   const size_t header = bytes.size(), plane = acc.sum.size() * sizeof(glm::vec4);
   bytes.resize(header + 3 * plane);
   std::memcpy(bytes.data() + header, acc.sum.data(), plane);
@@ -138,16 +156,7 @@ Accumulation read_checkpoint(const std::string& prefix, CheckpointInfo& info) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(bytes.substr(magic, eol - magic));
-    info.scene_hash = std::stoull(j.at("scene_hash").get<std::string>(), nullptr, 16);
-    info.width = j.at("width").get<int>();
-    info.height = j.at("height").get<int>();
-    info.sample_seed = j.at("sample_seed").get<uint32_t>();
-    info.first_sample = j.at("first_sample").get<uint32_t>();
-    info.bounce_limit = j.at("bounce_limit").get<uint32_t>();
-    info.rr_depth = j.at("rr_depth").get<uint32_t>();
-    info.precision = j.at("precision").get<std::string>();
-    info.accel = j.at("accel").get<std::string>();
-    info.samples = j.at("samples").get<uint32_t>();
+    info = checkpoint_info_of(j);
   } catch (const std::exception& e) {
     throw InputError(path + ": bad header: " + e.what());
   }

@@ -8,6 +8,8 @@
 
 #include <cstdint>
 #include <string>
+
+#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -55,6 +57,12 @@ struct CheckpointInfo {
   std::string accel;
   uint32_t samples = 0;  // samples per pixel the state holds (not compared)
 };
+
+// A CheckpointInfo as the JSON object of a checkpoint's header (scene_hash
+// as a hex string), and back; the reader throws nlohmann's exceptions on a
+// missing or mistyped field. Also what MPI ranks exchange (app/mpi_render).
+nlohmann::json checkpoint_info_json(const CheckpointInfo& info);
+CheckpointInfo checkpoint_info_of(const nlohmann::json& j);
 
 // The mean and count of an accumulation, as PathTracer::read_result has them.
 RenderState state_of(const Accumulation& acc);
