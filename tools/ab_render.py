@@ -1,0 +1,99 @@
+#!/usr/bin/env python3
+"""A/B timing of `octrace render` variants, alternating, in one run: the
+measurement behind the optimisation log's before/after figures.
+
+  tools/ab_render.py --octrace BIN [--rounds 5] --render "ARGS" \
+      --variant "LABEL=[ENV=VALUE ...] [-- extra render flags]" ... [--out FILE]
+
+Each variant is a label, optional environment settings and optional extra
+render flags, e.g. `--variant "base="`, `--variant "fast=OCTRACE_X=1"`,
+`--variant "bvh=-- --accel bvh"`; the setting BIN=PATH runs another binary
+for that variant (a before/after of a code change: `--variant "new=BIN=b2"`). After one warm-up process per variant,
+ROUNDS rounds run every variant once, in turn. The figure is `render --json`
+times_ms.render: the sum of the passes' timestamp queries (device time; no
+set-up, read-back or resolve). Prints, per variant, the median, min and max
+over rounds, rays/s, and the ratio of the median to the first variant's;
+with --out, also writes that table as markdown (date and device included).
+"""
+import argparse
+import datetime
+import json
+import os
+import statistics
+import subprocess
+import sys
+
+
+def parse_variant(text):
+    label, _, rest = text.partition("=")
+    if not label:
+        sys.exit(f"ab_render.py: variant '{text}' has no label (LABEL=...)")
+    env_part, _, flags = rest.partition("--")
+    env = {}
+    for item in env_part.split():
+        k, sep, v = item.partition("=")
+        if not sep:
+            sys.exit(f"ab_render.py: variant '{text}': '{item}' is not ENV=VALUE")
+        env[k] = v
+    return label, env, flags.split()
+
+
+def render(binary, args, variant):
+    label, env, flags = variant
+    env = dict(env)
+    binary = env.pop("BIN", binary)
+    cmd = [binary, "render"] + args + flags + ["--json", "-q"]
+    p = subprocess.run(cmd, capture_output=True, text=True, env={**os.environ, **env})
+    if p.returncode != 0:
+        sys.exit(f"ab_render.py: variant {label}: {' '.join(cmd)} failed with exit {p.returncode}: "
+                 f"{p.stderr.strip()[-500:]}")
+    return json.loads(p.stdout)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--octrace", required=True, help="octrace binary")
+    ap.add_argument("--render", required=True, help="render options shared by every variant (one string)")
+    ap.add_argument("--variant", action="append", required=True, help="LABEL=[ENV=VALUE ...] [-- flags]")
+    ap.add_argument("--rounds", type=int, default=5)
+    ap.add_argument("--out", help="markdown file to write the table to")
+    a = ap.parse_args()
+    if a.rounds < 1:
+        sys.exit("ab_render.py: --rounds must be at least 1")
+    variants = [parse_variant(v) for v in a.variant]
+    args = a.render.split()
+    info = {}
+    for v in variants:  # warm-up
+        info[v[0]] = render(a.octrace, args, v)
+    times = {v[0]: [] for v in variants}
+    for r in range(a.rounds):
+        for v in variants:
+            j = render(a.octrace, args, v)
+            times[v[0]].append(j["times_ms"]["render"])
+            info[v[0]] = j
+        print(f"round {r + 1}/{a.rounds}: " + ", ".join(f"{k} {t[-1]:.3f} ms" for k, t in times.items()),
+              file=sys.stderr)
+    first = statistics.median(times[variants[0][0]])
+    dev = info[variants[0][0]]["device"]
+    date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    lines = [f"{date}, {dev['name']} ({dev['driver']}); `octrace render {a.render} --json`, times_ms.render, "
+             f"median of {a.rounds} rounds after a warm-up, variants alternating", "",
+             "| variant | env | flags | median ms | min | max | rays/s | against first |",
+             "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: |"]
+    for label, env, flags in variants:
+        t = times[label]
+        med = statistics.median(t)
+        rays = info[label].get("rays", 0)
+        rps = f"{rays / med * 1e3:.3g}" if rays else ""
+        envs = " ".join(f"{k}={v}" for k, v in env.items())
+        lines.append(f"| {label} | {envs} | {' '.join(flags)} | {med:.3f} | {min(t):.3f} | {max(t):.3f} | {rps} | "
+                     f"{med / first:.3f}x |")
+    text = "\n".join(lines) + "\n"
+    print(text)
+    if a.out:
+        with open(a.out, "w") as f:
+            f.write(text)
+
+
+if __name__ == "__main__":
+    main()
