@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "core/text.h"
+#include "vk/specialize.h"
 
 namespace octrace {
 
@@ -169,9 +170,15 @@ void create_compute_pipeline(ComputePipeline& p, const VulkanContext& ctx, const
   layout_info.pPushConstantRanges = &push;
   VK_CHECK(vkCreatePipelineLayout(ctx.device, &layout_info, nullptr, &p.layout));
 
+  // On software devices the constants are applied before the driver sees the
+  // module (vk/specialize.h): lavapipe then translates only the code the
+  // pipeline runs. The driver gets no specialisation info for such a module.
+  std::vector<uint32_t> specialized;
+  if (!spec.empty() && specialize_spirv_enabled(ctx.info.software))
+    specialized = specialize_spirv(spirv, spirv_bytes, spec);
   VkShaderModuleCreateInfo module_info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  module_info.codeSize = spirv_bytes;
-  module_info.pCode = spirv;
+  module_info.codeSize = specialized.empty() ? spirv_bytes : specialized.size() * sizeof(uint32_t);
+  module_info.pCode = specialized.empty() ? spirv : specialized.data();
   VkShaderModule module = VK_NULL_HANDLE;
   VK_CHECK(vkCreateShaderModule(ctx.device, &module_info, nullptr, &module));
 
@@ -188,7 +195,7 @@ void create_compute_pipeline(ComputePipeline& p, const VulkanContext& ctx, const
   info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   info.stage.module = module;
   info.stage.pName = "main";
-  info.stage.pSpecializationInfo = spec.empty() ? nullptr : &spec_info;
+  info.stage.pSpecializationInfo = spec.empty() || !specialized.empty() ? nullptr : &spec_info;
   info.layout = p.layout;
   if (ctx.pipeline_statistics) info.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
   VkResult r = vkCreateComputePipelines(ctx.device, ctx.pipeline_cache, 1, &info, nullptr, &p.pipeline);
