@@ -24,6 +24,7 @@ import datetime
 import json
 import os
 import platform
+import resource
 import statistics
 import subprocess
 import sys
@@ -173,14 +174,23 @@ def main():
     info = json.loads(run(oct_cmd[:-2] + ["--json", "--out", str(out / "octrace_info.png")], env=env).stdout)
     mts_version = run([py, "-c", "import mitsuba; print(mitsuba.__version__)"]).stdout.strip()
 
+    # Wall time is the goal's measure; CPU time (user + sys of the child, from
+    # getrusage) is reported beside it because it moves far less when other
+    # processes share the cores.
     times = {"octrace": [], "mitsuba": []}
+    cpu = {"octrace": [], "mitsuba": []}
+    load_before = os.getloadavg()[0]
     for i in range(args.rounds + 1):
         for name, cmd in (("octrace", oct_cmd), ("mitsuba", mts_cmd)):
+            r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
             start = time.perf_counter()
             run(cmd, env=env)
             ms = (time.perf_counter() - start) * 1000
+            r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
             if i > 0:  # round 0 is the warm-up
                 times[name].append(ms)
+                cpu[name].append(1000 * (r1.ru_utime - r0.ru_utime + r1.ru_stime - r0.ru_stime))
+    load_after = os.getloadavg()[0]
     cmp = run([args.octrace, "compare", str(out / "octrace.png"), str(out / "mitsuba.png")], env=env).stdout
 
     # Two 10-spp renders of the same scene measured 25.7 dB apart; a broken
@@ -190,6 +200,7 @@ def main():
         print(f"mitsuba_compare: warning: the two images differ by more than noise (PSNR {psnr:.1f} dB): "
               "is the exported scene the same?", file=sys.stderr)
     o, m = stats(times["octrace"]), stats(times["mitsuba"])
+    oc, mc = stats(cpu["octrace"]), stats(cpu["mitsuba"])
     ratio = o[0] / m[0]
     commit = run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"]).stdout.strip()
     dirty = run(["git", "-C", str(ROOT), "status", "--porcelain", "--untracked-files=no"]).stdout.strip()
@@ -201,11 +212,13 @@ def main():
         f"{w}x{h}, {SPP} spp, depth {DEPTH}, no roulette; one warm-up, {args.rounds} alternating rounds" +
         "".join(f"; {k}={os.environ[k]}" for k in ("OCTRACE_SPECIALIZE", "LP_NUM_THREADS") if k in os.environ) + ".",
         "",
-        "| renderer | whole process, median (min–max) |",
-        "|---|---:|",
-        f"| octrace (`render --device cpu`) | {o[0]:.0f} ms ({o[1]:.0f}–{o[2]:.0f}) |",
-        f"| Mitsuba 3 scalar_rgb (`python3 -c`) | {m[0]:.0f} ms ({m[1]:.0f}–{m[2]:.0f}) |",
-        f"| **octrace / Mitsuba** | **{ratio:.2f}** |",
+        f"Load average (1 min) {load_before:.1f} before, {load_after:.1f} after, on {os.cpu_count()} CPU threads.",
+        "",
+        "| renderer | whole process wall, median (min–max) | CPU time (user + sys), median (min–max) |",
+        "|---|---:|---:|",
+        f"| octrace (`render --device cpu`) | {o[0]:.0f} ms ({o[1]:.0f}–{o[2]:.0f}) | {oc[0]:.0f} ms ({oc[1]:.0f}–{oc[2]:.0f}) |",
+        f"| Mitsuba 3 scalar_rgb (`python3 -c`) | {m[0]:.0f} ms ({m[1]:.0f}–{m[2]:.0f}) | {mc[0]:.0f} ms ({mc[1]:.0f}–{mc[2]:.0f}) |",
+        f"| **octrace / Mitsuba** | **{ratio:.2f}** | {oc[0] / mc[0]:.2f} |",
         "",
         "octrace's own timings of the last run (ms): " +
         ", ".join(f"{k} {v:.0f}" for k, v in info["times_ms"].items() if k != "render_wall"),
@@ -215,14 +228,15 @@ def main():
     ]
     text = "\n".join(table)
     print(text)
-    print("raw ms: " + json.dumps({k: [round(x, 1) for x in v] for k, v in times.items()}))
+    raw = json.dumps({"wall": {k: [round(x, 1) for x in v] for k, v in times.items()},
+                      "cpu": {k: [round(x, 1) for x in v] for k, v in cpu.items()}})
+    print("raw ms: " + raw)
     if args.markdown:
         md = Path(args.markdown)
         body = md.read_text() if md.exists() else ""
         marker = "<!-- mitsuba_compare.py writes below this line -->"
         head = body.split(marker)[0] if marker in body else body
-        md.write_text(head.rstrip("\n") + "\n\n" + marker + "\n\n" + text + "\n\nRaw (ms): `" +
-                      json.dumps({k: [round(x, 1) for x in v] for k, v in times.items()}) + "`\n")
+        md.write_text(head.rstrip("\n") + "\n\n" + marker + "\n\n" + text + "\n\nRaw (ms): `" + raw + "`\n")
 
 
 if __name__ == "__main__":
