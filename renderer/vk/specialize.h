@@ -12,8 +12,9 @@ namespace octrace {
 
 struct SpecConstant;
 
-// The module `spirv` with each constant of `spec` (SpecId -> value; a bool
-// constant is true for any non-zero value) set and frozen, then the branches,
+// The module `spirv` with each constant of `spec` (SpecId -> value, as
+// VkSpecializationInfo would give it: 32 bits, 0 or 1 for a bool) set and
+// frozen, then the branches,
 // blocks and functions that became dead removed. Only passes that delete or
 // fold constant control flow run: no arithmetic is rewritten, so the driver
 // compiles the same instructions for the code that is kept (the images are
