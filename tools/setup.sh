@@ -20,6 +20,14 @@ packages=(
   time
 )
 
+# Optional (CI does not need it): OCTRACE_SETUP_MITSUBA=1 also creates
+# .venv-mitsuba with Mitsuba 3 from PyPI for tools/peer/mitsuba_compare.py
+# (which otherwise creates it on first use). Debian's python3 needs
+# python3-venv for that.
+if [ "${OCTRACE_SETUP_MITSUBA:-0}" = 1 ]; then
+  packages+=(python3-venv)
+fi
+
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
@@ -27,8 +35,20 @@ for p in "${packages[@]}"; do
   fi
 done
 
+setup_mitsuba() {
+  if [ "${OCTRACE_SETUP_MITSUBA:-0}" = 1 ]; then
+    local root venv
+    root=$(cd "$(dirname "$0")/.." && pwd)
+    venv="$root/.venv-mitsuba"
+    [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
+    "$venv/bin/python" -m pip install -q "mitsuba==3.9.1" numpy
+    echo "setup: Mitsuba 3 in $venv"
+  fi
+}
+
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#packages[@]} packages present"
+  setup_mitsuba
   exit 0
 fi
 
@@ -39,3 +59,4 @@ export DEBIAN_FRONTEND=noninteractive
 "${sudo_cmd[@]}" apt-get update -qq
 "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 echo "setup: done"
+setup_mitsuba

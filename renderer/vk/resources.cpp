@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "core/text.h"
+#include "vk/specialize.h"
 #include "vk/spirv_contraction.h"
 
 namespace octrace {
@@ -175,9 +176,16 @@ void create_compute_pipeline(ComputePipeline& p, const VulkanContext& ctx, const
   // would not render bit-identically to `all` (optimisation log 18: 3 of 40
   // scenes differed on the H100 without this; 0 with it, for 1-4% of time).
   const std::vector<uint32_t> exact = without_contraction({spirv, spirv_bytes / 4});
+  // On software devices the constants are applied before the driver sees the
+  // module (vk/specialize.h): lavapipe then translates only the code the
+  // pipeline runs. The driver gets no specialisation info for such a module.
+  std::vector<uint32_t> specialized;
+  if (!spec.empty() && specialize_spirv_enabled(ctx.info.software))
+    specialized = specialize_spirv(exact.data(), exact.size() * sizeof(uint32_t), spec);
+  const std::vector<uint32_t>& code = specialized.empty() ? exact : specialized;
   VkShaderModuleCreateInfo module_info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  module_info.codeSize = exact.size() * 4;
-  module_info.pCode = exact.data();
+  module_info.codeSize = code.size() * sizeof(uint32_t);
+  module_info.pCode = code.data();
   VkShaderModule module = VK_NULL_HANDLE;
   VK_CHECK(vkCreateShaderModule(ctx.device, &module_info, nullptr, &module));
 
@@ -194,7 +202,7 @@ void create_compute_pipeline(ComputePipeline& p, const VulkanContext& ctx, const
   info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   info.stage.module = module;
   info.stage.pName = "main";
-  info.stage.pSpecializationInfo = spec.empty() ? nullptr : &spec_info;
+  info.stage.pSpecializationInfo = spec.empty() || !specialized.empty() ? nullptr : &spec_info;
   info.layout = p.layout;
   if (ctx.pipeline_statistics) info.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
   VkResult r = vkCreateComputePipelines(ctx.device, ctx.pipeline_cache, 1, &info, nullptr, &p.pipeline);
