@@ -506,7 +506,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       result.samples = gathered.samples;
       result.interrupted = gathered.interrupted;
       if (result.interrupted) g_signal = gathered.signal;
-      result.timings.readback_ms = gathered.reduce_ms;
+      result.timings.readback_ms = gathered.reduce.total_ms;
       for (const mpi::RankShare& r : gathered.shares) {
         result.timings.render_device_ms = std::max(result.timings.render_device_ms, r.device_ms);
         result.timings.render_wall_ms = std::max(result.timings.render_wall_ms, r.wall_ms);
@@ -599,8 +599,13 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
         per_rank.push_back({{"rank", r.rank}, {"host", r.host}, {"device", r.device}, {"samples", r.samples},
                             {"render_ms", r.device_ms}, {"render_wall_ms", r.wall_ms}, {"setup_ms", r.setup_ms}});
       j["ranks"] = per_rank;
-      j["times_ms"]["reduce"] = gathered.reduce_ms;
-      j["times_ms"]["reduce_receive"] = gathered.receive_ms;
+      const mpi::ReduceTimes& red = gathered.reduce;
+      j["times_ms"]["reduce"] = red.total_ms;
+      j["times_ms"]["reduce_alloc"] = red.alloc_ms;
+      j["times_ms"]["reduce_receive"] = red.receive_ms;
+      j["times_ms"]["reduce_merge"] = red.merge_ms;
+      j["times_ms"]["reduce_merge_wait"] = red.merge_wait_ms;
+      j["times_ms"]["reduce_send"] = red.send_ms;
     }
     if (settings.accel == Accel::Bvh) {
       const OctreeStats& o = result.octree;
@@ -655,8 +660,10 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       std::printf("rank %d    %s, %s: %u spp, %.1f ms of passes, %.1f ms set-up\n", r.rank, r.host.c_str(),
                   r.device.c_str(), r.samples, r.device_ms, r.setup_ms);
     if (!gathered.shares.empty())
-      std::printf("reduce    %.1f ms receiving and merging the ranks' states (%.1f ms of it receiving)\n",
-                  gathered.reduce_ms, gathered.receive_ms);
+      std::printf("reduce    %.1f ms receiving and merging the ranks' states: %.1f ms allocating, %.1f ms waiting "
+                  "for data, %.1f ms waiting for the merge (%.1f ms merging, overlapped); sending %.1f ms\n",
+                  gathered.reduce.total_ms, gathered.reduce.alloc_ms, gathered.reduce.receive_ms,
+                  gathered.reduce.merge_wait_ms, gathered.reduce.merge_ms, gathered.reduce.send_ms);
     for (const auto& [name, value] : result.pipeline_statistics)
       std::printf("pipeline  %s: %s\n", name.c_str(), value.c_str());
     if (result.nonfinite_samples)

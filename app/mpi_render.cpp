@@ -504,10 +504,14 @@ bool gather(const Accumulation& acc, uint64_t nonfinite, const RankShare& share,
   // merge_accumulations' (rank order).
   const size_t pixels = acc.sum.size();
   if (job.rank != 0) {
+    const auto send_start = Clock::now();
     send_state(acc, kTagState);
+    const double send_ms = ms_since(send_start);
+    MPI_Send(&send_ms, 1, MPI_DOUBLE, 0, kTagState, MPI_COMM_WORLD);
     return false;
   }
   const auto reduce_start = Clock::now();
+  ReduceTimes& times = out.reduce;
   std::vector<Accumulation> parts(size_t(job.size - 1));
   std::vector<const Accumulation*> pointers = {&acc};
   for (Accumulation& part : parts) {
@@ -517,15 +521,18 @@ bool gather(const Accumulation& acc, uint64_t nonfinite, const RankShare& share,
   }
   out.merged = Accumulation{acc.width, acc.height, std::vector<glm::vec4>(pixels), std::vector<glm::vec4>(pixels),
                             std::vector<glm::vec4>(pixels)};
+  times.alloc_ms = ms_since(reduce_start);
   // One thread is left to receive.
   const size_t workers = std::max(1u, std::thread::hardware_concurrency()) > 1
                              ? size_t(std::thread::hardware_concurrency()) - 1 : 1;
   std::vector<std::thread> merging;
+  std::vector<double> merge_ms(workers, 0.0);
   const auto join_merge = [&] {
+    const auto wait_start = Clock::now();
     for (std::thread& t : merging) t.join();
     merging.clear();
+    times.merge_wait_ms += ms_since(wait_start);
   };
-  double receive_ms = 0;
   for (size_t begin = 0; begin < pixels; begin += kSlice) {
     const size_t end = std::min(pixels, begin + kSlice);
     const auto receive_start = Clock::now();
@@ -536,17 +543,24 @@ bool gather(const Accumulation& acc, uint64_t nonfinite, const RankShare& share,
         MPI_Irecv(v->data() + begin, int((end - begin) * 4), MPI_FLOAT, r, kTagState, MPI_COMM_WORLD, &requests.back());
       }
     MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
-    receive_ms += ms_since(receive_start);
+    times.receive_ms += ms_since(receive_start);
     join_merge();  // the slice before
     const size_t step = (end - begin + workers - 1) / workers;
-    for (size_t from = begin; from < end; from += step)
-      merging.emplace_back([&, from, to = std::min(end, from + step)] {
+    for (size_t from = begin, w = 0; from < end; from += step, ++w)
+      merging.emplace_back([&, w, from, to = std::min(end, from + step)] {
+        const auto merge_start = Clock::now();
         merge_accumulation_pixels(pointers, out.merged, from, to);
+        merge_ms[w] += ms_since(merge_start);
       });
   }
   join_merge();
-  out.receive_ms = receive_ms;
-  out.reduce_ms = ms_since(reduce_start);
+  times.total_ms = ms_since(reduce_start);
+  for (int r = 1; r < job.size; ++r) {
+    double send_ms = 0;
+    MPI_Recv(&send_ms, 1, MPI_DOUBLE, r, kTagState, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    times.send_ms = std::max(times.send_ms, send_ms);
+  }
+  times.merge_ms = *std::max_element(merge_ms.begin(), merge_ms.end());
   out.nonfinite_samples = 0;
   for (const json& j : reports) {
     out.shares.push_back(share_of(j.at("share")));

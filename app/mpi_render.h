@@ -62,6 +62,17 @@ struct RankShare {
   double wall_ms = 0;     // from its first request to its last batch's end
 };
 
+// The reduce's parts (rank 0, wall ms): the parts overlap, so they do not
+// add up to the total.
+struct ReduceTimes {
+  double total_ms = 0;       // from the job's decision to the merged state
+  double alloc_ms = 0;       // allocating the buffers the states arrive in
+  double receive_ms = 0;     // waiting for data
+  double merge_wait_ms = 0;  // waiting for the merge of a slice to finish
+  double merge_ms = 0;       // merging (worker threads, overlapped with receiving)
+  double send_ms = 0;        // the slowest other rank's sending of its state
+};
+
 // What rank 0 has once the ranks have reported.
 struct Gathered {
   Accumulation merged;               // the ranks' states merged in rank order
@@ -70,8 +81,7 @@ struct Gathered {
   bool interrupted = false;          // a rank was signalled: fewer than spp
   int signal = 0;                    // which signal (SIGINT, SIGTERM)
   uint64_t nonfinite_samples = 0;
-  double receive_ms = 0;             // waiting for the other ranks' states
-  double reduce_ms = 0;              // receiving and merging them (overlapped)
+  ReduceTimes reduce;                // where the reduce's time went
 };
 
 #ifdef OCTRACE_MPI
