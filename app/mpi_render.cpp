@@ -1,6 +1,7 @@
 #include "mpi_render.h"
 
 #include <algorithm>
+#include <barrier>
 #include <chrono>
 #include <climits>
 #include <condition_variable>
@@ -30,8 +31,10 @@ constexpr int kTagRequest = 11, kTagReply = 12, kTagState = 20, kTagCheckpoint =
 // A reply {kCheckpoint, 0}: send your state (a checkpoint), then ask again.
 constexpr uint32_t kCheckpoint = UINT32_MAX;
 // The states travel in slices of kSlice pixels (3 messages of 16 bytes per
-// pixel each).
-constexpr size_t kSlice = size_t(1) << 20;
+// pixel each: 1 MiB): small enough that rank 0's reused receive buffers
+// cost little to allocate and that the merge of the last slice, which
+// nothing overlaps, is short.
+constexpr size_t kSlice = size_t(1) << 16;
 // A request's kinds: a batch (after `completed` samples of the last one), a
 // batch and stop the job (a signal reached the rank), the rank failed.
 constexpr int64_t kWant = 0, kStop = 1, kFailed = 2;
@@ -49,13 +52,21 @@ void wait_gently(MPI_Request& request) {
 
 enum class Phase { Render, Final, Done };
 
+// Every slice's messages are posted at once: OpenMPI announces each to rank
+// 0, which copies it out of this process's memory (the single-copy
+// mechanism, CMA, on one host) when it has a buffer for it, without waiting
+// for this rank to be scheduled between messages.
 void send_state(const Accumulation& acc, int tag) {
   const size_t pixels = acc.sum.size();
+  std::vector<MPI_Request> requests;
   for (size_t begin = 0; begin < pixels; begin += kSlice) {
     const int count = int(std::min(kSlice, pixels - begin) * 4);
-    for (const std::vector<glm::vec4>* v : {&acc.sum, &acc.comp, &acc.sq})
-      MPI_Send(v->data() + begin, count, MPI_FLOAT, 0, tag, MPI_COMM_WORLD);
+    for (const std::vector<glm::vec4>* v : {&acc.sum, &acc.comp, &acc.sq}) {
+      requests.emplace_back();
+      MPI_Isend(v->data() + begin, count, MPI_FLOAT, 0, tag, MPI_COMM_WORLD, &requests.back());
+    }
   }
+  for (MPI_Request& request : requests) wait_gently(request);
 }
 
 void receive_state(int source, int tag, Accumulation& acc) {
@@ -489,7 +500,7 @@ RankShare share_of(const json& j) {
 
 }  // namespace
 
-bool gather(const Accumulation& acc, uint64_t nonfinite, const RankShare& share, const CheckpointInfo& info,
+bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const CheckpointInfo& info,
             Gathered& out) {
   Job& job = g_job;
   if (job.rank == 0) job.join_server();
@@ -498,10 +509,11 @@ bool gather(const Accumulation& acc, uint64_t nonfinite, const RankShare& share,
   const int decision = job.decide(0, "", report, &reports);
   job.phase = Phase::Final;
   if (decision != 0) throw JobFailed{decision};
-  // The states travel in slices, and rank 0 merges each slice on worker
-  // threads while the next one arrives: the reduce costs about the
-  // transfer, not transfer + merge. Per pixel the merge is
-  // merge_accumulations' (rank order).
+  // The states travel in slices; rank 0 merges each slice into its own
+  // state (in place: no second state of the image's size is allocated or
+  // zero-filled) on worker threads while the next slices arrive, so the
+  // reduce costs about the transfer, not transfer + merge. Per pixel the
+  // merge is merge_accumulations' (rank order).
   const size_t pixels = acc.sum.size();
   if (job.rank != 0) {
     const auto send_start = Clock::now();
@@ -512,55 +524,86 @@ bool gather(const Accumulation& acc, uint64_t nonfinite, const RankShare& share,
   }
   const auto reduce_start = Clock::now();
   ReduceTimes& times = out.reduce;
-  std::vector<Accumulation> parts(size_t(job.size - 1));
-  std::vector<const Accumulation*> pointers = {&acc};
-  for (Accumulation& part : parts) {
-    part = Accumulation{acc.width, acc.height, std::vector<glm::vec4>(pixels), std::vector<glm::vec4>(pixels),
-                        std::vector<glm::vec4>(pixels)};
-    pointers.push_back(&part);
-  }
-  out.merged = Accumulation{acc.width, acc.height, std::vector<glm::vec4>(pixels), std::vector<glm::vec4>(pixels),
-                            std::vector<glm::vec4>(pixels)};
+  out.merged = std::move(acc);
+  Accumulation& merged = out.merged;
+  const int others = job.size - 1;
+  const size_t slices = (pixels + kSlice - 1) / kSlice;
+  // kRing slots of one slice per other rank, reused: slice s arrives in slot
+  // s % kRing while the workers merge slice s - 1 and slice s + 1 is on its
+  // way (its receives are posted).
+  constexpr size_t kRing = 3;
+  const size_t slot_pixels = std::min(kSlice, pixels);
+  std::vector<std::vector<glm::vec4>> slots(kRing * size_t(others) * 3, std::vector<glm::vec4>(slot_pixels));
+  const auto slot = [&](size_t s, int r, int array) -> glm::vec4* {
+    return slots[((s % kRing) * size_t(others) + size_t(r - 1)) * 3 + size_t(array)].data();
+  };
+  std::vector<std::vector<MPI_Request>> requests(kRing);
+  const auto post = [&](size_t s) {
+    const size_t begin = s * kSlice, count = std::min(kSlice, pixels - begin);
+    std::vector<MPI_Request>& slice_requests = requests[s % kRing];
+    slice_requests.assign(size_t(others) * 3, MPI_REQUEST_NULL);
+    for (int r = 1; r < job.size; ++r)
+      for (int array = 0; array < 3; ++array)
+        MPI_Irecv(slot(s, r, array), int(count * 4), MPI_FLOAT, r, kTagState, MPI_COMM_WORLD,
+                  &slice_requests[size_t(r - 1) * 3 + size_t(array)]);
+  };
+  // The merge of a slice is shared by this thread and workers that stay for
+  // the whole reduce (one per further core), between two barriers (start,
+  // done). This thread merges its share, then waits for the next slice's
+  // data (OpenMPI copies it in that wait) while the workers finish theirs.
+  const size_t threads = std::max(1u, std::thread::hardware_concurrency());
+  std::barrier<> start{ptrdiff_t(threads)}, done{ptrdiff_t(threads)};
+  size_t merging = SIZE_MAX;  // the slice being merged; SIZE_MAX: none left, the workers end
+  std::vector<double> merge_ms(threads, 0.0);
+  const auto merge_share = [&](size_t w) {
+    const auto merge_start = Clock::now();
+    const size_t s = merging, begin = s * kSlice, count = std::min(kSlice, pixels - begin);
+    const size_t at = begin + count * w / threads, n = begin + count * (w + 1) / threads - at;
+    const size_t in_slot = at - begin;
+    std::vector<AccumulationPixels> parts = {{merged.sum.data() + at, merged.comp.data() + at, merged.sq.data() + at}};
+    for (int r = 1; r < job.size; ++r)
+      parts.push_back({slot(s, r, 0) + in_slot, slot(s, r, 1) + in_slot, slot(s, r, 2) + in_slot});
+    merge_accumulation_pixels(parts, merged.sum.data() + at, merged.comp.data() + at, merged.sq.data() + at, n);
+    merge_ms[w] += ms_since(merge_start);
+  };
+  std::vector<std::thread> pool;
+  for (size_t w = 1; w < threads; ++w)
+    pool.emplace_back([&, w] {
+      for (;;) {
+        start.arrive_and_wait();
+        if (merging == SIZE_MAX) return;
+        merge_share(w);
+        done.arrive_and_wait();
+      }
+    });
   times.alloc_ms = ms_since(reduce_start);
-  // One thread is left to receive.
-  const size_t workers = std::max(1u, std::thread::hardware_concurrency()) > 1
-                             ? size_t(std::thread::hardware_concurrency()) - 1 : 1;
-  std::vector<std::thread> merging;
-  std::vector<double> merge_ms(workers, 0.0);
-  const auto join_merge = [&] {
+  const auto wait_for_merge = [&] {
     const auto wait_start = Clock::now();
-    for (std::thread& t : merging) t.join();
-    merging.clear();
+    done.arrive_and_wait();
     times.merge_wait_ms += ms_since(wait_start);
   };
-  for (size_t begin = 0; begin < pixels; begin += kSlice) {
-    const size_t end = std::min(pixels, begin + kSlice);
+  for (size_t s = 0; s < std::min(slices, kRing - 1); ++s) post(s);
+  for (size_t s = 0; s < slices; ++s) {
     const auto receive_start = Clock::now();
-    std::vector<MPI_Request> requests;
-    for (int r = 1; r < job.size; ++r)
-      for (std::vector<glm::vec4>* v : {&parts[size_t(r - 1)].sum, &parts[size_t(r - 1)].comp, &parts[size_t(r - 1)].sq}) {
-        requests.emplace_back();
-        MPI_Irecv(v->data() + begin, int((end - begin) * 4), MPI_FLOAT, r, kTagState, MPI_COMM_WORLD, &requests.back());
-      }
-    MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+    MPI_Waitall(int(requests[s % kRing].size()), requests[s % kRing].data(), MPI_STATUSES_IGNORE);
     times.receive_ms += ms_since(receive_start);
-    join_merge();  // the slice before
-    const size_t step = (end - begin + workers - 1) / workers;
-    for (size_t from = begin, w = 0; from < end; from += step, ++w)
-      merging.emplace_back([&, w, from, to = std::min(end, from + step)] {
-        const auto merge_start = Clock::now();
-        merge_accumulation_pixels(pointers, out.merged, from, to);
-        merge_ms[w] += ms_since(merge_start);
-      });
+    if (s > 0) wait_for_merge();  // slice s - 1: its slot is free again
+    if (s + kRing - 1 < slices) post(s + kRing - 1);
+    merging = s;
+    start.arrive_and_wait();
+    merge_share(0);
   }
-  join_merge();
+  if (slices > 0) wait_for_merge();
+  merging = SIZE_MAX;
+  start.arrive_and_wait();
+  for (std::thread& t : pool) t.join();
+  times.merge_ms = *std::max_element(merge_ms.begin(), merge_ms.end());
   times.total_ms = ms_since(reduce_start);
   for (int r = 1; r < job.size; ++r) {
     double send_ms = 0;
     MPI_Recv(&send_ms, 1, MPI_DOUBLE, r, kTagState, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
     times.send_ms = std::max(times.send_ms, send_ms);
   }
-  times.merge_ms = *std::max_element(merge_ms.begin(), merge_ms.end());
   out.nonfinite_samples = 0;
   for (const json& j : reports) {
     out.shares.push_back(share_of(j.at("share")));

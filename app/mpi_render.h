@@ -121,10 +121,11 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
 
 // Every rank, after render_share: reports success with its state, its share
 // and the settings that must agree across ranks (info.scene_hash set).
-// Rank 0 returns true with the ranks' states merged; the others false.
+// Rank 0 returns true with the ranks' states merged (into its own `acc`, in
+// place); the others false.
 // Throws JobFailed (rank 0 has printed the line) if a rank failed or renders
 // another scene or other settings than rank 0.
-bool gather(const Accumulation& acc, uint64_t nonfinite, const RankShare& share, const CheckpointInfo& info,
+bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const CheckpointInfo& info,
             Gathered& out);
 
 // From the front end's error handler: this rank failed with `code` and
