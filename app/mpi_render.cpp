@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include <mpi.h>
@@ -410,12 +411,13 @@ void clear_callbacks() {
   g_job.call_off_checkpoint_locked();
 }
 
-void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_sample, const std::atomic<bool>* stop,
-                  const std::atomic<int>* signal, RankShare& share) {
+void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_sample, double batch_ms,
+                  const std::atomic<bool>* stop, const std::atomic<int>* signal, RankShare& share) {
   Job& job = g_job;
   share.rank = job.rank;
   share.host = job.host;
   uint32_t completed = 0, batch = 1;
+  const auto ready = Clock::now();
   if (job.rank == 0) {
     {
       std::lock_guard<std::mutex> lock(job.mutex);
@@ -433,10 +435,12 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
   }
-  const auto start = Clock::now();
+  // The job starts with each rank's first answer (rank 0: when it is given).
+  std::optional<Clock::time_point> start, last_batch_end;
   for (;;) {
     const bool stopping = stop && stop->load();
     const int sig = signal ? signal->load() : 0;
+    const auto request_start = Clock::now();
     std::pair<uint32_t, uint32_t> got;
     if (job.rank == 0) {
       got = job.take(completed, batch, stopping, sig);
@@ -446,6 +450,12 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
       uint32_t reply[2];
       MPI_Recv(reply, 2, MPI_UINT32_T, 0, kTagReply, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
       got = {reply[0], reply[1]};
+    }
+    if (!start) {
+      start = Clock::now();
+      share.start_wait_ms = ms_since(ready);
+    } else {
+      share.batch_wait_ms += ms_since(request_start);
     }
     completed = 0;
     if (got.first == kCheckpoint && got.second == 0) {
@@ -465,25 +475,42 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
       break;
     }
     const auto batch_start = Clock::now();
+    if (last_batch_end)
+      share.max_gap_ms = std::max(share.max_gap_ms, ms_between(*last_batch_end, batch_start));
     share.device_ms += tracer.run_passes(pass, first_sample + got.first, got.second);
-    const double per_pass = ms_since(batch_start) / got.second;
-    // As render(): batches of about a quarter second.
-    batch = uint32_t(std::clamp(250.0 / std::max(per_pass, 1e-3), 1.0, 1024.0));
+    last_batch_end = Clock::now();
+    const double passes_ms = ms_between(batch_start, *last_batch_end);
+    share.passes_ms += passes_ms;
+    ++share.batches;
+    const double per_pass = passes_ms / got.second;
+    // As render(): batches of about a quarter second (or --batch-ms), at
+    // most 1024 samples.
+    batch = uint32_t(std::clamp((batch_ms > 0 ? batch_ms : kBatchMs) / std::max(per_pass, 1e-3), 1.0, 1024.0));
     share.samples += got.second;
     completed = got.second;
   }
-  share.wall_ms = ms_since(start);
+  share.wall_ms = ms_since(*start);
   if (job.rank == 0) {
     std::lock_guard<std::mutex> lock(job.mutex);
     if (!job.checkpoint_error.empty()) throw RuntimeError(job.checkpoint_error);
   }
 }
 
-namespace {
-
 json share_json(const RankShare& s) {
-  return {{"rank", s.rank},         {"host", s.host},           {"device", s.device},  {"samples", s.samples},
-          {"render_ms", s.device_ms}, {"setup_ms", s.setup_ms}, {"wall_ms", s.wall_ms}};
+  return {{"rank", s.rank},
+          {"host", s.host},
+          {"device", s.device},
+          {"samples", s.samples},
+          {"render_ms", s.device_ms},
+          {"setup_ms", s.setup_ms},
+          {"setup", {{"device_init", s.device_init_ms}, {"accel_build", s.accel_build_ms},
+                     {"upload", s.upload_ms}, {"pipeline", s.pipeline_ms}}},
+          {"start_wait_ms", s.start_wait_ms},
+          {"render_wall_ms", s.wall_ms},
+          {"passes_wall_ms", s.passes_ms},
+          {"batch_wait_ms", s.batch_wait_ms},
+          {"max_gap_ms", s.max_gap_ms},
+          {"batches", s.batches}};
 }
 
 RankShare share_of(const json& j) {
@@ -494,11 +521,31 @@ RankShare share_of(const json& j) {
   s.samples = j.at("samples");
   s.device_ms = j.at("render_ms");
   s.setup_ms = j.at("setup_ms");
-  s.wall_ms = j.at("wall_ms");
+  const json& setup = j.at("setup");
+  s.device_init_ms = setup.at("device_init");
+  s.accel_build_ms = setup.at("accel_build");
+  s.upload_ms = setup.at("upload");
+  s.pipeline_ms = setup.at("pipeline");
+  s.start_wait_ms = j.at("start_wait_ms");
+  s.wall_ms = j.at("render_wall_ms");
+  s.passes_ms = j.at("passes_wall_ms");
+  s.batch_wait_ms = j.at("batch_wait_ms");
+  s.max_gap_ms = j.at("max_gap_ms");
+  s.batches = j.at("batches");
   return s;
 }
 
-}  // namespace
+std::string share_line(const RankShare& s) {
+  char line[640];
+  std::snprintf(line, sizeof line,
+                "rank %d    %s, %s: %u spp in %u batches, %.1f ms of passes (device); set-up %.1f ms (device %.1f, "
+                "accel build %.1f, upload %.1f, pipeline %.1f), then %.1f ms waiting for the other ranks; of %.1f ms "
+                "rendering: %.1f in batches, %.1f waiting for rank 0's answers, the rest between (longest gap %.1f)",
+                s.rank, s.host.c_str(), s.device.c_str(), s.samples, s.batches, s.device_ms, s.setup_ms,
+                s.device_init_ms, s.accel_build_ms, s.upload_ms, s.pipeline_ms, s.start_wait_ms, s.wall_ms,
+                s.passes_ms, s.batch_wait_ms, s.max_gap_ms);
+  return line;
+}
 
 bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const CheckpointInfo& info,
             Gathered& out) {
