@@ -672,7 +672,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
 #endif
     if (!gathered.shares.empty())
       std::printf("reduce    %.1f ms receiving and merging the ranks' states: %.1f ms allocating, %.1f ms waiting "
-                  "for data, %.1f ms waiting for the merge (%.1f ms merging, overlapped); sending %.1f ms\n",
+                  "for data, %.1f ms waiting for the merging threads (%.1f ms merging, overlapped); sending %.1f ms\n",
                   gathered.reduce.total_ms, gathered.reduce.alloc_ms, gathered.reduce.receive_ms,
                   gathered.reduce.merge_wait_ms, gathered.reduce.merge_ms, gathered.reduce.send_ms);
     for (const auto& [name, value] : result.pipeline_statistics)

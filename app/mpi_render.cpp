@@ -637,7 +637,9 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
     if (s > 0) wait_for_merge();  // slice s - 1: its slot is free again
     if (s + kRing - 1 < slices) post(s + kRing - 1);
     merging = s;
+    const auto start_wait = Clock::now();
     start.arrive_and_wait();
+    times.merge_wait_ms += ms_since(start_wait);
     merge_share(0);
   }
   if (slices > 0) wait_for_merge();

@@ -78,7 +78,7 @@ struct ReduceTimes {
   double total_ms = 0;       // from the job's decision to the merged state
   double alloc_ms = 0;       // allocating the buffers the states arrive in
   double receive_ms = 0;     // waiting for data
-  double merge_wait_ms = 0;  // waiting for the merge of a slice to finish
+  double merge_wait_ms = 0;  // waiting for the merging threads (a slice's start and end)
   double merge_ms = 0;       // merging (worker threads, overlapped with receiving)
   double send_ms = 0;        // the slowest other rank's sending of its state
 };

@@ -110,7 +110,7 @@ for r in $(seq "$runs"); do
   for p in $parts; do field "$out/merge-$r.json" "$p" >> "$out/$p.txt"; done
 done
 {
-  echo "| reduce ms | allocating | waiting for data | merging (busiest thread) | waiting for the merge | rank 1 sending |"
+  echo "| reduce ms | allocating | waiting for data | merging (busiest thread) | waiting for the merging threads | rank 1 sending |"
   echo "|---:|---:|---:|---:|---:|---:|"
   line="|"
   for p in $parts; do line="$line $(median < "$out/$p.txt" | awk '{printf "%.1f", $1}') |"; done
