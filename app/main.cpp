@@ -363,7 +363,8 @@ CheckpointInfo checkpoint_info(const RenderSettings& s) {
 }
 
 int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::vector<std::string> outputs,
-               std::string state, double checkpoint_seconds, std::string resume_prefix, bool as_json, bool quiet) {
+               std::string state, double checkpoint_seconds, std::string resume_prefix, double batch_ms, bool as_json,
+               bool quiet) {
   // Everything the user typed is checked before the (possibly long) render.
   RenderSettings settings = render_opts.parsed();
 #ifdef OCTRACE_MPI
@@ -385,6 +386,10 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
 #else
   const bool under_mpi = false;
 #endif
+  if (batch_ms < 0 || std::isnan(batch_ms) || std::isinf(batch_ms))
+    throw InputError("--batch-ms: must be a number of milliseconds > 0");
+  if (batch_ms > 0 && !under_mpi)
+    throw InputError("--batch-ms: sizes the batches of an MPI job's ranks only (mpirun -np N octrace render ...)");
   const bool writes = !under_mpi || mpi_rank() == 0;
   if (writes && outputs.empty() && scene_opts.dump_scene.empty() && state.empty()) outputs.push_back("out.png");
   for (const auto& o : outputs) check_image_path(o);
@@ -490,7 +495,12 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       mpi::RankShare share;
       share.device = ctx.info.name;
       share.setup_ms = device_ms + ms_since(setup_start);
-      mpi::render_share(tracer, pass_settings(scene, settings), settings.first_sample, &g_stop, &g_signal, share);
+      share.device_init_ms = device_ms;
+      share.accel_build_ms = tracer.setup_timings().accel_build_ms;
+      share.upload_ms = tracer.setup_timings().upload_ms;
+      share.pipeline_ms = tracer.setup_timings().pipeline_ms;
+      mpi::render_share(tracer, pass_settings(scene, settings), settings.first_sample, batch_ms, &g_stop, &g_signal,
+                        share);
       CheckpointInfo info = now;
       info.scene_hash = tracer.scene_hash();
       // After the job's decision this rank's failure could no longer fail it.
@@ -506,7 +516,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       result.samples = gathered.samples;
       result.interrupted = gathered.interrupted;
       if (result.interrupted) g_signal = gathered.signal;
-      result.timings.readback_ms = gathered.reduce_ms;
+      result.timings.readback_ms = gathered.reduce.total_ms;
       for (const mpi::RankShare& r : gathered.shares) {
         result.timings.render_device_ms = std::max(result.timings.render_device_ms, r.device_ms);
         result.timings.render_wall_ms = std::max(result.timings.render_wall_ms, r.wall_ms);
@@ -593,15 +603,21 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
         per_device.push_back({{"name", d.name}, {"samples", d.samples}, {"render_ms", d.device_ms}, {"setup_ms", d.setup_ms}});
       j["devices"] = per_device;
     }
+#ifdef OCTRACE_MPI
     if (!gathered.shares.empty()) {
       json per_rank = json::array();
-      for (const mpi::RankShare& r : gathered.shares)
-        per_rank.push_back({{"rank", r.rank}, {"host", r.host}, {"device", r.device}, {"samples", r.samples},
-                            {"render_ms", r.device_ms}, {"render_wall_ms", r.wall_ms}, {"setup_ms", r.setup_ms}});
+      for (const mpi::RankShare& r : gathered.shares) per_rank.push_back(mpi::share_json(r));
       j["ranks"] = per_rank;
-      j["times_ms"]["reduce"] = gathered.reduce_ms;
-      j["times_ms"]["reduce_receive"] = gathered.receive_ms;
+      j["batch_ms"] = batch_ms > 0 ? batch_ms : mpi::kBatchMs;
+      const mpi::ReduceTimes& red = gathered.reduce;
+      j["times_ms"]["reduce"] = red.total_ms;
+      j["times_ms"]["reduce_alloc"] = red.alloc_ms;
+      j["times_ms"]["reduce_receive"] = red.receive_ms;
+      j["times_ms"]["reduce_merge"] = red.merge_ms;
+      j["times_ms"]["reduce_merge_wait"] = red.merge_wait_ms;
+      j["times_ms"]["reduce_send"] = red.send_ms;
     }
+#endif
     if (settings.accel == Accel::Bvh) {
       const OctreeStats& o = result.octree;
       j["bvh"] = {{"build_ms", o.build_ms}, {"nodes", o.nodes},           {"leaves", o.leaves},
@@ -651,12 +667,14 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
     for (size_t d = 0; d < shares.size(); ++d)
       std::printf("device %zu  %s: %u spp, %.1f ms of passes, %.1f ms set-up\n", d, shares[d].name.c_str(),
                   shares[d].samples, shares[d].device_ms, shares[d].setup_ms);
-    for (const mpi::RankShare& r : gathered.shares)
-      std::printf("rank %d    %s, %s: %u spp, %.1f ms of passes, %.1f ms set-up\n", r.rank, r.host.c_str(),
-                  r.device.c_str(), r.samples, r.device_ms, r.setup_ms);
+#ifdef OCTRACE_MPI
+    for (const mpi::RankShare& r : gathered.shares) std::printf("%s\n", mpi::share_line(r).c_str());
+#endif
     if (!gathered.shares.empty())
-      std::printf("reduce    %.1f ms receiving and merging the ranks' states (%.1f ms of it receiving)\n",
-                  gathered.reduce_ms, gathered.receive_ms);
+      std::printf("reduce    %.1f ms receiving and merging the ranks' states: %.1f ms allocating, %.1f ms waiting "
+                  "for data, %.1f ms waiting for the merging threads (%.1f ms merging, overlapped); sending %.1f ms\n",
+                  gathered.reduce.total_ms, gathered.reduce.alloc_ms, gathered.reduce.receive_ms,
+                  gathered.reduce.merge_wait_ms, gathered.reduce.merge_ms, gathered.reduce.send_ms);
     for (const auto& [name, value] : result.pipeline_statistics)
       std::printf("pipeline  %s: %s\n", name.c_str(), value.c_str());
     if (result.nonfinite_samples)
@@ -802,6 +820,11 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--resume", resume_prefix,
                          "Continue the render saved as PREFIX (--state) up to --spp, with the same sample indices");
   render_cmd->add_flag("--quiet,-q", quiet, "No progress or summary");
+  double batch_ms = 0;
+  render_cmd->add_option("--batch-ms", batch_ms,
+                         "Under MPI: each rank asks rank 0 for the samples that take about MS milliseconds at its "
+                         "speed so far (at most 1024; fewer near the end, so that the ranks finish together). "
+                         "Default 250");
   bool mpi_flag = false;  // read before parsing (mpi::launched)
   render_cmd->add_flag("--mpi", mpi_flag,
                        "Run as one rank of an MPI job; implied when started by mpirun (OMPI_COMM_WORLD_SIZE, "
@@ -887,7 +910,8 @@ int main(int argc, char** argv) {
   int code = 0;
   try {
     if (*render_cmd)
-      code = cmd_render(scene_opts, render_opts, outputs, state_out, checkpoint_seconds, resume_prefix, as_json, quiet);
+      code = cmd_render(scene_opts, render_opts, outputs, state_out, checkpoint_seconds, resume_prefix, batch_ms, as_json,
+                        quiet);
     else if (*merge_cmd) code = cmd_merge(merge_inputs, merge_outputs, merge_state, quiet);
     else if (*view_cmd) {
 #ifdef OCTRACE_WINDOW

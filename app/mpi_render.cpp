@@ -1,6 +1,7 @@
 #include "mpi_render.h"
 
 #include <algorithm>
+#include <barrier>
 #include <chrono>
 #include <climits>
 #include <condition_variable>
@@ -9,6 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include <mpi.h>
@@ -30,8 +32,10 @@ constexpr int kTagRequest = 11, kTagReply = 12, kTagState = 20, kTagCheckpoint =
 // A reply {kCheckpoint, 0}: send your state (a checkpoint), then ask again.
 constexpr uint32_t kCheckpoint = UINT32_MAX;
 // The states travel in slices of kSlice pixels (3 messages of 16 bytes per
-// pixel each).
-constexpr size_t kSlice = size_t(1) << 20;
+// pixel each: 1 MiB): small enough that rank 0's reused receive buffers
+// cost little to allocate and that the merge of the last slice, which
+// nothing overlaps, is short.
+constexpr size_t kSlice = size_t(1) << 16;
 // A request's kinds: a batch (after `completed` samples of the last one), a
 // batch and stop the job (a signal reached the rank), the rank failed.
 constexpr int64_t kWant = 0, kStop = 1, kFailed = 2;
@@ -49,13 +53,21 @@ void wait_gently(MPI_Request& request) {
 
 enum class Phase { Render, Final, Done };
 
+// Every slice's messages are posted at once: OpenMPI announces each to rank
+// 0, which copies it out of this process's memory (the single-copy
+// mechanism, CMA, on one host) when it has a buffer for it, without waiting
+// for this rank to be scheduled between messages.
 void send_state(const Accumulation& acc, int tag) {
   const size_t pixels = acc.sum.size();
+  std::vector<MPI_Request> requests;
   for (size_t begin = 0; begin < pixels; begin += kSlice) {
     const int count = int(std::min(kSlice, pixels - begin) * 4);
-    for (const std::vector<glm::vec4>* v : {&acc.sum, &acc.comp, &acc.sq})
-      MPI_Send(v->data() + begin, count, MPI_FLOAT, 0, tag, MPI_COMM_WORLD);
+    for (const std::vector<glm::vec4>* v : {&acc.sum, &acc.comp, &acc.sq}) {
+      requests.emplace_back();
+      MPI_Isend(v->data() + begin, count, MPI_FLOAT, 0, tag, MPI_COMM_WORLD, &requests.back());
+    }
   }
+  for (MPI_Request& request : requests) wait_gently(request);
 }
 
 void receive_state(int source, int tag, Accumulation& acc) {
@@ -399,12 +411,13 @@ void clear_callbacks() {
   g_job.call_off_checkpoint_locked();
 }
 
-void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_sample, const std::atomic<bool>* stop,
-                  const std::atomic<int>* signal, RankShare& share) {
+void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_sample, double batch_ms,
+                  const std::atomic<bool>* stop, const std::atomic<int>* signal, RankShare& share) {
   Job& job = g_job;
   share.rank = job.rank;
   share.host = job.host;
   uint32_t completed = 0, batch = 1;
+  const auto ready = Clock::now();
   if (job.rank == 0) {
     {
       std::lock_guard<std::mutex> lock(job.mutex);
@@ -422,10 +435,12 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
   }
-  const auto start = Clock::now();
+  // The job starts with each rank's first answer (rank 0: when it is given).
+  std::optional<Clock::time_point> start, last_batch_end;
   for (;;) {
     const bool stopping = stop && stop->load();
     const int sig = signal ? signal->load() : 0;
+    const auto request_start = Clock::now();
     std::pair<uint32_t, uint32_t> got;
     if (job.rank == 0) {
       got = job.take(completed, batch, stopping, sig);
@@ -435,6 +450,12 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
       uint32_t reply[2];
       MPI_Recv(reply, 2, MPI_UINT32_T, 0, kTagReply, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
       got = {reply[0], reply[1]};
+    }
+    if (!start) {
+      start = Clock::now();
+      share.start_wait_ms = ms_since(ready);
+    } else {
+      share.batch_wait_ms += ms_since(request_start);
     }
     completed = 0;
     if (got.first == kCheckpoint && got.second == 0) {
@@ -454,25 +475,42 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
       break;
     }
     const auto batch_start = Clock::now();
+    if (last_batch_end)
+      share.max_gap_ms = std::max(share.max_gap_ms, ms_between(*last_batch_end, batch_start));
     share.device_ms += tracer.run_passes(pass, first_sample + got.first, got.second);
-    const double per_pass = ms_since(batch_start) / got.second;
-    // As render(): batches of about a quarter second.
-    batch = uint32_t(std::clamp(250.0 / std::max(per_pass, 1e-3), 1.0, 1024.0));
+    last_batch_end = Clock::now();
+    const double passes_ms = ms_between(batch_start, *last_batch_end);
+    share.passes_ms += passes_ms;
+    ++share.batches;
+    const double per_pass = passes_ms / got.second;
+    // As render(): batches of about a quarter second (or --batch-ms), at
+    // most 1024 samples.
+    batch = uint32_t(std::clamp((batch_ms > 0 ? batch_ms : kBatchMs) / std::max(per_pass, 1e-3), 1.0, 1024.0));
     share.samples += got.second;
     completed = got.second;
   }
-  share.wall_ms = ms_since(start);
+  share.wall_ms = ms_since(*start);
   if (job.rank == 0) {
     std::lock_guard<std::mutex> lock(job.mutex);
     if (!job.checkpoint_error.empty()) throw RuntimeError(job.checkpoint_error);
   }
 }
 
-namespace {
-
 json share_json(const RankShare& s) {
-  return {{"rank", s.rank},         {"host", s.host},           {"device", s.device},  {"samples", s.samples},
-          {"render_ms", s.device_ms}, {"setup_ms", s.setup_ms}, {"wall_ms", s.wall_ms}};
+  return {{"rank", s.rank},
+          {"host", s.host},
+          {"device", s.device},
+          {"samples", s.samples},
+          {"render_ms", s.device_ms},
+          {"setup_ms", s.setup_ms},
+          {"setup", {{"device_init", s.device_init_ms}, {"accel_build", s.accel_build_ms},
+                     {"upload", s.upload_ms}, {"pipeline", s.pipeline_ms}}},
+          {"start_wait_ms", s.start_wait_ms},
+          {"render_wall_ms", s.wall_ms},
+          {"passes_wall_ms", s.passes_ms},
+          {"batch_wait_ms", s.batch_wait_ms},
+          {"max_gap_ms", s.max_gap_ms},
+          {"batches", s.batches}};
 }
 
 RankShare share_of(const json& j) {
@@ -483,13 +521,33 @@ RankShare share_of(const json& j) {
   s.samples = j.at("samples");
   s.device_ms = j.at("render_ms");
   s.setup_ms = j.at("setup_ms");
-  s.wall_ms = j.at("wall_ms");
+  const json& setup = j.at("setup");
+  s.device_init_ms = setup.at("device_init");
+  s.accel_build_ms = setup.at("accel_build");
+  s.upload_ms = setup.at("upload");
+  s.pipeline_ms = setup.at("pipeline");
+  s.start_wait_ms = j.at("start_wait_ms");
+  s.wall_ms = j.at("render_wall_ms");
+  s.passes_ms = j.at("passes_wall_ms");
+  s.batch_wait_ms = j.at("batch_wait_ms");
+  s.max_gap_ms = j.at("max_gap_ms");
+  s.batches = j.at("batches");
   return s;
 }
 
-}  // namespace
+std::string share_line(const RankShare& s) {
+  char line[640];
+  std::snprintf(line, sizeof line,
+                "rank %d    %s, %s: %u spp in %u batches, %.1f ms of passes (device); set-up %.1f ms (device %.1f, "
+                "accel build %.1f, upload %.1f, pipeline %.1f), then %.1f ms waiting for the other ranks; of %.1f ms "
+                "rendering: %.1f in batches, %.1f waiting for rank 0's answers, the rest between (longest gap %.1f)",
+                s.rank, s.host.c_str(), s.device.c_str(), s.samples, s.batches, s.device_ms, s.setup_ms,
+                s.device_init_ms, s.accel_build_ms, s.upload_ms, s.pipeline_ms, s.start_wait_ms, s.wall_ms,
+                s.passes_ms, s.batch_wait_ms, s.max_gap_ms);
+  return line;
+}
 
-bool gather(const Accumulation& acc, uint64_t nonfinite, const RankShare& share, const CheckpointInfo& info,
+bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const CheckpointInfo& info,
             Gathered& out) {
   Job& job = g_job;
   if (job.rank == 0) job.join_server();
@@ -498,55 +556,103 @@ bool gather(const Accumulation& acc, uint64_t nonfinite, const RankShare& share,
   const int decision = job.decide(0, "", report, &reports);
   job.phase = Phase::Final;
   if (decision != 0) throw JobFailed{decision};
-  // The states travel in slices, and rank 0 merges each slice on worker
-  // threads while the next one arrives: the reduce costs about the
-  // transfer, not transfer + merge. Per pixel the merge is
-  // merge_accumulations' (rank order).
+  // The states travel in slices; rank 0 merges each slice into its own
+  // state (in place: no second state of the image's size is allocated or
+  // zero-filled) on worker threads while the next slices arrive, so the
+  // reduce costs about the transfer, not transfer + merge. Per pixel the
+  // merge is merge_accumulations' (rank order).
   const size_t pixels = acc.sum.size();
   if (job.rank != 0) {
+    const auto send_start = Clock::now();
     send_state(acc, kTagState);
+    const double send_ms = ms_since(send_start);
+    MPI_Send(&send_ms, 1, MPI_DOUBLE, 0, kTagState, MPI_COMM_WORLD);
     return false;
   }
   const auto reduce_start = Clock::now();
-  std::vector<Accumulation> parts(size_t(job.size - 1));
-  std::vector<const Accumulation*> pointers = {&acc};
-  for (Accumulation& part : parts) {
-    part = Accumulation{acc.width, acc.height, std::vector<glm::vec4>(pixels), std::vector<glm::vec4>(pixels),
-                        std::vector<glm::vec4>(pixels)};
-    pointers.push_back(&part);
-  }
-  out.merged = Accumulation{acc.width, acc.height, std::vector<glm::vec4>(pixels), std::vector<glm::vec4>(pixels),
-                            std::vector<glm::vec4>(pixels)};
-  // One thread is left to receive.
-  const size_t workers = std::max(1u, std::thread::hardware_concurrency()) > 1
-                             ? size_t(std::thread::hardware_concurrency()) - 1 : 1;
-  std::vector<std::thread> merging;
-  const auto join_merge = [&] {
-    for (std::thread& t : merging) t.join();
-    merging.clear();
+  ReduceTimes& times = out.reduce;
+  out.merged = std::move(acc);
+  Accumulation& merged = out.merged;
+  const int others = job.size - 1;
+  const size_t slices = (pixels + kSlice - 1) / kSlice;
+  // kRing slots of one slice per other rank, reused: slice s arrives in slot
+  // s % kRing while the workers merge slice s - 1 and slice s + 1 is on its
+  // way (its receives are posted).
+  constexpr size_t kRing = 3;
+  const size_t slot_pixels = std::min(kSlice, pixels);
+  std::vector<std::vector<glm::vec4>> slots(kRing * size_t(others) * 3, std::vector<glm::vec4>(slot_pixels));
+  const auto slot = [&](size_t s, int r, int array) -> glm::vec4* {
+    return slots[((s % kRing) * size_t(others) + size_t(r - 1)) * 3 + size_t(array)].data();
   };
-  double receive_ms = 0;
-  for (size_t begin = 0; begin < pixels; begin += kSlice) {
-    const size_t end = std::min(pixels, begin + kSlice);
-    const auto receive_start = Clock::now();
-    std::vector<MPI_Request> requests;
+  std::vector<std::vector<MPI_Request>> requests(kRing);
+  const auto post = [&](size_t s) {
+    const size_t begin = s * kSlice, count = std::min(kSlice, pixels - begin);
+    std::vector<MPI_Request>& slice_requests = requests[s % kRing];
+    slice_requests.assign(size_t(others) * 3, MPI_REQUEST_NULL);
     for (int r = 1; r < job.size; ++r)
-      for (std::vector<glm::vec4>* v : {&parts[size_t(r - 1)].sum, &parts[size_t(r - 1)].comp, &parts[size_t(r - 1)].sq}) {
-        requests.emplace_back();
-        MPI_Irecv(v->data() + begin, int((end - begin) * 4), MPI_FLOAT, r, kTagState, MPI_COMM_WORLD, &requests.back());
+      for (int array = 0; array < 3; ++array)
+        MPI_Irecv(slot(s, r, array), int(count * 4), MPI_FLOAT, r, kTagState, MPI_COMM_WORLD,
+                  &slice_requests[size_t(r - 1) * 3 + size_t(array)]);
+  };
+  // The merge of a slice is shared by this thread and workers that stay for
+  // the whole reduce (one per further core), between two barriers (start,
+  // done). This thread merges its share, then waits for the next slice's
+  // data (OpenMPI copies it in that wait) while the workers finish theirs.
+  const size_t threads = std::max(1u, std::thread::hardware_concurrency());
+  std::barrier<> start{ptrdiff_t(threads)}, done{ptrdiff_t(threads)};
+  size_t merging = SIZE_MAX;  // the slice being merged; SIZE_MAX: none left, the workers end
+  std::vector<double> merge_ms(threads, 0.0);
+  const auto merge_share = [&](size_t w) {
+    const auto merge_start = Clock::now();
+    const size_t s = merging, begin = s * kSlice, count = std::min(kSlice, pixels - begin);
+    const size_t at = begin + count * w / threads, n = begin + count * (w + 1) / threads - at;
+    const size_t in_slot = at - begin;
+    std::vector<AccumulationPixels> parts = {{merged.sum.data() + at, merged.comp.data() + at, merged.sq.data() + at}};
+    for (int r = 1; r < job.size; ++r)
+      parts.push_back({slot(s, r, 0) + in_slot, slot(s, r, 1) + in_slot, slot(s, r, 2) + in_slot});
+    merge_accumulation_pixels(parts, merged.sum.data() + at, merged.comp.data() + at, merged.sq.data() + at, n);
+    merge_ms[w] += ms_since(merge_start);
+  };
+  std::vector<std::thread> pool;
+  for (size_t w = 1; w < threads; ++w)
+    pool.emplace_back([&, w] {
+      for (;;) {
+        start.arrive_and_wait();
+        if (merging == SIZE_MAX) return;
+        merge_share(w);
+        done.arrive_and_wait();
       }
-    MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
-    receive_ms += ms_since(receive_start);
-    join_merge();  // the slice before
-    const size_t step = (end - begin + workers - 1) / workers;
-    for (size_t from = begin; from < end; from += step)
-      merging.emplace_back([&, from, to = std::min(end, from + step)] {
-        merge_accumulation_pixels(pointers, out.merged, from, to);
-      });
+    });
+  times.alloc_ms = ms_since(reduce_start);
+  const auto wait_for_merge = [&] {
+    const auto wait_start = Clock::now();
+    done.arrive_and_wait();
+    times.merge_wait_ms += ms_since(wait_start);
+  };
+  for (size_t s = 0; s < std::min(slices, kRing - 1); ++s) post(s);
+  for (size_t s = 0; s < slices; ++s) {
+    const auto receive_start = Clock::now();
+    MPI_Waitall(int(requests[s % kRing].size()), requests[s % kRing].data(), MPI_STATUSES_IGNORE);
+    times.receive_ms += ms_since(receive_start);
+    if (s > 0) wait_for_merge();  // slice s - 1: its slot is free again
+    if (s + kRing - 1 < slices) post(s + kRing - 1);
+    merging = s;
+    const auto start_wait = Clock::now();
+    start.arrive_and_wait();
+    times.merge_wait_ms += ms_since(start_wait);
+    merge_share(0);
   }
-  join_merge();
-  out.receive_ms = receive_ms;
-  out.reduce_ms = ms_since(reduce_start);
+  if (slices > 0) wait_for_merge();
+  merging = SIZE_MAX;
+  start.arrive_and_wait();
+  for (std::thread& t : pool) t.join();
+  times.merge_ms = *std::max_element(merge_ms.begin(), merge_ms.end());
+  times.total_ms = ms_since(reduce_start);
+  for (int r = 1; r < job.size; ++r) {
+    double send_ms = 0;
+    MPI_Recv(&send_ms, 1, MPI_DOUBLE, r, kTagState, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    times.send_ms = std::max(times.send_ms, send_ms);
+  }
   out.nonfinite_samples = 0;
   for (const json& j : reports) {
     out.shares.push_back(share_of(j.at("share")));

@@ -26,6 +26,10 @@
 #include "render/path_tracer.h"
 #include "render/render_state.h"
 
+#ifdef OCTRACE_MPI
+#include <nlohmann/json.hpp>
+#endif
+
 namespace octrace::mpi {
 
 // True when this process was started by an MPI launcher (OMPI_COMM_WORLD_SIZE,
@@ -51,15 +55,32 @@ struct JobFailed {
   int code;
 };
 
-// What one rank did.
+// What one rank did, and where its time went (wall ms unless said).
 struct RankShare {
   int rank = 0;
   std::string host;
   std::string device;
   uint32_t samples = 0;   // samples per pixel it rendered
-  double device_ms = 0;   // its passes' device time
-  double setup_ms = 0;    // context, octree, upload, pipeline (wall)
-  double wall_ms = 0;     // from its first request to its last batch's end
+  double device_ms = 0;   // its passes' device time (timestamp queries)
+  double setup_ms = 0;    // context, octree, upload, pipeline: the four below and the rest
+  double device_init_ms = 0, accel_build_ms = 0, upload_ms = 0, pipeline_ms = 0;
+  double start_wait_ms = 0;  // set up, waiting for the other ranks (the batches start together)
+  double wall_ms = 0;        // from the job's first batch to this rank's last batch's end
+  double passes_ms = 0;      // of it, in its batches (submission to completion)
+  double batch_wait_ms = 0;  // of it, waiting for rank 0's answer to a request
+  double max_gap_ms = 0;     // the longest time between one batch's end and the next one's start
+  uint32_t batches = 0;      // batches it rendered
+};
+
+// The reduce's parts (rank 0, wall ms): the parts overlap, so they do not
+// add up to the total.
+struct ReduceTimes {
+  double total_ms = 0;       // from the job's decision to the merged state
+  double alloc_ms = 0;       // allocating the buffers the states arrive in
+  double receive_ms = 0;     // waiting for data
+  double merge_wait_ms = 0;  // waiting for the merging threads (a slice's start and end)
+  double merge_ms = 0;       // merging (worker threads, overlapped with receiving)
+  double send_ms = 0;        // the slowest other rank's sending of its state
 };
 
 // What rank 0 has once the ranks have reported.
@@ -70,11 +91,15 @@ struct Gathered {
   bool interrupted = false;          // a rank was signalled: fewer than spp
   int signal = 0;                    // which signal (SIGINT, SIGTERM)
   uint64_t nonfinite_samples = 0;
-  double receive_ms = 0;             // waiting for the other ranks' states
-  double reduce_ms = 0;              // receiving and merging them (overlapped)
+  ReduceTimes reduce;                // where the reduce's time went
 };
 
 #ifdef OCTRACE_MPI
+// A rank's share as the summary's "ranks" entry holds it, and as one line.
+nlohmann::json share_json(const RankShare& s);
+RankShare share_of(const nlohmann::json& j);
+std::string share_line(const RankShare& s);
+
 // MPI_Init_thread (MPI_THREAD_SERIALIZED), the rank, size and host; rank 0
 // starts the thread that hands out batches.
 void init(int* argc, char*** argv);
@@ -106,15 +131,20 @@ void clear_callbacks();
 // Renders this rank's batches (first_sample + the handed-out index) until
 // the job has none left, this rank is asked to stop (`stop`, a signal: the
 // whole job then stops after the batches in flight), or another rank failed.
-void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_sample,
+// Each request asks for the samples that take about `batch_ms` (--batch-ms;
+// kBatchMs by default) at this rank's speed so far; rank 0 gives fewer near
+// the end, so that the ranks finish together.
+constexpr double kBatchMs = 250;
+void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_sample, double batch_ms,
                   const std::atomic<bool>* stop, const std::atomic<int>* signal, RankShare& share);
 
 // Every rank, after render_share: reports success with its state, its share
 // and the settings that must agree across ranks (info.scene_hash set).
-// Rank 0 returns true with the ranks' states merged; the others false.
+// Rank 0 returns true with the ranks' states merged (into its own `acc`, in
+// place); the others false.
 // Throws JobFailed (rank 0 has printed the line) if a rank failed or renders
 // another scene or other settings than rank 0.
-bool gather(const Accumulation& acc, uint64_t nonfinite, const RankShare& share, const CheckpointInfo& info,
+bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const CheckpointInfo& info,
             Gathered& out);
 
 // From the front end's error handler: this rank failed with `code` and

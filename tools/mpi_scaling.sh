@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # MPI scaling of octrace render (issue 16, docs/multi_gpu.md): time to a
 # fixed number of samples with 1, 2, 4 ranks (`mpirun -np K octrace render`),
-# speedup and efficiency against one rank, and the merge overhead: reducing
-# a 3840x2160 state between 2 ranks (the other ranks' states received by
-# rank 0 in slices, each merged while the next arrives; octrace's times_ms.reduce).
+# speedup and efficiency against one rank, where each rank's time went
+# (set-up, waiting for the other ranks, batches, waiting for rank 0's
+# answers, gaps), and the merge overhead: reducing a 3840x2160 state between
+# 2 ranks (rank 1's state received by rank 0 in slices, each merged while the
+# next arrives), with its parts (times_ms.reduce_*).
 # Each rank renders on its node-local GPU (local rank modulo the node's
 # GPUs): on a host with one GPU the ranks share it, which measures what the
 # split and the reduce cost. Needs only the binary, mpirun and a shell (no
@@ -12,14 +14,18 @@
 #   tools/mpi_scaling.sh OCTRACE_BINARY OUT_DIR [RUNS]
 #
 # Settings through the environment (defaults in brackets): SIZE [1200x800],
-# SPP [1000], RANKS ["1 2 4"], SCENE_FLAGS [the default scene], MERGE_SIZE
-# [3840x2160], MERGE_SPP [1], MPIRUN [mpirun], MPIRUN_FLAGS [-q
-# --oversubscribe --bind-to none]. On lavapipe, set LP_NUM_THREADS (the threads of each
-# rank) so that the ranks do not fight for the cores.
+# SPP [1000], RANKS ["1 2 4"; "none": only the merge], BATCH_MS [250: the
+# --batch-ms values to run, e.g. "250 2000"], SCENE_FLAGS [the default
+# scene], MERGE_SIZE [3840x2160], MERGE_SPP [1], MPIRUN [mpirun],
+# MPIRUN_FLAGS [-q --oversubscribe --bind-to none]. On lavapipe, set
+# LP_NUM_THREADS (the threads of each rank) so that the ranks do not fight
+# for the cores.
 set -euo pipefail
 [ $# -ge 2 ] || { echo "usage: $0 OCTRACE_BINARY OUT_DIR [RUNS]" >&2; exit 2; }
 bin=$1 out=$2 runs=${3:-3}
 size=${SIZE:-1200x800} spp=${SPP:-1000} ranks_list=${RANKS:-"1 2 4"} scene_flags=${SCENE_FLAGS:-}
+batch_list=${BATCH_MS:-250}
+[ "$ranks_list" = none ] && ranks_list=""
 merge_size=${MERGE_SIZE:-3840x2160} merge_spp=${MERGE_SPP:-1}
 mpirun=${MPIRUN:-mpirun}
 # --bind-to none: OpenMPI binds each of up to 2 ranks to one core by default,
@@ -31,6 +37,9 @@ mkdir -p "$out"
 
 # A number from octrace's --json summary: the first "KEY": VALUE.
 field() { grep -o "\"$2\": [-0-9.e+]*" "$1" | head -1 | awk '{print $2}'; }
+# The first N values of KEY, one a line: the ranks' entries (the summary's
+# keys are sorted, so "ranks" comes before "samples" and "times_ms").
+fields() { grep -o "\"$2\": [-0-9.e+]*" "$1" | head -"$3" | awk '{print $2}'; }
 median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
 now() { date +%s.%N; }
 
@@ -43,44 +52,68 @@ now() { date +%s.%N; }
   echo "settings  --size $size --spp $spp $scene_flags, median of $runs runs after a warm-up"
 } | tee "$out/summary.txt"
 
-echo "render wall: from every rank set up to the last pass (times_ms.render_wall); job: the whole mpirun command, set-up, reduce and write included." | tee -a "$out/summary.txt"
-echo "| ranks | render wall s | job s | reduce ms | speedup (render / job) | efficiency (render / job) |" | tee -a "$out/summary.txt"
-echo "|---:|---:|---:|---:|---:|---:|" | tee -a "$out/summary.txt"
-w1="" j1=""
-for k in $ranks_list; do
-  # shellcheck disable=SC2086
-  "$mpirun" "${mpirun_flags[@]}" -np "$k" "$bin" render $scene_flags --size "$size" --spp "$spp" --quiet \
-    --out "$out/warm.pfm"
-  : > "$out/wall-$k.txt"; : > "$out/job-$k.txt"; : > "$out/reduce-$k.txt"
-  for r in $(seq "$runs"); do
-    s=$(now)
+echo "render wall: from the job's first batch to the last pass (times_ms.render_wall); job: the whole mpirun command, set-up, reduce and write included." | tee -a "$out/summary.txt"
+for b in $batch_list; do
+  echo "--batch-ms $b:" | tee -a "$out/summary.txt"
+  echo "| ranks | render wall s | job s | reduce ms | speedup (render / job) | efficiency (render / job) |" | tee -a "$out/summary.txt"
+  echo "|---:|---:|---:|---:|---:|---:|" | tee -a "$out/summary.txt"
+  w1="" j1=""
+  for k in $ranks_list; do
     # shellcheck disable=SC2086
-    "$mpirun" "${mpirun_flags[@]}" -np "$k" "$bin" render $scene_flags --size "$size" --spp "$spp" --json --quiet \
-      --out "$out/ranks-$k.pfm" > "$out/ranks-$k-$r.json"
-    e=$(now)
-    awk -v a="$s" -v b="$e" 'BEGIN {print b - a}' >> "$out/job-$k.txt"
-    awk -v w="$(field "$out/ranks-$k-$r.json" render_wall)" 'BEGIN {print w / 1000}' >> "$out/wall-$k.txt"
-    red=$(field "$out/ranks-$k-$r.json" reduce)
-    echo "${red:-0}" >> "$out/reduce-$k.txt"
+    "$mpirun" "${mpirun_flags[@]}" -np "$k" "$bin" render $scene_flags --size "$size" --spp "$spp" --batch-ms "$b" \
+      --quiet --out "$out/warm.pfm"
+    : > "$out/wall-$b-$k.txt"; : > "$out/job-$b-$k.txt"; : > "$out/reduce-$b-$k.txt"
+    for r in $(seq "$runs"); do
+      s=$(now)
+      # shellcheck disable=SC2086
+      "$mpirun" "${mpirun_flags[@]}" -np "$k" "$bin" render $scene_flags --size "$size" --spp "$spp" --batch-ms "$b" \
+        --json --quiet --out "$out/ranks-$k.pfm" > "$out/ranks-$b-$k-$r.json"
+      e=$(now)
+      awk -v a="$s" -v b="$e" 'BEGIN {print b - a}' >> "$out/job-$b-$k.txt"
+      awk -v w="$(field "$out/ranks-$b-$k-$r.json" render_wall)" 'BEGIN {print w / 1000}' >> "$out/wall-$b-$k.txt"
+      red=$(field "$out/ranks-$b-$k-$r.json" reduce)
+      echo "${red:-0}" >> "$out/reduce-$b-$k.txt"
+    done
+    w=$(median < "$out/wall-$b-$k.txt") j=$(median < "$out/job-$b-$k.txt") red=$(median < "$out/reduce-$b-$k.txt")
+    [ -z "$w1" ] && w1=$w && j1=$j
+    awk -v k="$k" -v w="$w" -v j="$j" -v red="$red" -v w1="$w1" -v j1="$j1" 'BEGIN {
+      printf "| %d | %.3f | %.3f | %.1f | %.2fx / %.2fx | %.1f%% / %.1f%% |\n", k, w, j, red, w1 / w, j1 / j, 100 * w1 / (k * w), 100 * j1 / (k * j)
+    }' | tee -a "$out/summary.txt"
   done
-  w=$(median < "$out/wall-$k.txt") j=$(median < "$out/job-$k.txt") red=$(median < "$out/reduce-$k.txt")
-  [ -z "$w1" ] && w1=$w && j1=$j
-  awk -v k="$k" -v w="$w" -v j="$j" -v red="$red" -v w1="$w1" -v j1="$j1" 'BEGIN {
-    printf "| %d | %.3f | %.3f | %.1f | %.2fx / %.2fx | %.1f%% / %.1f%% |\n", k, w, j, red, w1 / w, j1 / j, 100 * w1 / (k * w), 100 * j1 / (k * j)
-  }' | tee -a "$out/summary.txt"
+  # Where each rank's time went, in the last run of each rank count (ms;
+  # set-up: device, accel build, upload, pipeline; wall: from the job's
+  # first batch to the rank's last; of it: in batches (submission to
+  # completion), waiting for rank 0's answers, the rest idle).
+  echo "where the time went, --batch-ms $b, last run of each (ms):" | tee -a "$out/summary.txt"
+  echo "| ranks | rank | spp | batches | device | wall | in batches | waiting for answers | idle | longest gap | waiting at start | set-up (device / accel / upload / pipeline) |" | tee -a "$out/summary.txt"
+  echo "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|" | tee -a "$out/summary.txt"
+  for k in $ranks_list; do
+    f="$out/ranks-$b-$k-$runs.json"
+    paste <(fields "$f" samples "$k") <(fields "$f" batches "$k") <(fields "$f" render_ms "$k") \
+      <(fields "$f" render_wall_ms "$k") <(fields "$f" passes_wall_ms "$k") <(fields "$f" batch_wait_ms "$k") \
+      <(fields "$f" max_gap_ms "$k") <(fields "$f" start_wait_ms "$k") <(fields "$f" setup_ms "$k") \
+      <(fields "$f" device_init "$k") <(fields "$f" accel_build "$k") <(fields "$f" upload "$k") \
+      <(fields "$f" pipeline "$k") |
+      awk -v k="$k" '{printf "| %d | %d | %d | %d | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f (%.1f / %.1f / %.1f / %.1f) |\n",
+        k, NR - 1, $1, $2, $3, $4, $5, $6, $4 - $5 - $6, $7, $8, $9, $10, $11, $12, $13}' | tee -a "$out/summary.txt"
+  done
 done
 
 # The merge overhead: 2 ranks, a MERGE_SIZE state each.
-echo "merge overhead, 2 ranks, $merge_size, $merge_spp spp: rank 0 receives rank 1's state (3 x 16 bytes per pixel) in slices and merges each slice while the next arrives (times_ms.reduce; of it waiting for data: reduce_receive; median of $runs):" | tee -a "$out/summary.txt"
-: > "$out/reduce.txt"; : > "$out/receive.txt"
+echo "merge overhead, 2 ranks, $merge_size, $merge_spp spp: rank 0 receives rank 1's state (3 x 16 bytes per pixel) in slices into reused buffers and merges each slice into its own state while the next arrive (times_ms.reduce and its parts, which overlap; median of $runs):" | tee -a "$out/summary.txt"
+parts="reduce reduce_alloc reduce_receive reduce_merge reduce_merge_wait reduce_send"
+for p in $parts; do : > "$out/$p.txt"; done
 for r in $(seq "$runs"); do
   # shellcheck disable=SC2086
   "$mpirun" "${mpirun_flags[@]}" -np 2 "$bin" render $scene_flags --size "$merge_size" --spp "$merge_spp" --json --quiet \
     --out "$out/merge.pfm" > "$out/merge-$r.json"
-  field "$out/merge-$r.json" reduce >> "$out/reduce.txt"
-  field "$out/merge-$r.json" reduce_receive >> "$out/receive.txt"
+  for p in $parts; do field "$out/merge-$r.json" "$p" >> "$out/$p.txt"; done
 done
-t=$(median < "$out/reduce.txt") w=$(median < "$out/receive.txt")
-awk -v t="$t" -v w="$w" 'BEGIN {printf "| reduce ms | of it waiting for data |\n|---:|---:|\n| %.1f | %.1f |\n", t, w}' |
-  tee -a "$out/summary.txt"
+{
+  echo "| reduce ms | allocating | waiting for data | merging (busiest thread) | waiting for the merging threads | rank 1 sending |"
+  echo "|---:|---:|---:|---:|---:|---:|"
+  line="|"
+  for p in $parts; do line="$line $(median < "$out/$p.txt" | awk '{printf "%.1f", $1}') |"; done
+  echo "$line"
+} | tee -a "$out/summary.txt"
 rm -f "$out/warm.pfm"

@@ -14,47 +14,51 @@
 
 namespace octrace {
 
-void merge_accumulation_pixels(const std::vector<const Accumulation*>& parts, Accumulation& out, size_t begin,
-                               size_t end) {
-  for (size_t i = begin; i < end; ++i) {
+void merge_accumulation_pixels(const std::vector<AccumulationPixels>& parts, glm::vec4* sum, glm::vec4* comp,
+                               glm::vec4* sq, size_t count) {
+  // In place (sum == parts[0].sum ...): the counts (.w) and every part's
+  // channel c are read before the output's channel c is written, and the
+  // counts are written last.
+  for (size_t i = 0; i < count; ++i) {
     double n = 0, total[3] = {0, 0, 0};
     uint32_t rays = 0;
-    for (const Accumulation* p : parts) {
-      n += p->sum[i].w;
-      rays += std::bit_cast<uint32_t>(p->sq[i].w);
-      for (int c = 0; c < 3; ++c) total[c] += double(p->sum[i][c]) - double(p->comp[i][c]);
+    for (const AccumulationPixels& p : parts) {
+      n += p.sum[i].w;
+      rays += std::bit_cast<uint32_t>(p.sq[i].w);
+      for (int c = 0; c < 3; ++c) total[c] += double(p.sum[i][c]) - double(p.comp[i][c]);
     }
     for (int c = 0; c < 3; ++c) {
       const double mean = n > 0 ? total[c] / n : 0.0;
       double m2 = 0;
-      for (const Accumulation* p : parts) {
-        const double ni = p->sum[i].w;
+      for (const AccumulationPixels& p : parts) {
+        const double ni = p.sum[i].w;
         if (ni == 0) continue;
-        const double mean_i = (double(p->sum[i][c]) - double(p->comp[i][c])) / ni;
-        m2 += double(p->sq[i][c]) + ni * (mean_i - mean) * (mean_i - mean);
+        const double mean_i = (double(p.sum[i][c]) - double(p.comp[i][c])) / ni;
+        m2 += double(p.sq[i][c]) + ni * (mean_i - mean) * (mean_i - mean);
       }
       // The total as a float and what it overshoots (the Kahan form: sum - comp).
-      out.sum[i][c] = float(total[c]);
-      out.comp[i][c] = float(double(out.sum[i][c]) - total[c]);
-      out.sq[i][c] = float(m2);
+      sum[i][c] = float(total[c]);
+      comp[i][c] = float(double(sum[i][c]) - total[c]);
+      sq[i][c] = float(m2);
     }
-    out.sum[i].w = float(n);
-    out.sq[i].w = std::bit_cast<float>(rays);
+    sum[i].w = float(n);
+    sq[i].w = std::bit_cast<float>(rays);
   }
 }
 
 Accumulation merge_accumulations(const std::vector<Accumulation>& parts) {
   if (parts.empty()) throw InputError("merge: no accumulation states");
   const Accumulation& first = parts.front();
-  std::vector<const Accumulation*> pointers;
+  std::vector<AccumulationPixels> pixels;
   for (const Accumulation& p : parts) {
-    if (p.width != first.width || p.height != first.height || p.sum.size() != first.sum.size())
+    if (p.width != first.width || p.height != first.height || p.sum.size() != first.sum.size() ||
+        p.comp.size() != p.sum.size() || p.sq.size() != p.sum.size())
       throw InputError("merge: accumulation states of different sizes");
-    pointers.push_back(&p);
+    pixels.push_back({p.sum.data(), p.comp.data(), p.sq.data()});
   }
   Accumulation out{first.width, first.height, std::vector<glm::vec4>(first.sum.size()),
                    std::vector<glm::vec4>(first.sum.size()), std::vector<glm::vec4>(first.sum.size())};
-  merge_accumulation_pixels(pointers, out, 0, first.sum.size());
+  merge_accumulation_pixels(pixels, out.sum.data(), out.comp.data(), out.sq.data(), first.sum.size());
   return out;
 }
 

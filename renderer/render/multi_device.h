@@ -37,10 +37,19 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
 // deviations combine by Chan et al.'s parallel update (M2 = sum of M2_i +
 // n_i (mean_i - mean)^2); ray segments add. Throws InputError if the sizes differ.
 Accumulation merge_accumulations(const std::vector<Accumulation>& parts);
-// The same for pixels [begin, end) only, into `out`, whose buffers have the
-// parts' size (not checked): for a caller that merges a large state in
-// slices or threads (the MPI front end merges slices as they arrive).
-void merge_accumulation_pixels(const std::vector<const Accumulation*>& parts, Accumulation& out, size_t begin,
-                               size_t end);
+// `count` consecutive pixels of one part: its three buffers from some pixel
+// on (a whole Accumulation's, or a slice's that arrived apart).
+struct AccumulationPixels {
+  const glm::vec4* sum;
+  const glm::vec4* comp;
+  const glm::vec4* sq;
+};
+// The same merge for `count` pixels (part k's pixel i at parts[k].sum[i],
+// ...), into `sum`, `comp` and `sq`: for a caller that merges a large state
+// in slices or threads (the MPI front end merges slices as they arrive). The
+// output may be the first part's own pixels (a merge in place: each pixel's
+// values are read before they are written); comp.w is left as it is.
+void merge_accumulation_pixels(const std::vector<AccumulationPixels>& parts, glm::vec4* sum, glm::vec4* comp,
+                               glm::vec4* sq, size_t count);
 
 }  // namespace octrace

@@ -85,7 +85,9 @@ const std::string kArgs = "render --size 40x24 --spheres 60 --spp 12 ";
 #ifdef OCTRACE_MPIRUN
 
 // 2 and 3 ranks (12 samples: uneven shares with 3 ranks' batches) against one
-// process; the summary names each rank. (A merged state resumed under
+// process; the summary names each rank. The 2 ranks ask for batches of 1
+// microsecond (--batch-ms): every batch is then one sample (a pass takes
+// longer), so each rank renders as many batches as samples. (A merged state resumed under
 // another number of ranks: CheckpointsOfTheMergedStateResume.)
 TEST(Mpi, TwoAndThreeRanksRenderTheSamplesOfOneProcess) {
   const std::string one = tmp("one.pfm");
@@ -93,7 +95,7 @@ TEST(Mpi, TwoAndThreeRanksRenderTheSamplesOfOneProcess) {
   for (int ranks : {2, 3}) {
     const std::string out = tmp("ranks" + std::to_string(ranks) + ".pfm");
     fs::remove(out);
-    RunResult r = mpirun(ranks, kArgs + "--json --out " + out);
+    RunResult r = mpirun(ranks, kArgs + (ranks == 2 ? "--batch-ms 0.001 " : "") + "--json --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
     const nlohmann::json j = json_of(r.output);
     ASSERT_TRUE(j.contains("ranks")) << r.output;
@@ -107,6 +109,14 @@ TEST(Mpi, TwoAndThreeRanksRenderTheSamplesOfOneProcess) {
       // Every rank gets a first batch of one sample when all have started.
       EXPECT_GT(rank.at("samples").get<uint32_t>(), 0u) << rank;
       samples += rank.at("samples").get<uint32_t>();
+      // Where its time went: its batches lie within its rendering time.
+      EXPECT_GE(rank.at("batches").get<uint32_t>(), 1u) << rank;
+      EXPECT_LE(rank.at("passes_wall_ms").get<double>() + rank.at("batch_wait_ms").get<double>(),
+                rank.at("render_wall_ms").get<double>() + 0.1) << rank;
+      EXPECT_GT(rank.at("setup").at("pipeline").get<double>(), 0.0) << rank;
+      if (ranks == 2) {
+        EXPECT_EQ(rank.at("batches").get<uint32_t>(), rank.at("samples").get<uint32_t>()) << rank;
+      }
     }
     EXPECT_EQ(samples, 12u);
     EXPECT_EQ(j["samples"].get<uint32_t>(), 12u);
@@ -266,6 +276,19 @@ TEST(Mpi, ABuildWithoutMpiRefusesALaunch) {
 // PART_K (here 3 tasks of 4 samples, out of order), `octrace merge` joins the
 // parts; the image equals one render of the 12 samples, and the merged
 // --state holds them (it merges again to the same image).
+// --batch-ms belongs to an MPI job: a one-process render refuses it (and a
+// bad value) in one line, exit 2, no output.
+TEST(Mpi, OneProcessRefusesBatchMs) {
+  const std::string out = tmp("never_batch.png");
+  fs::remove(out);
+  for (const std::string value : {"100", "-1"}) {
+    const RunResult r = run_octrace("render --size 8x8 --spp 1 --quiet --batch-ms " + value + " --out " + out);
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("octrace: error: --batch-ms: "), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out)) << value;
+  }
+}
+
 TEST(JobArray, ThreePartsMergeIntoOneRender) {
   const std::string one = tmp("array_one.pfm"), merged = tmp("array_merged.pfm"), again = tmp("array_again.pfm");
   ASSERT_EQ(run_octrace(kArgs + "--quiet --out " + one).code, 0);
