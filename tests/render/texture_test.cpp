@@ -158,7 +158,8 @@ TEST_F(TextureTest, TextureTransformOffsetsRotatesAndScalesTheUvs) {
 // quad are mirrored across it, which keeps their y), and the sky is linear
 // in dir.y: a pixel's mean is the sky at dir.y = 2/3 n.y. A map of texels
 // (128, 128, 255) leaves n about +z; one of (128, 218, 218) tilts it 45
-// degrees towards +v, down, where the sky is whiter.
+// degrees towards the texel's +Y, "up" in the image (glTF 3.9.4), which is
+// -v, +y on the quad, where the sky is bluer.
 TEST_F(TextureTest, NormalMapTiltsTheShadingNormal) {
   for (const auto& [r, g, b] : {std::tuple{128, 128, 255}, std::tuple{128, 218, 218}}) {
     const std::string png = test::png(1, 1, {uint8_t(r), uint8_t(g), uint8_t(b), 255});
@@ -169,7 +170,7 @@ TEST_F(TextureTest, NormalMapTiltsTheShadingNormal) {
     Scene s = as_lambertian(load_gltf_scene(path));
     frame(s, 1, 1);
     const glm::dvec3 t = glm::normalize(glm::dvec3(2 * r / 255.0 - 1, 2 * g / 255.0 - 1, 2 * b / 255.0 - 1));
-    const double y = -t.y;  // +v is -y
+    const double y = t.y;  // the texel's +Y is up in the image: -v, which is +y
     const double f = 0.5 * (2.0 / 3.0 * y + 1.0);
     const glm::dvec3 want = (1.0 - f) * glm::dvec3(1.0) + f * glm::dvec3(0.5, 0.7, 1.0);
     for (Precision p : kPrecisions) {
