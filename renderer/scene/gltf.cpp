@@ -720,10 +720,23 @@ Mesh read_mesh(File& f, size_t m) {
   // Uvs matter only under a texture: a primitive without them beside one
   // with them (an untextured part of a textured mesh) gets uv (0, 0).
   const bool uvs = std::any_of(kept.begin(), kept.end(), [&](size_t j) { return has(j, "TEXCOORD_0"); });
+  // TANGENT (3.7.2.1) is kept only where it is used: beside normals (the
+  // spec ignores it without) and uvs, under a material with a normal map.
+  // Elsewhere it is still read and checked, so that a bad one is refused
+  // whatever material the primitive has.
+  const auto normal_mapped = [&](size_t j) {
+    const int material = gm.primitives[j].material;
+    return material >= 0 && size_t(material) < f.model.materials.size() &&
+           f.model.materials[size_t(material)].normalTexture.index >= 0;
+  };
+  const auto keeps_tangents = [&](size_t j) {
+    return normals && uvs && has(j, "TANGENT") && normal_mapped(j);
+  };
+  const bool tangents = std::any_of(kept.begin(), kept.end(), keeps_tangents);
 
   // Primitives that share their vertex accessors share the vertices.
   struct VertexSet {
-    int position, normal, uv;
+    int position, normal, uv, tangent;
     uint32_t base, count;
   };
   std::vector<VertexSet> sets;
@@ -734,8 +747,10 @@ Mesh read_mesh(File& f, size_t m) {
     const int position = attribute(p, "POSITION");
     const int normal = normals ? attribute(p, "NORMAL") : -1;
     const int uv = uvs ? attribute(p, "TEXCOORD_0") : -1;
+    const int tangent = attribute(p, "TANGENT");
+    const bool keep_tangent = keeps_tangents(j);
     auto set = std::find_if(sets.begin(), sets.end(), [&](const VertexSet& s) {
-      return s.position == position && s.normal == normal && s.uv == uv;
+      return s.position == position && s.normal == normal && s.uv == uv && s.tangent == (keep_tangent ? tangent : -1);
     });
     if (set == sets.end()) {
       const auto positions = read_attribute<3>(f, position, at + ".attributes.POSITION", "POSITION");
@@ -756,9 +771,21 @@ Mesh read_mesh(File& f, size_t m) {
       } else if (uvs) {
         mesh.uvs.insert(mesh.uvs.end(), positions.size(), glm::vec2(0.0f));
       }
+      if (tangent >= 0) {
+        const std::string tangent_at = at + ".attributes.TANGENT";
+        const auto t = read_attribute<4>(f, tangent, tangent_at, "TANGENT");
+        count_check(t.size(), "TANGENT", tangent);
+        for (size_t i = 0; i < t.size(); ++i)
+          if (t[i].w != 1.0f && t[i].w != -1.0f)
+            f.fail(tangent_at, item(item("accessors", size_t(tangent)), i) +
+                                   ": w (the handedness) must be 1 or -1, got " + float_string(t[i].w));
+        if (keep_tangent) mesh.tangents.insert(mesh.tangents.end(), t.begin(), t.end());
+      }
+      if (tangents && !keep_tangent) mesh.tangents.insert(mesh.tangents.end(), positions.size(), glm::vec4(0.0f));
       if (mesh.positions.size() + positions.size() > UINT32_MAX)
         f.fail(mesh_at, "more than 2^32 - 1 vertices");
-      sets.push_back({position, normal, uv, uint32_t(mesh.positions.size()), uint32_t(positions.size())});
+      sets.push_back({position, normal, uv, keep_tangent ? tangent : -1, uint32_t(mesh.positions.size()),
+                      uint32_t(positions.size())});
       mesh.positions.insert(mesh.positions.end(), positions.begin(), positions.end());
       set = sets.end() - 1;
     }

@@ -284,6 +284,17 @@ void validate_mesh(const Mesh& m, const Scene& scene, const std::string& source,
                                           " positions (must be as many, or none)");
   for (size_t i = 0; i < m.normals.size(); ++i)
     if (!finite(m.normals[i])) check_finite(m.normals[i], source, element("normals", i));
+  if (!m.tangents.empty() && m.tangents.size() != vertices)
+    invalid(source, path + ".tangents", std::to_string(m.tangents.size()) + " tangents for " +
+                                            std::to_string(vertices) + " positions (must be as many, or none)");
+  if (!m.tangents.empty() && m.normals.empty()) invalid(source, path + ".tangents", "tangents need normals");
+  for (size_t i = 0; i < m.tangents.size(); ++i) {
+    const glm::vec4 t = m.tangents[i];
+    if (!finite(glm::vec3(t)) || !(t.w == 1.0f || t.w == -1.0f || t == glm::vec4(0.0f)))
+      invalid(source, element("tangents", i),
+              "must be a finite tangent with w = 1 or -1 (or all 0: none), got [" + format(t.x) + ", " + format(t.y) +
+                  ", " + format(t.z) + ", " + format(t.w) + "]");
+  }
   if (!m.uvs.empty() && m.uvs.size() != vertices)
     invalid(source, path + ".uvs", std::to_string(m.uvs.size()) + " uvs for " + std::to_string(vertices) +
                                        " positions (must be as many, or none)");

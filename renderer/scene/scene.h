@@ -12,6 +12,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 namespace octrace {
 
@@ -57,8 +58,9 @@ struct Material {
   // (linear, not sRGB; glTF's metallicRoughnessTexture).
   std::optional<uint32_t> metallic_roughness_texture;  // index into Scene::textures
   // Lambertian and pbr: a tangent-space normal map (glTF's normalTexture,
-  // linear; its x and y times normal_scale), in the frame of the triangle's
-  // uv directions (computed per triangle from the uvs; TANGENT is not read).
+  // linear; its x and y times normal_scale), in the frame of the mesh's
+  // tangents (Mesh::tangents) where the file has them, else of the
+  // triangle's uv directions (computed per triangle from the uvs).
   std::optional<uint32_t> normal_texture;  // index into Scene::textures
   float normal_scale = 1.0f;
   // The uv transform of each texture reference (glTF's KHR_texture_transform),
@@ -215,6 +217,12 @@ struct Mesh {
   std::vector<glm::vec2> uvs;       // UV set 0 per vertex, or empty
   std::vector<uint32_t> indices;    // three per triangle
   std::vector<uint32_t> materials;  // per triangle: index into Scene::materials
+  // Per vertex, or empty: glTF's TANGENT (3.7.2.1), the frame of a normal
+  // map: xyz the tangent (along +u), w = +1 or -1 the handedness, bitangent
+  // = cross(normal, xyz) * w. Kept only beside normals and under a material
+  // with a normal map; (0, 0, 0, 0) for a vertex of a primitive without one
+  // (its frame comes from the uvs).
+  std::vector<glm::vec4> tangents;
 
   size_t triangle_count() const { return indices.size() / 3; }
   bool operator==(const Mesh&) const = default;

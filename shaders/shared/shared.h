@@ -247,15 +247,27 @@ struct GpuTriangle {
 
 // 48 bytes. Triangle i's vertex normals in object space (unit), for smooth
 // shading; uploaded only when some mesh has normals (a flat triangle's three
-// are its geometric normal).
+// are its geometric normal). tangentK: vertex K's tangent from the file
+// (glTF's TANGENT, 3.7.2.1, object space) in what would be padding, or 0
+// for none (the normal map's frame then comes from the uvs): a unit vector
+// in the octahedral encoding of Cigolle et al. 2014 ("A Survey of Efficient
+// Representations for Independent Unit Vectors", JCGT 3(2), sec. 3.7), its
+// two coordinates in [-1, 1] as 15-bit unorms (bits 0-14 and 15-29; at most
+// ~1e-4 radians off), TANGENT_NEGATIVE_W for handedness w = -1,
+// TANGENT_PRESENT. A file's tangents cost no memory on the GPU: TANGENT is
+// read only beside NORMAL (glTF ignores it without), so where a mesh has one
+// the normals are uploaded anyway.
 struct GpuTriangleNormals {
   vec3 n0;
-  uint pad0;
+  uint tangent0;
   vec3 n1;
-  uint pad1;
+  uint tangent1;
   vec3 n2;
-  uint pad2;
+  uint tangent2;
 };
+OCT_CONST(uint, TANGENT_PRESENT, 0x80000000u);
+OCT_CONST(uint, TANGENT_NEGATIVE_W, 0x40000000u);
+OCT_CONST(uint, TANGENT_UNORM_MAX, 0x7fffu);
 
 // 24 bytes. Triangle i's texture coordinates (glTF's TEXCOORD_0 at v0, v1,
 // v2; 0 for a mesh without them); uploaded only when some material has a

@@ -170,11 +170,11 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(tris[i].v2, glm::vec3(o + 41, o + 42, o + 43)) << "triangle " << i;
     EXPECT_EQ(tris[i].pad1, u + 44) << "triangle " << i;
     EXPECT_EQ(normals[i].n0, glm::vec3(o + 45, o + 46, o + 47)) << "normals " << i;
-    EXPECT_EQ(normals[i].pad0, u + 48) << "normals " << i;
+    EXPECT_EQ(normals[i].tangent0, u + 48) << "normals " << i;
     EXPECT_EQ(normals[i].n1, glm::vec3(o + 49, o + 50, o + 51)) << "normals " << i;
-    EXPECT_EQ(normals[i].pad1, u + 52) << "normals " << i;
+    EXPECT_EQ(normals[i].tangent1, u + 52) << "normals " << i;
     EXPECT_EQ(normals[i].n2, glm::vec3(o + 53, o + 54, o + 55)) << "normals " << i;
-    EXPECT_EQ(normals[i].pad2, u + 56) << "normals " << i;
+    EXPECT_EQ(normals[i].tangent2, u + 56) << "normals " << i;
     EXPECT_EQ(insts[i].to_object0, glm::vec4(o + 57, o + 58, o + 59, o + 60)) << "instance " << i;
     EXPECT_EQ(insts[i].to_object1, glm::vec4(o + 61, o + 62, o + 63, o + 64)) << "instance " << i;
     EXPECT_EQ(insts[i].to_object2, glm::vec4(o + 65, o + 66, o + 67, o + 68)) << "instance " << i;

@@ -777,6 +777,41 @@ TEST(GltfErrors, BadAlphaCutoffAndMode) {
             "PATH: materials[0].alphaMode: must be \"OPAQUE\", \"MASK\" or \"BLEND\", got \"CUTOUT\"");
 }
 
+// The textured quad with vertex normals and a TANGENT of `tangents`
+// (accessor 4, VEC4 unless `type` says otherwise), its material normal-mapped or not.
+GltfBuilder tangent_quad(const std::vector<glm::vec4>& tangents, bool normal_mapped, const char* type = "VEC4") {
+  GltfBuilder b = test::textured_quad_gltf(test::png(2, 1, kTwoTexels));
+  json& attributes = b.doc["meshes"][0]["primitives"][0]["attributes"];
+  attributes["NORMAL"] = b.add_vec3(std::vector<glm::vec3>(4, glm::vec3(0, 0, 1)));
+  attributes["TANGENT"] = b.add_accessor(b.add_view(tangents), test::kFloat,
+                                         std::string(type) == "VEC3" ? tangents.size() * 4 / 3 : tangents.size(), type);
+  if (normal_mapped) b.doc["materials"][0]["normalTexture"] = {{"index", 0}};
+  return b;
+}
+
+// TANGENT (3.7.2.1) is kept where a normal map uses it, exactly as the file
+// has it; elsewhere it costs no memory. Either way a bad one is refused.
+TEST(Gltf, TangentsAreKeptUnderNormalMapsAndChecked) {
+  const std::vector<glm::vec4> good = {{1, 0, 0, 1}, {0, 1, 0, -1}, {0, 0, 1, 1}, {0.6f, 0.8f, 0, -1}};
+  EXPECT_EQ(load(tangent_quad(good, true), "mapped.gltf").meshes.at(0).tangents, good);
+  EXPECT_TRUE(load(tangent_quad(good, false), "unmapped.gltf").meshes.at(0).tangents.empty());
+  for (bool mapped : {true, false}) {
+    std::vector<glm::vec4> half_w = good;
+    half_w[2].w = 0.5f;
+    EXPECT_EQ(load_error(tangent_quad(half_w, mapped), "w.gltf"),
+              "PATH: meshes[0].primitives[0].attributes.TANGENT: accessors[4][2]: w (the handedness) must be 1 or -1, "
+              "got 0.5");
+    std::vector<glm::vec4> not_finite = good;
+    not_finite[1].x = INFINITY;
+    EXPECT_EQ(load_error(tangent_quad(not_finite, mapped), "inf.gltf"),
+              "PATH: accessors[4][1]: must be 4 finite numbers, got [inf, 1, 0, -1]");
+    EXPECT_EQ(load_error(tangent_quad({good[0], good[1], good[2]}, mapped), "count.gltf"),
+              "PATH: meshes[0].primitives[0].attributes.TANGENT: accessors[4] has 3 elements, POSITION 4");
+    EXPECT_EQ(load_error(tangent_quad(good, mapped, "VEC3"), "vec3.gltf"),
+              "PATH: accessors[4]: TANGENT must be VEC4, got VEC3");
+  }
+}
+
 // What is not rendered yet is named in one warning per file.
 TEST(Gltf, WhatMaterialsLackIsNamedInOneWarning) {
   GltfBuilder b = test::textured_quad_gltf(test::png(2, 1, kTwoTexels));
