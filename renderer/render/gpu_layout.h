@@ -30,6 +30,9 @@ static_assert(sizeof(GpuTriangleUvs) == 24);
 static_assert(offsetof(GpuTriangleUvs, uv1) == 8);
 static_assert(offsetof(GpuTriangleUvs, uv2) == 16);
 
+static_assert(sizeof(GpuTransmission) == 16);
+static_assert(offsetof(GpuTransmission, transmission_texture) == 12);
+
 static_assert(sizeof(GpuUvTransform) == 24);
 static_assert(offsetof(GpuUvTransform, y_axis) == 8);
 static_assert(offsetof(GpuUvTransform, offset) == 16);

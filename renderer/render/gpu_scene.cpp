@@ -388,8 +388,21 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   if (!textures.table.empty()) {
     uv_transforms.reserve(scene.materials.size() * gpu::TEXTURE_SLOTS);
     for (const Material& m : scene.materials)
-      for (const glm::mat3x2& t : {m.base_color_uv, m.metallic_roughness_uv, m.emission_uv, m.normal_uv})
+      for (const glm::mat3x2& t :
+           {m.base_color_uv, m.metallic_roughness_uv, m.emission_uv, m.normal_uv, m.transmission_uv})
         uv_transforms.push_back({t[0], t[1], t[2]});
+    static_assert(gpu::TEXTURE_SLOTS == 5, "one uv transform per slot, in TEXTURE_SLOT_* order");
+  }
+  // What transmission reads besides the material, only where some material transmits.
+  std::vector<gpu::GpuTransmission> transmission;
+  if (std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) {
+        return m.type == MaterialType::Pbr && m.transmission > 0.0f;
+      })) {
+    check_fits(ctx.limits.maxStorageBufferRange, scene.materials.size() * sizeof(gpu::GpuTransmission),
+               "the transmission parameters of " + std::to_string(scene.materials.size()) + " materials");
+    transmission.reserve(scene.materials.size());
+    for (const Material& m : scene.materials)
+      transmission.push_back({absorption_coefficient(m), m.transmission_texture.value_or(gpu::NO_TEXTURE)});
   }
   gpu::SceneParams& p = g.values;
   p = {};
@@ -441,6 +454,8 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   if (!uv_transforms.empty()) hash.add_vector(uv_transforms);
   // Nor do scenes without an envmap (its tables follow from its texels).
   if (!envmap_texels.empty()) hash.add_vector(envmap_texels);
+  // Nor scenes without transmission.
+  if (!transmission.empty()) hash.add_vector(transmission);
   g.content_hash = hash.add(&p, sizeof p)
                       .add_vector(triangles)
                       .add_vector(normals)
@@ -512,6 +527,7 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   uint64_t total = reserved_bytes + sizeof p + instances.size() * sizeof(gpu::GpuInstance) +
                    meshes.size() * sizeof(gpu::GpuMesh) + textures.table.size() * sizeof(gpu::GpuTexture) + textures.texels.size() * sizeof(uint32_t) +
                    uv_transforms.size() * sizeof(gpu::GpuUvTransform) + g.part_addresses.size() * sizeof(glm::uvec2) +
+                   transmission.size() * sizeof(gpu::GpuTransmission) +
                    (envmap_texels.size() + envmap_tables.marginal.size() + envmap_tables.conditional.size()) *
                        sizeof(float) +
                    lights.lights.size() * sizeof(gpu::GpuLight) + lights.sphere_lights.size() * sizeof(uint32_t);
@@ -545,6 +561,8 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   create_buffer(g.texture_transforms, ctx, uv_transforms.size() * sizeof(gpu::GpuUvTransform), false,
                 "texture transform buffer");
   upload_buffer(ctx, g.texture_transforms, uv_transforms.data(), uv_transforms.size() * sizeof(gpu::GpuUvTransform));
+  create_buffer(g.transmission, ctx, transmission.size() * sizeof(gpu::GpuTransmission), false, "transmission buffer");
+  upload_buffer(ctx, g.transmission, transmission.data(), transmission.size() * sizeof(gpu::GpuTransmission));
   create_buffer(g.envmap_texels, ctx, envmap_texels.size() * sizeof(float), false, "envmap texel buffer");
   create_buffer(g.envmap_marginal, ctx, envmap_tables.marginal.size() * sizeof(float), false, "envmap table");
   create_buffer(g.envmap_conditional, ctx, envmap_tables.conditional.size() * sizeof(float), false, "envmap table");

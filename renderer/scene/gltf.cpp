@@ -899,11 +899,24 @@ double extension_number(const tinygltf::Material& gm, const char* name, const ch
 // the rotation counter-clockwise in uv space by `rotation` radians, S the
 // scale. By columns: x_axis = R (sx, 0), y_axis = R (0, sy), offset.
 // `extensions`: the textureInfo's (a normalTextureInfo is another type).
+glm::mat3x2 texture_transform(const File& f, const tinygltf::Value& v, const std::string& ext_at);
+
 glm::mat3x2 uv_transform(const File& f, const tinygltf::ExtensionMap& extensions, const std::string& at) {
   const auto it = extensions.find("KHR_texture_transform");
   if (it == extensions.end()) return glm::mat3x2(1.0f);
-  const std::string ext_at = at + ".extensions.KHR_texture_transform";
-  const tinygltf::Value& v = it->second;
+  return texture_transform(f, it->second, at + ".extensions.KHR_texture_transform");
+}
+
+// The same for a textureInfo that tinygltf leaves as a JSON value (one in
+// an extension, as KHR_materials_transmission's transmissionTexture).
+glm::mat3x2 uv_transform(const File& f, const tinygltf::Value& texture_info, const std::string& at) {
+  const tinygltf::Value& v = texture_info.Get("extensions").Get("KHR_texture_transform");
+  if (!v.IsObject()) return glm::mat3x2(1.0f);
+  return texture_transform(f, v, at + ".extensions.KHR_texture_transform");
+}
+
+// KHR_texture_transform's object `v` (at `ext_at`) as the 2x3 matrix.
+glm::mat3x2 texture_transform(const File& f, const tinygltf::Value& v, const std::string& ext_at) {
   // The schema checked the types and lengths; the values must fit a float.
   const auto number = [&](const tinygltf::Value& x, const std::string& field) {
     const double d = x.GetNumberAsDouble();
@@ -993,7 +1006,44 @@ Material read_material(const File& f, Textures& textures, size_t i) {
   if (!(thickness >= 0.0 && std::isfinite(float(thickness))))
     f.fail(at + ".extensions.KHR_materials_volume.thicknessFactor",
            "must be a finite number >= 0, got " + float_string(float(thickness)));
+  // Only whether the thickness is > 0 matters: it says that the mesh is a
+  // closed solid. Its value is a rasteriser's stand-in for the distance a
+  // ray travels inside; a path tracer traces that distance through the real
+  // geometry (as is thicknessTexture, not read).
   m.thin_walled = !(thickness > 0.0);
+  if (const auto it = gm.extensions.find("KHR_materials_transmission"); it != gm.extensions.end()) {
+    const tinygltf::Value& info = it->second.Get("transmissionTexture");
+    const std::string texture_at = at + ".extensions.KHR_materials_transmission.transmissionTexture";
+    if (info.IsObject()) {
+      const int index = info.Get("index").GetNumberAsInt();
+      f.get(f.model.textures, index, "textures", texture_at + ".index");
+      // Times a zero factor it passes nothing: not stored.
+      if (m.transmission > 0.0f) {
+        m.transmission_texture = read_texture(f, textures, index, texture_at);
+        m.transmission_uv = uv_transform(f, info, texture_at);
+      }
+    }
+  }
+  if (const auto it = gm.extensions.find("KHR_materials_volume"); it != gm.extensions.end()) {
+    const std::string volume_at = at + ".extensions.KHR_materials_volume";
+    const tinygltf::Value& color = it->second.Get("attenuationColor");
+    if (color.IsArray()) {
+      // The schema checked 3 numbers.
+      const std::vector<double> c = {color.Get(0).GetNumberAsDouble(), color.Get(1).GetNumberAsDouble(),
+                                     color.Get(2).GetNumberAsDouble()};
+      if (!in_unit_range(c))
+        f.fail(volume_at + ".attenuationColor", "must be 3 numbers in [0, 1], got " + numbers_string(c));
+      m.attenuation_color = glm::vec3(float(c[0]), float(c[1]), float(c[2]));
+    }
+    const tinygltf::Value& distance = it->second.Get("attenuationDistance");
+    if (distance.IsNumber()) {
+      const double d = distance.GetNumberAsDouble();
+      if (!(d > 0.0 && std::isfinite(float(d))))
+        f.fail(volume_at + ".attenuationDistance",
+               "must be a finite number > 0 (leave it out for no absorption), got " + float_string(float(d)));
+      m.attenuation_distance = float(d);
+    }
+  }
   // A ray leaves a closed solid through the back faces of its triangles:
   // they are hit whatever doubleSided says (the volume extension requires a
   // closed mesh; glTF's doubleSided defaults to false).
@@ -1039,13 +1089,13 @@ std::vector<std::string> approximations(const tinygltf::Model& model) {
     for (const tinygltf::TextureInfo* t : {&pbr.baseColorTexture, &pbr.metallicRoughnessTexture, &m.emissiveTexture})
       if (t->index >= 0 && texture_coordinate_set(*t) != 0) note("texture coordinate sets other than 0");
     if (m.normalTexture.index >= 0 && m.normalTexture.texCoord != 0) note("texture coordinate sets other than 0");
-    if (const auto it = m.extensions.find("KHR_materials_transmission");
-        it != m.extensions.end() && it->second.Has("transmissionTexture"))
-      note("KHR_materials_transmission's transmissionTexture");
-    // A volume is rendered as a clear solid: its thickness only says that it is one.
-    if (const auto it = m.extensions.find("KHR_materials_volume");
-        it != m.extensions.end() && (it->second.Has("attenuationDistance") || it->second.Has("attenuationColor")))
-      note("KHR_materials_volume's attenuation (volumes render clear)");
+    if (const auto it = m.extensions.find("KHR_materials_transmission"); it != m.extensions.end()) {
+      const tinygltf::Value& t = it->second.Get("transmissionTexture");
+      const tinygltf::Value& transform = t.Get("extensions").Get("KHR_texture_transform");
+      if ((t.Get("texCoord").IsInt() && t.Get("texCoord").GetNumberAsInt() != 0) ||
+          (transform.Get("texCoord").IsInt() && transform.Get("texCoord").GetNumberAsInt() != 0))
+        note("texture coordinate sets other than 0");
+    }
   }
   for (const std::string& e : model.extensionsUsed)
     if (e.rfind("KHR_materials_", 0) == 0 && e != "KHR_materials_emissive_strength" && e != "KHR_materials_ior" &&

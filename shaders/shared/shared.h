@@ -53,7 +53,8 @@ OCT_CONST(uint, TEXTURE_SLOT_BASE_COLOR, 0u);
 OCT_CONST(uint, TEXTURE_SLOT_METALLIC_ROUGHNESS, 1u);
 OCT_CONST(uint, TEXTURE_SLOT_EMISSION, 2u);
 OCT_CONST(uint, TEXTURE_SLOT_NORMAL, 3u);
-OCT_CONST(uint, TEXTURE_SLOTS, 4u);
+OCT_CONST(uint, TEXTURE_SLOT_TRANSMISSION, 4u);  // its index is GpuTransmission's
+OCT_CONST(uint, TEXTURE_SLOTS, 5u);
 
 // glTF's alpha modes (GpuMaterial.alpha_mode; scene/scene.h's AlphaMode).
 OCT_CONST(uint, ALPHA_OPAQUE, 0u);
@@ -111,7 +112,10 @@ OCT_CONST(uint, BINDING_ENVMAP_CONDITIONAL, 23u);
 // The part table of a scene split over several buffers (scene_buffers.glsl);
 // bindings 18-20 are light sampling's, 21-23 the environment map's.
 OCT_CONST(uint, BINDING_BUFFER_PARTS, 24u);
-OCT_CONST(uint, BINDING_COUNT, 25u);
+// What transmission reads besides GpuMaterial, one GpuTransmission per
+// material; a 16-byte placeholder in a scene without transmission.
+OCT_CONST(uint, BINDING_TRANSMISSION, 26u);
+OCT_CONST(uint, BINDING_COUNT, 27u);
 
 // A scene larger than one storage buffer (the device's maxStorageBufferRange,
 // 128 MiB on lavapipe) is read through buffer device addresses
@@ -170,6 +174,10 @@ OCT_CONST(uint, SPEC_SINGLE_SIDED, 18u);
 // Whether some pbr material transmits (KHR_materials_transmission): off, the
 // refraction of shading/pbr.glsl compiles out.
 OCT_CONST(uint, SPEC_TRANSMISSION, 19u);
+// Whether some transmissive solid absorbs (KHR_materials_volume's
+// attenuation, GpuTransmission.absorption): off, the Beer-Lambert factor
+// of path_trace.comp compiles out.
+OCT_CONST(uint, SPEC_ABSORPTION, 24u);
 // log2 of the largest part of a split scene, in bytes (the split pipeline
 // only, path_trace_*_split; scene_buffers.glsl).
 OCT_CONST(uint, SPEC_PART_LOG2, 27u);
@@ -358,6 +366,20 @@ struct GpuMaterial {
   float alpha_cutoff;
   float alpha;
   uint double_sided;
+};
+
+// 16 bytes. What a material's transmission reads besides GpuMaterial (which
+// has no room left), in every precision variant: `absorption`, the
+// absorption coefficient sigma per unit length of the solid it bounds
+// (KHR_materials_volume: sigma = -ln(attenuationColor) /
+// attenuationDistance; 0: clear; +Inf where a colour channel is 0), fp32
+// (half's 65504 does not hold the sigma of a short attenuation distance);
+// and the index of its transmission texture (KHR_materials_transmission's
+// transmissionTexture, whose red channel, linear, multiplies the factor),
+// or NO_TEXTURE.
+struct GpuTransmission {
+  vec3 absorption;
+  uint transmission_texture;
 };
 
 // 16 bytes. One texture of the texture table: its texels are

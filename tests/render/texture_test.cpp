@@ -275,6 +275,45 @@ TEST_F(TextureTest, BakedMirroredMeshKeepsTheFilesBitangent) {
               gradient_sky_mean(-texel_normal(128, 218, 218).y), 0.008f, "baked mirror");
 }
 
+// KHR_materials_transmission's transmissionTexture: its red channel,
+// linear, times the factor, through its own uv transform. A thin-walled
+// (no KHR_materials_volume) smooth quad of ior 1 (F0 = 0: nothing reflected
+// head-on) with base colour 1 in front of an emitting quad of radiance 1,
+// under a black sky: light passes straight through with probability t and
+// is otherwise diffused toward the camera's side, where nothing shines, so
+// a pixel's expectation is t. The texture's two texels have red 255 (t = 1)
+// and 64 (t = 0.251 read as linear; 0.051 if it were decoded as sRGB), and
+// the uv transform mirrors u (scale -1, offset 1): the quad's left quarter
+// shows the second texel, its right quarter the first (clamped: no blend).
+// 16 pixels x 256 samples of 0 or ~1 each side: 5 sigma <= 0.035.
+TEST_F(TextureTest, TransmissionTextureScalesTransmissionByItsRedChannel) {
+  test::GltfBuilder b = test::textured_quad_gltf(test::png(2, 1, {255, 0, 0, 255, 64, 255, 255, 255}),
+                                                 test::kClampToEdge, test::kClampToEdge);
+  nlohmann::json texture = {{"index", 0}};
+  texture["extensions"]["KHR_texture_transform"] = {{"offset", {1, 0}}, {"scale", {-1, 1}}};
+  b.doc["materials"][0] = {{"pbrMetallicRoughness", {{"metallicFactor", 0}, {"roughnessFactor", 0}}}};
+  b.doc["materials"][0]["extensions"]["KHR_materials_ior"] = {{"ior", 1.0}};
+  b.doc["materials"][0]["extensions"]["KHR_materials_transmission"] = {{"transmissionFactor", 1},
+                                                                       {"transmissionTexture", texture}};
+  Scene s = load_gltf_scene(b.write(test::tmp_path("transmission_texture.gltf")));
+  s.sky.type = SkyType::None;
+  s.materials.push_back(test::emitter(glm::vec3(1.0f)));
+  Mesh behind;
+  add_uv_quad(behind, 0, 0, glm::vec2(0.0f), uint32_t(s.materials.size() - 1));
+  test::place(s, behind, glm::translate(glm::mat4(1.0f), {-1, -1, -1}) * glm::scale(glm::mat4(1.0f), {3, 3, 1}));
+  frame(s, 1, 1);
+  for (Precision p : {Precision::FP32, Precision::FP16}) {
+    const RenderResult r = render_framed(s, 1, 1, p, 256);
+    for (const auto& [x0, want, what] : {std::tuple{0, 64.0 / 255.0, "left (red 64)"},
+                                         std::tuple{6, 1.0, "right (red 255)"}}) {
+      double mean = 0;
+      for (int y = 0; y < 8; ++y)
+        for (int x = x0; x < x0 + 2; ++x) mean += r.mean.pixel(x, y)[1] / 16.0;
+      EXPECT_NEAR(mean, want, 0.035) << precision_name(p) << " " << what;
+    }
+  }
+}
+
 // A texel of 128 is 0.2158605 in linear colour (the exact EOTF; the 2.2 power
 // gives 0.2176, a texel used as it is 0.502), here as the albedo under a sky
 // of radiance 1.
