@@ -25,6 +25,7 @@ layout(std430, binding = 12) buffer B12 { GpuTexture textures[2]; };
 layout(std430, binding = 13) buffer B13 { GpuTriangleUvs triangle_uvs[2]; };
 layout(std430, binding = 14) buffer B14 { GpuUvTransform uv_transforms[2]; };
 layout(std430, binding = 15) buffer B15 { GpuLight lights[2]; };
+layout(std430, binding = 16) buffer B16 { GpuTransmission transmissions[2]; };
 
 void main() {
   scene.sky_a = vec3(1, 2, 3);
@@ -155,5 +156,7 @@ void main() {
     lights[i].pad0 = u + 138;
     lights[i].pad1 = u + 139;
     lights[i].pad2 = u + 140;
+    transmissions[i].absorption = vec3(o + 141, o + 142, o + 143);
+    transmissions[i].transmission_texture = u + 144;
   }
 }
