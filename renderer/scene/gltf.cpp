@@ -952,10 +952,11 @@ int texture_coordinate_set(const tinygltf::TextureInfo& t) {
 // KHR_texture_transform, and alpha = baseColorFactor.a x the base colour
 // texture's alpha with alphaMode and alphaCutoff (3.9.6; BLEND as a
 // stochastic cut-out) and doubleSided (false: back faces are not hit), and
-// KHR_materials_transmission's transmissionFactor: thin-walled without
+// KHR_materials_transmission's transmissionFactor (times its
+// transmissionTexture's red channel): thin-walled without
 // KHR_materials_volume, a closed solid of the material's ior with it
-// (thicknessFactor > 0; the thickness value itself and the attenuation are
-// not used: the solid is clear).
+// (thicknessFactor > 0; the thickness value itself is not used), absorbing
+// by the volume's attenuationColor and attenuationDistance.
 Material read_material(const File& f, Textures& textures, size_t i) {
   const tinygltf::Material& gm = f.model.materials[i];
   const std::string at = item("materials", i);
