@@ -25,6 +25,7 @@ layout(std430, binding = 12) buffer B12 { GpuTexture textures[2]; };
 layout(std430, binding = 13) buffer B13 { GpuTriangleUvs triangle_uvs[2]; };
 layout(std430, binding = 14) buffer B14 { GpuUvTransform uv_transforms[2]; };
 layout(std430, binding = 15) buffer B15 { GpuLight lights[2]; };
+layout(std430, binding = 16) buffer B16 { GpuTransmission transmissions[2]; };
 
 void main() {
   scene.sky_a = vec3(1, 2, 3);
@@ -111,11 +112,11 @@ void main() {
     triangles[i].v2 = vec3(o + 41, o + 42, o + 43);
     triangles[i].pad1 = u + 44;
     triangle_normals[i].n0 = vec3(o + 45, o + 46, o + 47);
-    triangle_normals[i].pad0 = u + 48;
+    triangle_normals[i].tangent0 = u + 48;
     triangle_normals[i].n1 = vec3(o + 49, o + 50, o + 51);
-    triangle_normals[i].pad1 = u + 52;
+    triangle_normals[i].tangent1 = u + 52;
     triangle_normals[i].n2 = vec3(o + 53, o + 54, o + 55);
-    triangle_normals[i].pad2 = u + 56;
+    triangle_normals[i].tangent2 = u + 56;
     instances[i].to_object0 = vec4(o + 57, o + 58, o + 59, o + 60);
     instances[i].to_object1 = vec4(o + 61, o + 62, o + 63, o + 64);
     instances[i].to_object2 = vec4(o + 65, o + 66, o + 67, o + 68);
@@ -155,5 +156,7 @@ void main() {
     lights[i].pad0 = u + 138;
     lights[i].pad1 = u + 139;
     lights[i].pad2 = u + 140;
+    transmissions[i].absorption = vec3(o + 141, o + 142, o + 143);
+    transmissions[i].transmission_texture = u + 144;
   }
 }

@@ -22,6 +22,7 @@ layout(std430, binding = BINDING_MESHES) readonly buffer MeshBuf { GpuMesh meshe
 layout(std430, binding = BINDING_TEXTURES) readonly buffer TextureBuf { GpuTexture textures[]; };
 layout(std430, binding = BINDING_TEXELS) readonly buffer TexelBuf { uint texels[]; };
 layout(std430, binding = BINDING_TEXTURE_TRANSFORMS) readonly buffer TextureTransformBuf { GpuUvTransform texture_transforms[]; };
+layout(std430, binding = BINDING_TRANSMISSION) readonly buffer TransmissionBuf { GpuTransmission material_transmission[]; };
 layout(std430, binding = BINDING_ENVMAP_TEXELS) readonly buffer EnvmapTexelBuf { float envmap_texels[]; };
 layout(std430, binding = BINDING_ENVMAP_MARGINAL) readonly buffer EnvmapMarginalBuf { float envmap_marginal[]; };
 layout(std430, binding = BINDING_ENVMAP_CONDITIONAL) readonly buffer EnvmapConditionalBuf { float envmap_conditional[]; };
@@ -53,6 +54,7 @@ layout(constant_id = SPEC_NORMAL_MAPS) const bool HAS_NORMAL_MAPS = true;
 layout(constant_id = SPEC_ALPHA) const bool HAS_ALPHA = true;
 layout(constant_id = SPEC_SINGLE_SIDED) const bool HAS_SINGLE_SIDED = true;
 layout(constant_id = SPEC_TRANSMISSION) const bool HAS_TRANSMISSION = true;
+layout(constant_id = SPEC_ABSORPTION) const bool HAS_ABSORPTION = true;
 layout(constant_id = SPEC_SAMPLE_LANES) const bool SAMPLE_LANES = true;
 layout(constant_id = SPEC_NEE) const bool NEE = true;
 layout(constant_id = SPEC_PUNCTUAL) const bool HAS_PUNCTUAL = true;
@@ -128,6 +130,8 @@ vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments)
     // Sides are decided by the geometric normal; scattering uses the shading
     // normal turned to the side the ray came from.
     bool front_face = dot(ray.dir, surf.ng) < 0.0;
+    // A segment that ends on a back face travelled inside what it bounds.
+    if (HAS_ABSORPTION && !front_face) throughput *= transmittance(m, hit.t);
     vec3 g = front_face ? surf.ng : -surf.ng;
     vec3 n = front_face ? surf.ns : -surf.ns;
     // An interpolated shading normal can face away from the ray near a

@@ -24,11 +24,14 @@ static_assert(offsetof(GpuTriangle, pad1) == 44);
 static_assert(sizeof(GpuTriangleNormals) == 48);
 static_assert(offsetof(GpuTriangleNormals, n1) == 16);
 static_assert(offsetof(GpuTriangleNormals, n2) == 32);
-static_assert(offsetof(GpuTriangleNormals, pad2) == 44);
+static_assert(offsetof(GpuTriangleNormals, tangent2) == 44);
 
 static_assert(sizeof(GpuTriangleUvs) == 24);
 static_assert(offsetof(GpuTriangleUvs, uv1) == 8);
 static_assert(offsetof(GpuTriangleUvs, uv2) == 16);
+
+static_assert(sizeof(GpuTransmission) == 16);
+static_assert(offsetof(GpuTransmission, transmission_texture) == 12);
 
 static_assert(sizeof(GpuUvTransform) == 24);
 static_assert(offsetof(GpuUvTransform, y_axis) == 8);

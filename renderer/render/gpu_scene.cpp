@@ -211,6 +211,24 @@ std::vector<gpu::GpuTriangle> object_triangles(const Scene& scene) {
   return out;
 }
 
+uint32_t pack_tangent(glm::vec4 t) {
+  // Octahedral encoding (shared.h): project onto the octahedron |x| + |y| +
+  // |z| = 1, fold the lower half over the upper (Cigolle et al. 2014,
+  // listing 1), quantise each coordinate to 15 bits.
+  const glm::vec3 v(t);
+  const float l1 = std::abs(v.x) + std::abs(v.y) + std::abs(v.z);
+  if (!(l1 > 0.0f) || t.w == 0.0f) return 0;  // none, or no direction: the uvs' frame
+  glm::vec2 p = glm::vec2(v) / l1;
+  if (v.z < 0.0f) {
+    const glm::vec2 sign(p.x >= 0.0f ? 1.0f : -1.0f, p.y >= 0.0f ? 1.0f : -1.0f);
+    p = (1.0f - glm::abs(glm::vec2(p.y, p.x))) * sign;
+  }
+  const auto unorm = [](float x) {
+    return uint32_t(std::lround(std::clamp(0.5f * x + 0.5f, 0.0f, 1.0f) * float(gpu::TANGENT_UNORM_MAX)));
+  };
+  return gpu::TANGENT_PRESENT | (t.w < 0.0f ? gpu::TANGENT_NEGATIVE_W : 0u) | unorm(p.x) | unorm(p.y) << 15;
+}
+
 std::vector<gpu::GpuTriangleNormals> object_triangle_normals(const Scene& scene) {
   std::vector<gpu::GpuTriangleNormals> out;
   out.reserve(unique_triangle_count(scene));
@@ -224,7 +242,10 @@ std::vector<gpu::GpuTriangleNormals> object_triangle_normals(const Scene& scene)
       } else {
         for (int v = 0; v < 3; ++v) n[v] = mesh.normals[idx[v]];
       }
-      out.push_back({n[0], 0, n[1], 0, n[2], 0});
+      uint32_t t[3] = {0, 0, 0};
+      if (!mesh.tangents.empty())
+        for (int v = 0; v < 3; ++v) t[v] = pack_tangent(mesh.tangents[idx[v]]);
+      out.push_back({n[0], t[0], n[1], t[1], n[2], t[2]});
     }
   return out;
 }
@@ -367,8 +388,21 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   if (!textures.table.empty()) {
     uv_transforms.reserve(scene.materials.size() * gpu::TEXTURE_SLOTS);
     for (const Material& m : scene.materials)
-      for (const glm::mat3x2& t : {m.base_color_uv, m.metallic_roughness_uv, m.emission_uv, m.normal_uv})
+      for (const glm::mat3x2& t :
+           {m.base_color_uv, m.metallic_roughness_uv, m.emission_uv, m.normal_uv, m.transmission_uv})
         uv_transforms.push_back({t[0], t[1], t[2]});
+    static_assert(gpu::TEXTURE_SLOTS == 5, "one uv transform per slot, in TEXTURE_SLOT_* order");
+  }
+  // What transmission reads besides the material, only where some material transmits.
+  std::vector<gpu::GpuTransmission> transmission;
+  if (std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) {
+        return m.type == MaterialType::Pbr && m.transmission > 0.0f;
+      })) {
+    check_fits(ctx.limits.maxStorageBufferRange, scene.materials.size() * sizeof(gpu::GpuTransmission),
+               "the transmission parameters of " + std::to_string(scene.materials.size()) + " materials");
+    transmission.reserve(scene.materials.size());
+    for (const Material& m : scene.materials)
+      transmission.push_back({absorption_coefficient(m), m.transmission_texture.value_or(gpu::NO_TEXTURE)});
   }
   gpu::SceneParams& p = g.values;
   p = {};
@@ -420,6 +454,8 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   if (!uv_transforms.empty()) hash.add_vector(uv_transforms);
   // Nor do scenes without an envmap (its tables follow from its texels).
   if (!envmap_texels.empty()) hash.add_vector(envmap_texels);
+  // Nor scenes without transmission.
+  if (!transmission.empty()) hash.add_vector(transmission);
   g.content_hash = hash.add(&p, sizeof p)
                       .add_vector(triangles)
                       .add_vector(normals)
@@ -491,6 +527,7 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   uint64_t total = reserved_bytes + sizeof p + instances.size() * sizeof(gpu::GpuInstance) +
                    meshes.size() * sizeof(gpu::GpuMesh) + textures.table.size() * sizeof(gpu::GpuTexture) + textures.texels.size() * sizeof(uint32_t) +
                    uv_transforms.size() * sizeof(gpu::GpuUvTransform) + g.part_addresses.size() * sizeof(glm::uvec2) +
+                   transmission.size() * sizeof(gpu::GpuTransmission) +
                    (envmap_texels.size() + envmap_tables.marginal.size() + envmap_tables.conditional.size()) *
                        sizeof(float) +
                    lights.lights.size() * sizeof(gpu::GpuLight) + lights.sphere_lights.size() * sizeof(uint32_t);
@@ -524,6 +561,8 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   create_buffer(g.texture_transforms, ctx, uv_transforms.size() * sizeof(gpu::GpuUvTransform), false,
                 "texture transform buffer");
   upload_buffer(ctx, g.texture_transforms, uv_transforms.data(), uv_transforms.size() * sizeof(gpu::GpuUvTransform));
+  create_buffer(g.transmission, ctx, transmission.size() * sizeof(gpu::GpuTransmission), false, "transmission buffer");
+  upload_buffer(ctx, g.transmission, transmission.data(), transmission.size() * sizeof(gpu::GpuTransmission));
   create_buffer(g.envmap_texels, ctx, envmap_texels.size() * sizeof(float), false, "envmap texel buffer");
   create_buffer(g.envmap_marginal, ctx, envmap_tables.marginal.size() * sizeof(float), false, "envmap table");
   create_buffer(g.envmap_conditional, ctx, envmap_tables.conditional.size() * sizeof(float), false, "envmap table");
@@ -561,10 +600,11 @@ Scene bake_single_use_meshes(const Scene& scene) {
       out.meshes.push_back(scene.meshes[m]);
     }
   // The baked mesh has vertex normals (uvs) if any mesh baked into it has them.
-  bool single_smooth = false, single_uvs = false;
+  bool single_smooth = false, single_uvs = false, single_tangents = false;
   for (const Instance& inst : scene.instances) {
     single_smooth |= uses[inst.mesh] == 1 && !scene.meshes[inst.mesh].normals.empty();
     single_uvs |= uses[inst.mesh] == 1 && !scene.meshes[inst.mesh].uvs.empty();
+    single_tangents |= uses[inst.mesh] == 1 && !scene.meshes[inst.mesh].tangents.empty();
   }
   Mesh baked;
   baked.name = "baked";
@@ -582,6 +622,15 @@ Scene bake_single_use_meshes(const Scene& scene) {
     const bool flip = glm::determinant(glm::dmat3(m)) < 0.0;
     const auto world = [&](glm::vec3 p) { return glm::vec3(m * glm::dvec4(glm::dvec3(p), 1.0)); };
     const auto world_normal = [&](glm::vec3 n) { return glm::vec3(glm::normalize(normal_matrix * glm::dvec3(n))); };
+    // A tangent is a direction (the placement's 3x3, not its inverse
+    // transpose); a mirror turns cross(normal, tangent) around, so w flips
+    // to keep the bitangent where the placement puts it.
+    const auto world_tangent = [&](glm::vec4 t) {
+      if (t.w == 0.0f) return t;
+      const glm::dvec3 d = glm::dmat3(m) * glm::dvec3(t);
+      const double l = glm::length(d);
+      return l > 0.0 ? glm::vec4(glm::vec3(d / l), flip ? -t.w : t.w) : glm::vec4(0.0f);
+    };
     for (size_t k = 0; k < mesh.triangle_count(); ++k) {
       uint32_t idx[3] = {mesh.indices[3 * k], mesh.indices[3 * k + (flip ? 2 : 1)], mesh.indices[3 * k + (flip ? 1 : 2)]};
       const uint32_t base = uint32_t(baked.positions.size());
@@ -599,6 +648,9 @@ Scene bake_single_use_meshes(const Scene& scene) {
       }
       if (single_uvs)
         for (int v = 0; v < 3; ++v) baked.uvs.push_back(mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[idx[v]]);
+      if (single_tangents)
+        for (int v = 0; v < 3; ++v)
+          baked.tangents.push_back(mesh.tangents.empty() ? glm::vec4(0.0f) : world_tangent(mesh.tangents[idx[v]]));
       baked.indices.insert(baked.indices.end(), {base, base + 1, base + 2});
       baked.materials.push_back(mesh.materials[k]);
     }

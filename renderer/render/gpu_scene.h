@@ -32,6 +32,7 @@ struct GpuScene {
   Buffer texels;            // every texture's texels, one uint (RGBA8) each
   Buffer triangle_uvs;      // GpuTriangleUvs per triangle (placeholder without textures)
   Buffer texture_transforms;  // GpuUvTransform per material and texture slot (placeholder without textures)
+  Buffer transmission;        // GpuTransmission per material (placeholder without transmission)
   Buffer nodes, refs;       // the octree (16-byte placeholders without one)
   Buffer lights;            // GpuLight per light (render/lights.h; placeholder without lights)
   Buffer sphere_lights;     // per sphere, its light's index (placeholder when no sphere emits)

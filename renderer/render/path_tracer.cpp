@@ -127,6 +127,7 @@ void PathTracer::State::create_pipeline() {
                            {gpu::SPEC_ALPHA, f.alpha},
                            {gpu::SPEC_SINGLE_SIDED, f.single_sided},
                            {gpu::SPEC_TRANSMISSION, f.transmission},
+                           {gpu::SPEC_ABSORPTION, f.absorption},
                            {gpu::SPEC_NEE, settings.nee && (f.sphere_lights || f.punctual)},
                            {gpu::SPEC_PUNCTUAL, f.punctual},
                            {gpu::SPEC_PART_LOG2, g.part_log2}});
@@ -144,6 +145,7 @@ void PathTracer::State::create_pipeline() {
                    {gpu::BINDING_TEXELS, &g.texels},
                    {gpu::BINDING_TRIANGLE_UVS, &g.triangle_uvs},
                    {gpu::BINDING_TEXTURE_TRANSFORMS, &g.texture_transforms},
+                   {gpu::BINDING_TRANSMISSION, &g.transmission},
                    {gpu::BINDING_LIGHTS, &g.lights},
                    {gpu::BINDING_SPHERE_LIGHTS, &g.sphere_lights},
                    {gpu::BINDING_ENVMAP_TEXELS, &g.envmap_texels},

@@ -61,6 +61,7 @@ SceneFeatures scene_features(const Scene& scene) {
         f.normal_maps |= m.normal_texture.has_value();
         f.surface_emission |= !is_black(m.emission);
         f.transmission |= m.transmission > 0.0f;
+        f.absorption |= absorption_coefficient(m) != glm::vec3(0.0f);
         break;
     }
   }
@@ -91,7 +92,7 @@ SceneFeatures all_features(const Scene& scene) {
   f.any_light = true;
   f.empty = false;
   f.spheres = f.triangles = f.vertex_normals = f.textures = f.surface_emission = f.normal_maps = f.alpha = f.single_sided = true;
-  f.transmission = true;
+  f.transmission = f.absorption = true;
   f.sphere_lights = f.punctual = true;
   return f;
 }
@@ -113,6 +114,7 @@ std::vector<std::string> feature_names(const SceneFeatures& f) {
   if (f.alpha) names.push_back("alpha");
   if (f.single_sided) names.push_back("single_sided");
   if (f.transmission) names.push_back("transmission");
+  if (f.absorption) names.push_back("absorption");
   if (f.sphere_lights) names.push_back("sphere_lights");
   if (f.punctual) names.push_back("punctual");
   constexpr const char* kSkyNames[] = {"sky_gradient", "sky_uniform", "sky_none", "sky_envmap"};

@@ -34,6 +34,7 @@ struct SceneFeatures {
   bool alpha = false;             // some mesh material is not opaque (alpha MASK or BLEND)
   bool single_sided = false;      // some mesh material is single-sided (back faces not hit)
   bool transmission = false;      // some pbr material transmits (refraction through a rough surface)
+  bool absorption = false;        // some transmissive solid absorbs (KHR_materials_volume's attenuation)
   // Lights that next-event estimation samples (render/lights.h):
   bool sphere_lights = false;     // some sphere emits (sphere_radiance not black)
   bool punctual = false;          // some punctual light (point, spot, directional) is not black

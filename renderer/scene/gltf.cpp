@@ -720,10 +720,23 @@ Mesh read_mesh(File& f, size_t m) {
   // Uvs matter only under a texture: a primitive without them beside one
   // with them (an untextured part of a textured mesh) gets uv (0, 0).
   const bool uvs = std::any_of(kept.begin(), kept.end(), [&](size_t j) { return has(j, "TEXCOORD_0"); });
+  // TANGENT (3.7.2.1) is kept only where it is used: beside normals (the
+  // spec ignores it without) and uvs, under a material with a normal map.
+  // Elsewhere it is still read and checked, so that a bad one is refused
+  // whatever material the primitive has.
+  const auto normal_mapped = [&](size_t j) {
+    const int material = gm.primitives[j].material;
+    return material >= 0 && size_t(material) < f.model.materials.size() &&
+           f.model.materials[size_t(material)].normalTexture.index >= 0;
+  };
+  const auto keeps_tangents = [&](size_t j) {
+    return normals && uvs && has(j, "TANGENT") && normal_mapped(j);
+  };
+  const bool tangents = std::any_of(kept.begin(), kept.end(), keeps_tangents);
 
   // Primitives that share their vertex accessors share the vertices.
   struct VertexSet {
-    int position, normal, uv;
+    int position, normal, uv, tangent;
     uint32_t base, count;
   };
   std::vector<VertexSet> sets;
@@ -734,8 +747,10 @@ Mesh read_mesh(File& f, size_t m) {
     const int position = attribute(p, "POSITION");
     const int normal = normals ? attribute(p, "NORMAL") : -1;
     const int uv = uvs ? attribute(p, "TEXCOORD_0") : -1;
+    const int tangent = attribute(p, "TANGENT");
+    const bool keep_tangent = keeps_tangents(j);
     auto set = std::find_if(sets.begin(), sets.end(), [&](const VertexSet& s) {
-      return s.position == position && s.normal == normal && s.uv == uv;
+      return s.position == position && s.normal == normal && s.uv == uv && s.tangent == (keep_tangent ? tangent : -1);
     });
     if (set == sets.end()) {
       const auto positions = read_attribute<3>(f, position, at + ".attributes.POSITION", "POSITION");
@@ -756,9 +771,21 @@ Mesh read_mesh(File& f, size_t m) {
       } else if (uvs) {
         mesh.uvs.insert(mesh.uvs.end(), positions.size(), glm::vec2(0.0f));
       }
+      if (tangent >= 0) {
+        const std::string tangent_at = at + ".attributes.TANGENT";
+        const auto t = read_attribute<4>(f, tangent, tangent_at, "TANGENT");
+        count_check(t.size(), "TANGENT", tangent);
+        for (size_t i = 0; i < t.size(); ++i)
+          if (t[i].w != 1.0f && t[i].w != -1.0f)
+            f.fail(tangent_at, item(item("accessors", size_t(tangent)), i) +
+                                   ": w (the handedness) must be 1 or -1, got " + float_string(t[i].w));
+        if (keep_tangent) mesh.tangents.insert(mesh.tangents.end(), t.begin(), t.end());
+      }
+      if (tangents && !keep_tangent) mesh.tangents.insert(mesh.tangents.end(), positions.size(), glm::vec4(0.0f));
       if (mesh.positions.size() + positions.size() > UINT32_MAX)
         f.fail(mesh_at, "more than 2^32 - 1 vertices");
-      sets.push_back({position, normal, uv, uint32_t(mesh.positions.size()), uint32_t(positions.size())});
+      sets.push_back({position, normal, uv, keep_tangent ? tangent : -1, uint32_t(mesh.positions.size()),
+                      uint32_t(positions.size())});
       mesh.positions.insert(mesh.positions.end(), positions.begin(), positions.end());
       set = sets.end() - 1;
     }
@@ -872,11 +899,24 @@ double extension_number(const tinygltf::Material& gm, const char* name, const ch
 // the rotation counter-clockwise in uv space by `rotation` radians, S the
 // scale. By columns: x_axis = R (sx, 0), y_axis = R (0, sy), offset.
 // `extensions`: the textureInfo's (a normalTextureInfo is another type).
+glm::mat3x2 texture_transform(const File& f, const tinygltf::Value& v, const std::string& ext_at);
+
 glm::mat3x2 uv_transform(const File& f, const tinygltf::ExtensionMap& extensions, const std::string& at) {
   const auto it = extensions.find("KHR_texture_transform");
   if (it == extensions.end()) return glm::mat3x2(1.0f);
-  const std::string ext_at = at + ".extensions.KHR_texture_transform";
-  const tinygltf::Value& v = it->second;
+  return texture_transform(f, it->second, at + ".extensions.KHR_texture_transform");
+}
+
+// The same for a textureInfo that tinygltf leaves as a JSON value (one in
+// an extension, as KHR_materials_transmission's transmissionTexture).
+glm::mat3x2 uv_transform(const File& f, const tinygltf::Value& texture_info, const std::string& at) {
+  const tinygltf::Value& v = texture_info.Get("extensions").Get("KHR_texture_transform");
+  if (!v.IsObject()) return glm::mat3x2(1.0f);
+  return texture_transform(f, v, at + ".extensions.KHR_texture_transform");
+}
+
+// KHR_texture_transform's object `v` (at `ext_at`) as the 2x3 matrix.
+glm::mat3x2 texture_transform(const File& f, const tinygltf::Value& v, const std::string& ext_at) {
   // The schema checked the types and lengths; the values must fit a float.
   const auto number = [&](const tinygltf::Value& x, const std::string& field) {
     const double d = x.GetNumberAsDouble();
@@ -912,10 +952,11 @@ int texture_coordinate_set(const tinygltf::TextureInfo& t) {
 // KHR_texture_transform, and alpha = baseColorFactor.a x the base colour
 // texture's alpha with alphaMode and alphaCutoff (3.9.6; BLEND as a
 // stochastic cut-out) and doubleSided (false: back faces are not hit), and
-// KHR_materials_transmission's transmissionFactor: thin-walled without
+// KHR_materials_transmission's transmissionFactor (times its
+// transmissionTexture's red channel): thin-walled without
 // KHR_materials_volume, a closed solid of the material's ior with it
-// (thicknessFactor > 0; the thickness value itself and the attenuation are
-// not used: the solid is clear).
+// (thicknessFactor > 0; the thickness value itself is not used), absorbing
+// by the volume's attenuationColor and attenuationDistance.
 Material read_material(const File& f, Textures& textures, size_t i) {
   const tinygltf::Material& gm = f.model.materials[i];
   const std::string at = item("materials", i);
@@ -966,7 +1007,44 @@ Material read_material(const File& f, Textures& textures, size_t i) {
   if (!(thickness >= 0.0 && std::isfinite(float(thickness))))
     f.fail(at + ".extensions.KHR_materials_volume.thicknessFactor",
            "must be a finite number >= 0, got " + float_string(float(thickness)));
+  // Only whether the thickness is > 0 matters: it says that the mesh is a
+  // closed solid. Its value is a rasteriser's stand-in for the distance a
+  // ray travels inside; a path tracer traces that distance through the real
+  // geometry (as is thicknessTexture, not read).
   m.thin_walled = !(thickness > 0.0);
+  if (const auto it = gm.extensions.find("KHR_materials_transmission"); it != gm.extensions.end()) {
+    const tinygltf::Value& info = it->second.Get("transmissionTexture");
+    const std::string texture_at = at + ".extensions.KHR_materials_transmission.transmissionTexture";
+    if (info.IsObject()) {
+      const int index = info.Get("index").GetNumberAsInt();
+      f.get(f.model.textures, index, "textures", texture_at + ".index");
+      // Times a zero factor it passes nothing: not stored.
+      if (m.transmission > 0.0f) {
+        m.transmission_texture = read_texture(f, textures, index, texture_at);
+        m.transmission_uv = uv_transform(f, info, texture_at);
+      }
+    }
+  }
+  if (const auto it = gm.extensions.find("KHR_materials_volume"); it != gm.extensions.end()) {
+    const std::string volume_at = at + ".extensions.KHR_materials_volume";
+    const tinygltf::Value& color = it->second.Get("attenuationColor");
+    if (color.IsArray()) {
+      // The schema checked 3 numbers.
+      const std::vector<double> c = {color.Get(0).GetNumberAsDouble(), color.Get(1).GetNumberAsDouble(),
+                                     color.Get(2).GetNumberAsDouble()};
+      if (!in_unit_range(c))
+        f.fail(volume_at + ".attenuationColor", "must be 3 numbers in [0, 1], got " + numbers_string(c));
+      m.attenuation_color = glm::vec3(float(c[0]), float(c[1]), float(c[2]));
+    }
+    const tinygltf::Value& distance = it->second.Get("attenuationDistance");
+    if (distance.IsNumber()) {
+      const double d = distance.GetNumberAsDouble();
+      if (!(d > 0.0 && std::isfinite(float(d))))
+        f.fail(volume_at + ".attenuationDistance",
+               "must be a finite number > 0 (leave it out for no absorption), got " + float_string(float(d)));
+      m.attenuation_distance = float(d);
+    }
+  }
   // A ray leaves a closed solid through the back faces of its triangles:
   // they are hit whatever doubleSided says (the volume extension requires a
   // closed mesh; glTF's doubleSided defaults to false).
@@ -1012,13 +1090,13 @@ std::vector<std::string> approximations(const tinygltf::Model& model) {
     for (const tinygltf::TextureInfo* t : {&pbr.baseColorTexture, &pbr.metallicRoughnessTexture, &m.emissiveTexture})
       if (t->index >= 0 && texture_coordinate_set(*t) != 0) note("texture coordinate sets other than 0");
     if (m.normalTexture.index >= 0 && m.normalTexture.texCoord != 0) note("texture coordinate sets other than 0");
-    if (const auto it = m.extensions.find("KHR_materials_transmission");
-        it != m.extensions.end() && it->second.Has("transmissionTexture"))
-      note("KHR_materials_transmission's transmissionTexture");
-    // A volume is rendered as a clear solid: its thickness only says that it is one.
-    if (const auto it = m.extensions.find("KHR_materials_volume");
-        it != m.extensions.end() && (it->second.Has("attenuationDistance") || it->second.Has("attenuationColor")))
-      note("KHR_materials_volume's attenuation (volumes render clear)");
+    if (const auto it = m.extensions.find("KHR_materials_transmission"); it != m.extensions.end()) {
+      const tinygltf::Value& t = it->second.Get("transmissionTexture");
+      const tinygltf::Value& transform = t.Get("extensions").Get("KHR_texture_transform");
+      if ((t.Get("texCoord").IsInt() && t.Get("texCoord").GetNumberAsInt() != 0) ||
+          (transform.Get("texCoord").IsInt() && transform.Get("texCoord").GetNumberAsInt() != 0))
+        note("texture coordinate sets other than 0");
+    }
   }
   for (const std::string& e : model.extensionsUsed)
     if (e.rfind("KHR_materials_", 0) == 0 && e != "KHR_materials_emissive_strength" && e != "KHR_materials_ior" &&

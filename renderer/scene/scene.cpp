@@ -234,6 +234,9 @@ void validate_material(const Material& m, const Scene& scene, const std::string&
             "only lambertian and pbr materials take textures and an emission (an emissive one has a radiance)");
   if (m.type != MaterialType::Pbr && m.metallic_roughness_texture)
     invalid(source, path, "only pbr materials take a metallic-roughness texture");
+  if (m.type != MaterialType::Pbr && (m.transmission_texture || m.attenuation_color != glm::vec3(1.0f) ||
+                                      m.attenuation_distance != INFINITY))
+    invalid(source, path, "only pbr materials take a transmission texture and an attenuation");
   for (const MaterialTexture& t : kMaterialTextures)
     if (const std::optional<uint32_t>& texture = m.*t.index; texture && *texture >= scene.textures.size())
       invalid(source, path + "." + t.field, out_of_range(*texture, scene.textures.size(), "texture", "textures"));
@@ -268,6 +271,12 @@ void validate_material(const Material& m, const Scene& scene, const std::string&
       if (!(m.alpha_cutoff >= 0.0f && std::isfinite(m.alpha_cutoff)))
         invalid(source, path + ".alpha_cutoff", "must be a finite number >= 0, got " + format(m.alpha_cutoff));
       check_unit(m.alpha, source, path + ".alpha");
+      if (!(m.attenuation_color.x >= 0.0f && m.attenuation_color.x <= 1.0f && m.attenuation_color.y >= 0.0f &&
+            m.attenuation_color.y <= 1.0f && m.attenuation_color.z >= 0.0f && m.attenuation_color.z <= 1.0f))
+        invalid(source, path + ".attenuation_color", "must be 3 numbers in [0, 1], got " + format(m.attenuation_color));
+      if (!(m.attenuation_distance > 0.0f))
+        invalid(source, path + ".attenuation_distance",
+                "must be a number > 0 (infinite: no absorption), got " + format(m.attenuation_distance));
       return;
   }
   invalid(source, path + ".type", "unknown material type " + std::to_string(static_cast<uint32_t>(m.type)));
@@ -284,6 +293,17 @@ void validate_mesh(const Mesh& m, const Scene& scene, const std::string& source,
                                           " positions (must be as many, or none)");
   for (size_t i = 0; i < m.normals.size(); ++i)
     if (!finite(m.normals[i])) check_finite(m.normals[i], source, element("normals", i));
+  if (!m.tangents.empty() && m.tangents.size() != vertices)
+    invalid(source, path + ".tangents", std::to_string(m.tangents.size()) + " tangents for " +
+                                            std::to_string(vertices) + " positions (must be as many, or none)");
+  if (!m.tangents.empty() && m.normals.empty()) invalid(source, path + ".tangents", "tangents need normals");
+  for (size_t i = 0; i < m.tangents.size(); ++i) {
+    const glm::vec4 t = m.tangents[i];
+    if (!finite(glm::vec3(t)) || !(t.w == 1.0f || t.w == -1.0f || t == glm::vec4(0.0f)))
+      invalid(source, element("tangents", i),
+              "must be a finite tangent with w = 1 or -1 (or all 0: none), got [" + format(t.x) + ", " + format(t.y) +
+                  ", " + format(t.z) + ", " + format(t.w) + "]");
+  }
   if (!m.uvs.empty() && m.uvs.size() != vertices)
     invalid(source, path + ".uvs", std::to_string(m.uvs.size()) + " uvs for " + std::to_string(vertices) +
                                        " positions (must be as many, or none)");

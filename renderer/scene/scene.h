@@ -3,6 +3,7 @@
 // format") and glTF files (scene/gltf.h).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -12,6 +13,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 namespace octrace {
 
@@ -53,12 +55,24 @@ struct Material {
   // (no KHR_materials_volume): light passes through without bending (the
   // roughness still blurs it).
   bool thin_walled = false;
+  // Pbr with transmission only: the transmission times this texture's red
+  // channel (linear; glTF's transmissionTexture).
+  std::optional<uint32_t> transmission_texture;  // index into Scene::textures
+  // A solid (not thin-walled) with transmission only: Beer-Lambert
+  // absorption inside it (KHR_materials_volume): light that travels a
+  // distance d inside keeps attenuation_color^(d / attenuation_distance),
+  // i.e. exp(-sigma d) with sigma = -ln(attenuation_color) /
+  // attenuation_distance. Colour in [0, 1], distance > 0; an infinite
+  // distance (the default) absorbs nothing.
+  glm::vec3 attenuation_color{1.0f};
+  float attenuation_distance = INFINITY;
   // Multiplies them: metallic x its blue, roughness x its green channel
   // (linear, not sRGB; glTF's metallicRoughnessTexture).
   std::optional<uint32_t> metallic_roughness_texture;  // index into Scene::textures
   // Lambertian and pbr: a tangent-space normal map (glTF's normalTexture,
-  // linear; its x and y times normal_scale), in the frame of the triangle's
-  // uv directions (computed per triangle from the uvs; TANGENT is not read).
+  // linear; its x and y times normal_scale), in the frame of the mesh's
+  // tangents (Mesh::tangents) where the file has them, else of the
+  // triangle's uv directions (computed per triangle from the uvs).
   std::optional<uint32_t> normal_texture;  // index into Scene::textures
   float normal_scale = 1.0f;
   // The uv transform of each texture reference (glTF's KHR_texture_transform),
@@ -68,6 +82,7 @@ struct Material {
   glm::mat3x2 emission_uv{1.0f};
   glm::mat3x2 metallic_roughness_uv{1.0f};
   glm::mat3x2 normal_uv{1.0f};
+  glm::mat3x2 transmission_uv{1.0f};
   // glTF's alpha (3.9.6; JSON materials are opaque): alpha = alpha x the base
   // colour texture's alpha (linear) at the hit. Opaque ignores it; Mask cuts
   // the surface out where alpha < alpha_cutoff (finite, >= 0); Blend cuts it
@@ -95,12 +110,29 @@ inline constexpr MaterialTexture kMaterialTextures[] = {
     {"emission_texture", &Material::emission_texture},
     {"metallic_roughness_texture", &Material::metallic_roughness_texture},
     {"normal_texture", &Material::normal_texture},
+    {"transmission_texture", &Material::transmission_texture},
 };
 // Whether the material samples any texture.
 inline bool has_texture(const Material& m) {
   for (const MaterialTexture& t : kMaterialTextures)
     if (m.*t.index) return true;
   return false;
+}
+
+// The absorption coefficient sigma (per unit length, per channel) inside
+// the solid a material bounds: -ln(attenuation_color) /
+// attenuation_distance (Beer-Lambert; KHR_materials_volume), +Inf where a
+// channel is 0; 0 where nothing is absorbed: a material that is no
+// transmissive solid (thin-walled, or no transmission: no ray travels
+// inside it) or whose distance is infinite.
+inline glm::vec3 absorption_coefficient(const Material& m) {
+  glm::vec3 sigma(0.0f);
+  if (m.type != MaterialType::Pbr || !(m.transmission > 0.0f) || m.thin_walled || std::isinf(m.attenuation_distance))
+    return sigma;
+  for (int c = 0; c < 3; ++c)
+    if (m.attenuation_color[c] < 1.0f)
+      sigma[c] = float(-std::log(double(m.attenuation_color[c])) / double(m.attenuation_distance));
+  return sigma;
 }
 
 // How texture coordinates outside [0, 1] map onto the image (glTF's sampler
@@ -215,6 +247,12 @@ struct Mesh {
   std::vector<glm::vec2> uvs;       // UV set 0 per vertex, or empty
   std::vector<uint32_t> indices;    // three per triangle
   std::vector<uint32_t> materials;  // per triangle: index into Scene::materials
+  // Per vertex, or empty: glTF's TANGENT (3.7.2.1), the frame of a normal
+  // map: xyz the tangent (along +u), w = +1 or -1 the handedness, bitangent
+  // = cross(normal, xyz) * w. Kept only beside normals and under a material
+  // with a normal map; (0, 0, 0, 0) for a vertex of a primitive without one
+  // (its frame comes from the uvs).
+  std::vector<glm::vec4> tangents;
 
   size_t triangle_count() const { return indices.size() / 3; }
   bool operator==(const Mesh&) const = default;

@@ -107,6 +107,34 @@ void triangle_tangents(GpuTriangle tri, GpuTriangleUvs u, GpuInstance g, out vec
   dpdv = to_world * ((e2 * d1.x - e1 * d2.x) / r);
 }
 
+// A tangent of the file (GpuTriangleNormals.tangentK, shared.h): the unit
+// vector of its octahedral encoding (Cigolle et al. 2014, listing 2), and
+// its handedness w.
+vec4 unpack_tangent(uint bits) {
+  vec2 p = vec2(bits & TANGENT_UNORM_MAX, (bits >> 15) & TANGENT_UNORM_MAX) * (2.0 / float(TANGENT_UNORM_MAX)) - 1.0;
+  vec3 v = vec3(p, 1.0 - abs(p.x) - abs(p.y));
+  if (v.z < 0.0) v.xy = (1.0 - abs(v.yx)) * vec2(p.x >= 0.0 ? 1.0 : -1.0, p.y >= 0.0 ? 1.0 : -1.0);
+  return vec4(normalize(v), (bits & TANGENT_NEGATIVE_W) != 0u ? -1.0 : 1.0);
+}
+
+// The normal map's frame from the file's tangents (glTF 3.7.2.1), where all
+// three vertices have one: the tangent and the handedness interpolated at
+// the barycentrics b, bitangent = cross(normal, tangent) * w in object space
+// (`normal` the interpolated object-space vertex normal), both into world
+// space through the placement as triangle_tangents' are. dpdv is the
+// bitangent negated: mapped_normal (shading/materials.glsl) turns its
+// bitangent away from dp/dv, whose direction of growing v is the image's
+// "down". False (the uvs' frame is used) where a vertex has none.
+bool file_tangents(GpuTriangleNormals n, vec3 b, vec3 normal, GpuInstance g, out vec3 dpdu, out vec3 dpdv) {
+  dpdu = dpdv = vec3(0.0);
+  if ((n.tangent0 & n.tangent1 & n.tangent2 & TANGENT_PRESENT) == 0u) return false;
+  vec4 t = b.x * unpack_tangent(n.tangent0) + b.y * unpack_tangent(n.tangent1) + b.z * unpack_tangent(n.tangent2);
+  mat3 to_world = inverse(transpose(mat3(g.to_object0.xyz, g.to_object1.xyz, g.to_object2.xyz)));
+  dpdu = to_world * t.xyz;
+  dpdv = -(to_world * (t.w < 0.0 ? -cross(normal, t.xyz) : cross(normal, t.xyz)));
+  return true;
+}
+
 // The surface of triangle `i` (of instance g) at distance t; `oray` is the
 // ray in the instance's object space. The geometric normal follows the
 // winding (counter-clockwise = front, outward for a closed mesh; the inverse
@@ -129,14 +157,17 @@ Surface triangle_surface(Ray ray, Ray oray, float t, uint i, GpuInstance g) {
     float T, det;
     if (triangle_edges(oray.origin, ray_shear(oray.dir), tri.v0, tri.v1, tri.v2, uvw, T, det)) {
       vec3 b = uvw / det;
+      bool from_file = false;
       if (smooth_normals) {
         GpuTriangleNormals n = triangle_normals_at(i);
-        ns = safe_normalize(normal_to_world(g, b.x * n.n0 + b.y * n.n1 + b.z * n.n2), ng);
+        vec3 normal = b.x * n.n0 + b.y * n.n1 + b.z * n.n2;
+        ns = safe_normalize(normal_to_world(g, normal), ng);
+        if (HAS_NORMAL_MAPS && textured) from_file = file_tangents(n, b, normal, g, dpdu, dpdv);
       }
       if (textured) {
         GpuTriangleUvs u = triangle_uvs_at(i);
         uv = b.x * u.uv0 + b.y * u.uv1 + b.z * u.uv2;
-        if (HAS_NORMAL_MAPS) triangle_tangents(tri, u, g, dpdu, dpdv);
+        if (HAS_NORMAL_MAPS && !from_file) triangle_tangents(tri, u, g, dpdu, dpdv);
       }
     }
   }

@@ -68,9 +68,15 @@ real3 surface_emission(Material m, vec2 uv) {
 // The shading normal under material m's normal map (glTF 3.9.4): the
 // texel's rgb in [0, 1] is a tangent-space normal 2 rgb - 1, its x and y
 // times normal_scale, in the frame T (dp/du made orthogonal to the
-// unmapped shading normal ns), B (ns x T, turned to dp/dv's side: the
-// frame's handedness follows the uvs), ns. Without a frame (a primitive
-// without uvs, or uvs without area) or for a degenerate result, ns stays.
+// unmapped shading normal ns), B (ns x T, turned away from dp/dv), ns.
+// glTF's normal maps have "+X right and +Y up" in the image, whose v grows
+// downwards (v = 0 is the top row): +Y is the direction of decreasing v.
+// For uvs laid out as the image (not mirrored) B = ns x T, as the Khronos
+// sample viewer computes it and as a file's TANGENT with w = +1 gives
+// (3.7.2.1); turning B against dp/dv keeps that right for mirrored uvs too.
+// A file's TANGENT passes dpdv = -(its bitangent) (geometry/triangle.glsl).
+// Without a frame (a primitive without uvs, or uvs without area) or for a
+// degenerate result, ns stays.
 vec3 mapped_normal(Material m, vec3 ns, vec2 uv, vec3 dpdu, vec3 dpdv) {
   vec3 c = sample_material_texture(m, TEXTURE_SLOT_NORMAL, m.normal_texture, uv, false);
   vec3 t = 2.0 * c - 1.0;
@@ -80,7 +86,7 @@ vec3 mapped_normal(Material m, vec3 ns, vec2 uv, vec3 dpdu, vec3 dpdv) {
   if (!(len > 0.0) || isinf(len)) return ns;
   tangent /= len;
   vec3 bitangent = cross(ns, tangent);
-  if (dot(bitangent, dpdv) < 0.0) bitangent = -bitangent;
+  if (dot(bitangent, dpdv) > 0.0) bitangent = -bitangent;
   return safe_normalize(t.x * tangent + t.y * bitangent + t.z * ns, ns);
 }
 

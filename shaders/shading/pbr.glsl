@@ -154,6 +154,22 @@ struct PbrSurface {
   float eta;           // index on the viewer's side over the far side's
 };
 
+// What is left of light that travelled a distance t inside the solid that
+// material m bounds: Beer-Lambert's exp(-sigma t) per channel, sigma from
+// KHR_materials_volume's attenuation (shared.h's GpuTransmission; 0 for a
+// clear solid). Exactly 1 for any material that bounds no solid (the
+// transmission buffer, a placeholder in scenes without transmission, is
+// read only for a transmissive solid: transmission t > 0 in `fuzz`).
+// fp32, rounded once into the variant's precision: sigma may be far above
+// half's range (a short attenuation distance) and +Inf (a colour channel
+// of 0), where exp gives 0 for any t > 0. A ray inside one solid that
+// meets another solid's front face is attenuated by neither on that
+// segment: nested media are not supported (docs/design.md).
+real3 transmittance(Material m, float t) {
+  if (m.type != MAT_PBR || !(float(m.fuzz) > 0.0)) return real3(1.0);
+  return real3(exp(-material_transmission[m.index].absorption * t));
+}
+
 // Whether s transmits (the transmission code compiles out without
 // SPEC_TRANSMISSION).
 bool pbr_transmits(PbrSurface s) { return HAS_TRANSMISSION && s.transmission > 0.0; }
@@ -180,6 +196,12 @@ bool pbr_surface(Material m, vec2 uv, vec3 n, vec3 to_viewer, bool front_face, o
   float ior = float(m.ior);
   // Transmission t in the fuzz slot, negated when thin-walled (shared.h).
   s.transmission = HAS_TRANSMISSION ? abs(float(m.fuzz)) : 0.0;
+  // KHR_materials_transmission's transmissionTexture: its red channel, linear.
+  if (HAS_TRANSMISSION && HAS_TEXTURES && s.transmission > 0.0) {
+    uint texture = material_transmission[m.index].transmission_texture;
+    if (texture != NO_TEXTURE)
+      s.transmission *= sample_material_texture(m, TEXTURE_SLOT_TRANSMISSION, texture, uv, false).r;
+  }
   s.thin = pbr_transmits(s) && float(m.fuzz) < 0.0;
   s.eta = s.thin ? 1.0 : front_face ? 1.0 / ior : ior;
   if (!(s.wo.z > 0.0)) return false;

@@ -53,7 +53,8 @@ OCT_CONST(uint, TEXTURE_SLOT_BASE_COLOR, 0u);
 OCT_CONST(uint, TEXTURE_SLOT_METALLIC_ROUGHNESS, 1u);
 OCT_CONST(uint, TEXTURE_SLOT_EMISSION, 2u);
 OCT_CONST(uint, TEXTURE_SLOT_NORMAL, 3u);
-OCT_CONST(uint, TEXTURE_SLOTS, 4u);
+OCT_CONST(uint, TEXTURE_SLOT_TRANSMISSION, 4u);  // its index is GpuTransmission's
+OCT_CONST(uint, TEXTURE_SLOTS, 5u);
 
 // glTF's alpha modes (GpuMaterial.alpha_mode; scene/scene.h's AlphaMode).
 OCT_CONST(uint, ALPHA_OPAQUE, 0u);
@@ -111,7 +112,10 @@ OCT_CONST(uint, BINDING_ENVMAP_CONDITIONAL, 23u);
 // The part table of a scene split over several buffers (scene_buffers.glsl);
 // bindings 18-20 are light sampling's, 21-23 the environment map's.
 OCT_CONST(uint, BINDING_BUFFER_PARTS, 24u);
-OCT_CONST(uint, BINDING_COUNT, 25u);
+// What transmission reads besides GpuMaterial, one GpuTransmission per
+// material; a 16-byte placeholder in a scene without transmission.
+OCT_CONST(uint, BINDING_TRANSMISSION, 26u);
+OCT_CONST(uint, BINDING_COUNT, 27u);
 
 // A scene larger than one storage buffer (the device's maxStorageBufferRange,
 // 128 MiB on lavapipe) is read through buffer device addresses
@@ -170,6 +174,10 @@ OCT_CONST(uint, SPEC_SINGLE_SIDED, 18u);
 // Whether some pbr material transmits (KHR_materials_transmission): off, the
 // refraction of shading/pbr.glsl compiles out.
 OCT_CONST(uint, SPEC_TRANSMISSION, 19u);
+// Whether some transmissive solid absorbs (KHR_materials_volume's
+// attenuation, GpuTransmission.absorption): off, the Beer-Lambert factor
+// of path_trace.comp compiles out.
+OCT_CONST(uint, SPEC_ABSORPTION, 24u);
 // log2 of the largest part of a split scene, in bytes (the split pipeline
 // only, path_trace_*_split; scene_buffers.glsl).
 OCT_CONST(uint, SPEC_PART_LOG2, 27u);
@@ -247,15 +255,27 @@ struct GpuTriangle {
 
 // 48 bytes. Triangle i's vertex normals in object space (unit), for smooth
 // shading; uploaded only when some mesh has normals (a flat triangle's three
-// are its geometric normal).
+// are its geometric normal). tangentK: vertex K's tangent from the file
+// (glTF's TANGENT, 3.7.2.1, object space) in what would be padding, or 0
+// for none (the normal map's frame then comes from the uvs): a unit vector
+// in the octahedral encoding of Cigolle et al. 2014 ("A Survey of Efficient
+// Representations for Independent Unit Vectors", JCGT 3(2), sec. 3.7), its
+// two coordinates in [-1, 1] as 15-bit unorms (bits 0-14 and 15-29; at most
+// ~1e-4 radians off), TANGENT_NEGATIVE_W for handedness w = -1,
+// TANGENT_PRESENT. A file's tangents cost no memory on the GPU: TANGENT is
+// read only beside NORMAL (glTF ignores it without), so where a mesh has one
+// the normals are uploaded anyway.
 struct GpuTriangleNormals {
   vec3 n0;
-  uint pad0;
+  uint tangent0;
   vec3 n1;
-  uint pad1;
+  uint tangent1;
   vec3 n2;
-  uint pad2;
+  uint tangent2;
 };
+OCT_CONST(uint, TANGENT_PRESENT, 0x80000000u);
+OCT_CONST(uint, TANGENT_NEGATIVE_W, 0x40000000u);
+OCT_CONST(uint, TANGENT_UNORM_MAX, 0x7fffu);
 
 // 24 bytes. Triangle i's texture coordinates (glTF's TEXCOORD_0 at v0, v1,
 // v2; 0 for a mesh without them); uploaded only when some material has a
@@ -346,6 +366,20 @@ struct GpuMaterial {
   float alpha_cutoff;
   float alpha;
   uint double_sided;
+};
+
+// 16 bytes. What a material's transmission reads besides GpuMaterial (which
+// has no room left), in every precision variant: `absorption`, the
+// absorption coefficient sigma per unit length of the solid it bounds
+// (KHR_materials_volume: sigma = -ln(attenuationColor) /
+// attenuationDistance; 0: clear; +Inf where a colour channel is 0), fp32
+// (half's 65504 does not hold the sigma of a short attenuation distance);
+// and the index of its transmission texture (KHR_materials_transmission's
+// transmissionTexture, whose red channel, linear, multiplies the factor),
+// or NO_TEXTURE.
+struct GpuTransmission {
+  vec3 absorption;
+  uint transmission_texture;
 };
 
 // 16 bytes. One texture of the texture table: its texels are

@@ -1237,6 +1237,87 @@ void transmission_ior1(CaseRun& run) {
   }
 }
 
+// Beer-Lambert absorption (KHR_materials_volume's attenuation) in a clear
+// solid sphere (r 1, ior 1.5, roughness 0) in the white furnace, seen
+// head-on. A ray that meets it at cos ci to the normal refracts to ct (sin
+// ct = sin ci / 1.5) and every chord it then travels is 2 r ct long (a
+// sphere's chords of one ray meet it at the same angle). It reflects R(ci)
+// (Schlick, F0 = 0.04, as the pbr layer has it) and passes 1 - R(ci); at
+// each crossing from inside it leaves with 1 - R(ct) or reflects along
+// another chord; each chord keeps E = exp(-sigma 2 r ct); every ray that
+// leaves sees the sky (radiance 1). So the pixel's expectation is
+//   R(ci) + (1 - R(ci)) (1 - R(ct)) E / (1 - R(ct) E),
+// worked out here for 4 x 4 rays per pixel over the pixels whose corners
+// all meet the sphere at cos >= 0.5 (a ray that enters a sphere never meets
+// TIR inside). Criterion: the mean of those pixels, per channel, within 5
+// standard errors (from the per-pixel variances) + 1e-3 (the microfacet
+// lobe at alpha 1e-3: G2 / G1 and its blur, under 1e-4 per crossing at
+// these angles; Schlick at a microfacet normal within 1e-3 rad of the macro
+// one) + 2e-3 in the fp16 variants
+// (the throughput rounded to half at each bounce). Three solids, whose
+// channels cover the cases: a tint (colour (0.5, 0.25, 1) at distance 1: E
+// = 1/4, 1/16, 1 head-on); colour (0, 1, 0.5) at distance 1e-4 (sigma
+// +Inf: E = 0, only the front reflection is left; 0: clear, the furnace's
+// 1; 6931: E underflows to 0); colour (0.5, 0.25, 0) at distance 1e30
+// (sigma 7e-31 and 1.4e-30: clear; +Inf). None may give NaN or Inf.
+void absorption_sphere(CaseRun& run) {
+  const double half = run.precision_kind() == Precision::FP32 ? 0.0 : 2e-3;
+  const int w = 40, h = 30;
+  struct Absorber {
+    const char* what;
+    glm::vec3 colour;
+    float distance;
+  };
+  const Absorber cases[] = {{"colour (0.5, 0.25, 1) over 1", {0.5f, 0.25f, 1.0f}, 1.0f},
+                            {"colour (0, 1, 0.5) over 1e-4", {0.0f, 1.0f, 0.5f}, 1e-4f},
+                            {"colour (0.5, 0.25, 0) over 1e30", {0.5f, 0.25f, 0.0f}, 1e30f}};
+  for (const Absorber& a : cases) {
+    Material m = clear_pbr(0.0f, 1.5f, false);
+    m.attenuation_color = a.colour;
+    m.attenuation_distance = a.distance;
+    Scene s = furnace({m}, {{{0, 0, 0}, 1.0f, 0}});
+    const RenderResult r = run.render(s, settings(w, h, 32));
+    const CameraFrame cam = camera_frame(s.camera, w, h);
+    const glm::dvec3 sigma(absorption_coefficient(m));
+    const auto schlick = [](double c) { return 0.04 + 0.96 * std::pow(1.0 - c, 5.0); };
+    glm::dvec3 got(0.0), want(0.0), var(0.0);
+    int pixels = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const auto cos_at = [&](double px, double py) {
+          const glm::dvec3 d = cam.dir(px, py);
+          const double t = test::ray_sphere(cam.origin, d, glm::dvec3(0), 1.0);
+          return std::isfinite(t) ? -glm::dot(d, glm::normalize(cam.origin + t * d)) : 0.0;
+        };
+        bool steep = true;
+        for (int c = 0; c < 4; ++c) steep = steep && cos_at(x + (c & 1), y + (c >> 1)) >= 0.5;
+        if (!steep) continue;
+        ++pixels;
+        for (int k = 0; k < 16; ++k) {
+          const double ci = cos_at(x + (k % 4 + 0.5) / 4, y + (k / 4 + 0.5) / 4);
+          const double ct = std::sqrt(1.0 - (1.0 - ci * ci) / (1.5 * 1.5));
+          const double ri = schlick(ci), rt = schlick(ct);
+          for (int c = 0; c < 3; ++c) {
+            const double e = std::exp(-sigma[c] * 2.0 * ct);
+            want[c] += (ri + (1 - ri) * (1 - rt) * e / (1 - rt * e)) / 16;
+          }
+        }
+        for (int c = 0; c < 3; ++c) {
+          got[c] += r.mean.pixel(x, y)[c];
+          var[c] += r.variance_of_mean.pixel(x, y)[c];
+        }
+      }
+    double worst = 0;
+    for (int c = 0; c < 3; ++c) {
+      const double sigma_mean = std::sqrt(var[c]) / pixels;
+      worst = std::max(worst, std::abs(got[c] / pixels - want[c] / pixels) / (5 * sigma_mean + 1e-3 + half));
+    }
+    run.at_most(std::string(a.what) + ": max over channels |mean - expected| / (5 sigma + 1e-3 + half rounding)",
+                worst, 1.0);
+    run.at_least(std::string(a.what) + ": pixels that see the sphere at cos >= 0.5", pixels, 50);
+  }
+}
+
 // Paths held by total internal reflection in a solid that also diffuses:
 // the camera inside a white sphere (r 3, camera at 0.6 R from the centre, so
 // many camera rays meet the surface past the critical angle of ior 1.5)
@@ -1592,6 +1673,7 @@ const HardCase CASES[] = {
     {"transmission_ior1_invisible", transmission_ior1},
     {"transmission_grazing_views", transmission_grazing},
     {"transmission_tir_with_diffuse", transmission_tir_with_diffuse},
+    {"absorption_sphere_beer_lambert", absorption_sphere},
     {"point_light_analytic", [](CaseRun& r) { punctual_analytic(r, point_light({0.5f, 2, -0.3f}, 10)); }},
     {"point_light_grazing_2e-3", [](CaseRun& r) { punctual_analytic(r, point_light({0, 2e-3f, 6}, 1000)); }},
     {"point_light_1e4_away", [](CaseRun& r) { punctual_analytic(r, point_light({3e3f, 9.5e3f, 0}, 3e8f)); }},

@@ -236,6 +236,40 @@ const EffectsCase CASES[] = {
        return s;
      },
      {"pbr", "triangles", "transmission", "sky_gradient"}},
+    {"absorbing_solids_transmission_texture_and_tangents",
+     [] {
+       // Beer-Lambert absorption in two solid spheres (one tinted, one
+       // black: sigma +Inf), and a smooth icosphere whose transmission
+       // comes through a texture (with a uv transform) and whose normal map
+       // takes the mesh's own tangents.
+       Scene s = family(test::pbr(0.8f, 0.0f, 0.5f));
+       Material tinted = test::pbr(1.0f, 0.0f, 0.1f);
+       tinted.transmission = 1.0f;
+       tinted.attenuation_color = {0.9f, 0.5f, 0.2f};
+       tinted.attenuation_distance = 0.7f;
+       s.materials.push_back(tinted);
+       Material black = tinted;
+       black.attenuation_color = {0.0f, 0.3f, 1.0f};
+       s.materials.push_back(black);
+       s.spheres[1].material = 1;
+       s.spheres[2].material = 2;
+       s.textures = {{2, 2, {0xff2040c0u, 0xffc08020u, 0xff808080u, 0xff10f010u}, Wrap::Repeat, Wrap::Repeat}};
+       Material frosted = test::pbr(0.9f, 0.0f, 0.3f);
+       frosted.transmission = 0.8f;
+       frosted.transmission_texture = 0;
+       frosted.transmission_uv = glm::mat3x2(glm::vec2(0.0f, 2.0f), glm::vec2(-1.5f, 0.0f), glm::vec2(0.25f, 0.1f));
+       frosted.normal_texture = 0;
+       s.materials.push_back(frosted);
+       Mesh ball = test::icosphere(2, 3, true);
+       for (glm::vec3 p : ball.positions) {
+         ball.uvs.push_back({2.0f * p.x, 1.5f * p.y - 0.5f});
+         ball.tangents.push_back({glm::normalize(glm::vec3(-p.z, 0.1f, p.x)), p.y > 0.0f ? 1.0f : -1.0f});
+       }
+       test::place(s, ball, glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.6f, 1.6f)) *
+                                glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)));
+       return s;
+     },
+     {"pbr", "triangles", "vertex_normals", "textures", "normal_maps", "transmission", "absorption", "sky_gradient"}},
 };
 
 class EffectsTest : public test::VulkanTest, public ::testing::WithParamInterface<EffectsCase> {};

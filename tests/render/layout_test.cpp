@@ -21,7 +21,7 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   // every device the suite runs on (lavapipe, the H100) has.
   ASSERT_TRUE(ctx.fp16_enabled) << ctx.info.name << " lacks 16-bit storage";
   Buffer scene_buf, pass_buf, resolve_buf, sphere_buf, material_buf, half_buf, node_buf, stats_buf, tri_buf, normal_buf,
-      inst_buf, mesh_buf, texture_buf, uv_buf, uv_transform_buf, light_buf;
+      inst_buf, mesh_buf, texture_buf, uv_buf, uv_transform_buf, light_buf, transmission_buf;
   create_buffer(scene_buf, ctx, sizeof(gpu::SceneParams), false, "probe");
   create_buffer(pass_buf, ctx, sizeof(gpu::PassParams), false, "probe");
   create_buffer(resolve_buf, ctx, sizeof(gpu::ResolveParams), false, "probe");
@@ -38,12 +38,14 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   create_buffer(uv_buf, ctx, 2 * sizeof(gpu::GpuTriangleUvs), false, "probe");
   create_buffer(uv_transform_buf, ctx, 2 * sizeof(gpu::GpuUvTransform), false, "probe");
   create_buffer(light_buf, ctx, 2 * sizeof(gpu::GpuLight), false, "probe");
+  create_buffer(transmission_buf, ctx, 2 * sizeof(gpu::GpuTransmission), false, "probe");
   ComputePipeline pipeline;
-  create_compute_pipeline(pipeline, ctx, layout_probe_spv, sizeof(layout_probe_spv), 16, 0);
+  create_compute_pipeline(pipeline, ctx, layout_probe_spv, sizeof(layout_probe_spv), 17, 0);
   bind_buffers(pipeline, {{0, &scene_buf}, {1, &pass_buf}, {2, &resolve_buf}, {3, &sphere_buf},
                           {4, &material_buf}, {5, &half_buf}, {6, &node_buf}, {7, &stats_buf},
                           {8, &tri_buf},   {9, &normal_buf}, {10, &inst_buf}, {11, &mesh_buf},
-                          {12, &texture_buf}, {13, &uv_buf}, {14, &uv_transform_buf}, {15, &light_buf}});
+                          {12, &texture_buf}, {13, &uv_buf}, {14, &uv_transform_buf}, {15, &light_buf},
+                          {16, &transmission_buf}});
   submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout, 0, 1, &pipeline.set, 0, nullptr);
@@ -113,6 +115,8 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   download_buffer(ctx, uv_transform_buf, uv_transforms, sizeof uv_transforms);
   gpu::GpuLight lights[2];
   download_buffer(ctx, light_buf, lights, sizeof lights);
+  gpu::GpuTransmission transmissions[2];
+  download_buffer(ctx, transmission_buf, transmissions, sizeof transmissions);
   download_buffer(ctx, sphere_buf, spheres, sizeof spheres);
   download_buffer(ctx, material_buf, materials, sizeof materials);
   download_buffer(ctx, half_buf, halves, sizeof halves);
@@ -170,11 +174,11 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(tris[i].v2, glm::vec3(o + 41, o + 42, o + 43)) << "triangle " << i;
     EXPECT_EQ(tris[i].pad1, u + 44) << "triangle " << i;
     EXPECT_EQ(normals[i].n0, glm::vec3(o + 45, o + 46, o + 47)) << "normals " << i;
-    EXPECT_EQ(normals[i].pad0, u + 48) << "normals " << i;
+    EXPECT_EQ(normals[i].tangent0, u + 48) << "normals " << i;
     EXPECT_EQ(normals[i].n1, glm::vec3(o + 49, o + 50, o + 51)) << "normals " << i;
-    EXPECT_EQ(normals[i].pad1, u + 52) << "normals " << i;
+    EXPECT_EQ(normals[i].tangent1, u + 52) << "normals " << i;
     EXPECT_EQ(normals[i].n2, glm::vec3(o + 53, o + 54, o + 55)) << "normals " << i;
-    EXPECT_EQ(normals[i].pad2, u + 56) << "normals " << i;
+    EXPECT_EQ(normals[i].tangent2, u + 56) << "normals " << i;
     EXPECT_EQ(insts[i].to_object0, glm::vec4(o + 57, o + 58, o + 59, o + 60)) << "instance " << i;
     EXPECT_EQ(insts[i].to_object1, glm::vec4(o + 61, o + 62, o + 63, o + 64)) << "instance " << i;
     EXPECT_EQ(insts[i].to_object2, glm::vec4(o + 65, o + 66, o + 67, o + 68)) << "instance " << i;
@@ -214,6 +218,8 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(lights[i].pad0, u + 138) << "light " << i;
     EXPECT_EQ(lights[i].pad1, u + 139) << "light " << i;
     EXPECT_EQ(lights[i].pad2, u + 140) << "light " << i;
+    EXPECT_EQ(transmissions[i].absorption, glm::vec3(o + 141, o + 142, o + 143)) << "transmission " << i;
+    EXPECT_EQ(transmissions[i].transmission_texture, u + 144) << "transmission " << i;
   }
 }
 

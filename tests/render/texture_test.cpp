@@ -151,6 +151,27 @@ TEST_F(TextureTest, TextureTransformOffsetsRotatesAndScalesTheUvs) {
   expect_corners(s, {{0, 1, 0}, {1, 1, 1}, {1, 0, 0}, {0, 0, 1}});
 }
 
+// The mean of the pixels of the unit square at (x, 0) of a render framed by frame().
+glm::dvec3 mean_over(const RenderResult& r, int x) {
+  glm::dvec3 mean(0.0);
+  for (int py = 0; py < 8; ++py)
+    for (int px = 8 * x; px < 8 * x + 8; ++px)
+      for (int c = 0; c < 3; ++c) mean[c] += r.mean.rgb[3 * (size_t(py) * size_t(r.mean.width) + size_t(px)) + c];
+  return mean / 64.0;
+}
+
+// What a lambertian of albedo 1 facing +z shows under the gradient sky when
+// its shading normal has y component `ny` (see NormalMapTiltsTheShadingNormal).
+glm::dvec3 gradient_sky_mean(double ny) {
+  const double f = 0.5 * (2.0 / 3.0 * ny + 1.0);
+  return (1.0 - f) * glm::dvec3(1.0) + f * glm::dvec3(0.5, 0.7, 1.0);
+}
+
+// The unit tangent-space normal of a normal map's texel (glTF 3.9.4).
+glm::dvec3 texel_normal(int r, int g, int b) {
+  return glm::normalize(glm::dvec3(2 * r / 255.0 - 1, 2 * g / 255.0 - 1, 2 * b / 255.0 - 1));
+}
+
 // A normal map tilts the shading normal. The quad (facing +z, u along +x, v
 // along -y) under the gradient sky (dir.y = -1 white, +1 (0.5, 0.7, 1)),
 // lambertian of albedo 1: a path scatters once, cosine-weighted about the
@@ -158,7 +179,8 @@ TEST_F(TextureTest, TextureTransformOffsetsRotatesAndScalesTheUvs) {
 // quad are mirrored across it, which keeps their y), and the sky is linear
 // in dir.y: a pixel's mean is the sky at dir.y = 2/3 n.y. A map of texels
 // (128, 128, 255) leaves n about +z; one of (128, 218, 218) tilts it 45
-// degrees towards +v, down, where the sky is whiter.
+// degrees towards the texel's +Y, "up" in the image (glTF 3.9.4), which is
+// -v, +y on the quad, where the sky is bluer.
 TEST_F(TextureTest, NormalMapTiltsTheShadingNormal) {
   for (const auto& [r, g, b] : {std::tuple{128, 128, 255}, std::tuple{128, 218, 218}}) {
     const std::string png = test::png(1, 1, {uint8_t(r), uint8_t(g), uint8_t(b), 255});
@@ -168,17 +190,126 @@ TEST_F(TextureTest, NormalMapTiltsTheShadingNormal) {
     builder.write(path);
     Scene s = as_lambertian(load_gltf_scene(path));
     frame(s, 1, 1);
-    const glm::dvec3 t = glm::normalize(glm::dvec3(2 * r / 255.0 - 1, 2 * g / 255.0 - 1, 2 * b / 255.0 - 1));
-    const double y = -t.y;  // +v is -y
-    const double f = 0.5 * (2.0 / 3.0 * y + 1.0);
-    const glm::dvec3 want = (1.0 - f) * glm::dvec3(1.0) + f * glm::dvec3(0.5, 0.7, 1.0);
+    // The texel's +Y is up in the image: -v, which is +y.
+    const glm::dvec3 want = gradient_sky_mean(texel_normal(r, g, b).y);
     for (Precision p : kPrecisions) {
       const RenderResult res = render_framed(s, 1, 1, p, 256);
-      glm::dvec3 mean(0.0);
-      for (size_t i = 0; i < res.mean.rgb.size(); ++i) mean[int(i % 3)] += res.mean.rgb[i];
-      mean /= double(res.mean.rgb.size() / 3);
       // 16384 samples of a sky colour whose spread is under 0.25: 4 sigma < 0.008.
-      expect_near(glm::vec3(mean), want, 0.008f, std::string(precision_name(p)) + " texel g " + std::to_string(g));
+      expect_near(glm::vec3(mean_over(res, 0)), want, 0.008f,
+                  std::string(precision_name(p)) + " texel g " + std::to_string(g));
+    }
+  }
+}
+
+// The quad of NormalMapTiltsTheShadingNormal with vertex normals (+z) and a
+// TANGENT attribute (glTF 3.7.2.1) whose frame is not the uvs' (T = +x, B =
+// +y): the map follows the file's. A texel tilted along the tangent's +X
+// by a tangent along +y tilts the normal up (the uvs' frame: sideways,
+// where the gradient sky does not change); a texel tilted along +Y with w =
+// -1 tilts it down (bitangent = cross(normal, tangent) * w = -y; the uvs':
+// up), and with w = +1 up, as the uvs' frame does. Placed by `nodes` (a
+// translation and scale each: the second mirrors its quad onto [1, 2] x
+// [0, 1], where the bitangent must stay where the mirror puts it, -y for w
+// = -1, rather than flip with the mirrored cross product): one node is baked
+// into world space (render/gpu_scene.cpp), two share the mesh as instances.
+Scene tangent_quad(glm::vec4 tangent, std::tuple<int, int, int> texel, int nodes) {
+  const auto [r, g, b] = texel;
+  test::GltfBuilder builder;
+  const int positions = builder.add_vec3({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+  const int normals = builder.add_vec3(std::vector<glm::vec3>(4, glm::vec3(0, 0, 1)));
+  const int uvs = builder.add_vec2({{0, 1}, {1, 1}, {1, 0}, {0, 0}});
+  const int tangents =
+      builder.add_accessor(builder.add_view(std::vector<glm::vec4>(4, tangent)), test::kFloat, 4, "VEC4");
+  const int indices = builder.add_indices(std::vector<uint16_t>{0, 1, 2, 0, 2, 3});
+  const int texture = builder.add_texture(test::png(1, 1, {uint8_t(r), uint8_t(g), uint8_t(b), 255}));
+  builder.add("materials", {{"pbrMetallicRoughness", {{"metallicFactor", 0}}}, {"normalTexture", {{"index", texture}}}});
+  builder.add("meshes", {{"primitives", {{{"attributes", {{"POSITION", positions},
+                                                          {"NORMAL", normals},
+                                                          {"TEXCOORD_0", uvs},
+                                                          {"TANGENT", tangents}}},
+                                          {"indices", indices},
+                                          {"material", 0}}}}});
+  builder.add("nodes", {{"mesh", 0}});
+  if (nodes == 2) builder.add("nodes", {{"mesh", 0}, {"translation", {2, 0, 0}}, {"scale", {-1, 1, 1}}});
+  builder.set_scene(nodes == 2 ? std::vector<int>{0, 1} : std::vector<int>{0});
+  const std::string path = test::tmp_path("tangent_quad.gltf");
+  builder.write(path);
+  Scene s = as_lambertian(load_gltf_scene(path));
+  frame(s, float(nodes), 1);
+  return s;
+}
+
+TEST_F(TextureTest, NormalMapsFollowTheFilesTangents) {
+  const std::tuple<int, int, int> along_x{218, 128, 218}, along_y{128, 218, 218};
+  const double tilt = texel_normal(128, 218, 218).y;  // = texel_normal(218, 128, 218).x
+  struct Case {
+    glm::vec4 tangent;
+    std::tuple<int, int, int> texel;
+    double ny;  // the shading normal's y
+    const char* what;
+  };
+  const Case cases[] = {{{0, 1, 0, 1}, along_x, tilt, "tangent +y, texel +X"},
+                        {{1, 0, 0, -1}, along_y, -tilt, "tangent +x, w -1, texel +Y"},
+                        {{1, 0, 0, 1}, along_y, tilt, "tangent +x, w +1, texel +Y"}};
+  for (const Case& c : cases) {
+    const Scene s = tangent_quad(c.tangent, c.texel, 1);
+    // The frame is worked out in fp32 in every variant: the half ones once, for the case where w matters.
+    for (Precision p : kPrecisions) {
+      if (p != Precision::FP32 && c.tangent.w > 0.0f) continue;
+      expect_near(glm::vec3(mean_over(render_framed(s, 1, 1, p, 256), 0)), gradient_sky_mean(c.ny), 0.008f,
+                  std::string(precision_name(p)) + " " + c.what);
+    }
+  }
+  const Scene s = tangent_quad({1, 0, 0, -1}, along_y, 2);
+  const RenderResult r = render_framed(s, 2, 1, Precision::FP32, 256);
+  expect_near(glm::vec3(mean_over(r, 0)), gradient_sky_mean(-tilt), 0.008f, "instance");
+  expect_near(glm::vec3(mean_over(r, 1)), gradient_sky_mean(-tilt), 0.008f, "mirrored instance");
+}
+
+// A mirrored placement baked into world space (a mesh placed once) keeps the
+// bitangent where the mirror puts it too.
+TEST_F(TextureTest, BakedMirroredMeshKeepsTheFilesBitangent) {
+  Scene s = tangent_quad({1, 0, 0, -1}, {128, 218, 218}, 1);
+  s.instances[0].transform = glm::scale(glm::translate(glm::mat4(1.0f), {1, 0, 0}), {-1, 1, 1});
+  expect_near(glm::vec3(mean_over(render_framed(s, 1, 1, Precision::FP32, 256), 0)),
+              gradient_sky_mean(-texel_normal(128, 218, 218).y), 0.008f, "baked mirror");
+}
+
+// KHR_materials_transmission's transmissionTexture: its red channel,
+// linear, times the factor, through its own uv transform. A thin-walled
+// (no KHR_materials_volume) smooth quad of ior 1 (F0 = 0: nothing reflected
+// head-on) with base colour 1 in front of an emitting quad of radiance 1,
+// under a black sky: light passes straight through with probability t and
+// is otherwise diffused toward the camera's side, where nothing shines, so
+// a pixel's expectation is t. The texture's two texels have red 255 (t = 1)
+// and 64 (t = 0.251 read as linear; 0.051 if it were decoded as sRGB), and
+// the uv transform mirrors u (scale -1, offset 1): the quad's left quarter
+// shows the second texel, its right quarter the first (clamped: no blend).
+// 16 pixels x 256 samples of 0 or ~1 each side: 5 sigma <= 0.035.
+TEST_F(TextureTest, TransmissionTextureScalesTransmissionByItsRedChannel) {
+  test::GltfBuilder b = test::textured_quad_gltf(test::png(2, 1, {255, 0, 0, 255, 64, 255, 255, 255}),
+                                                 test::kClampToEdge, test::kClampToEdge);
+  nlohmann::json texture = {{"index", 0}};
+  texture["extensions"]["KHR_texture_transform"] = {{"offset", {1, 0}}, {"scale", {-1, 1}}};
+  b.doc["materials"][0] = {{"pbrMetallicRoughness", {{"metallicFactor", 0}, {"roughnessFactor", 0}}}};
+  b.doc["materials"][0]["extensions"]["KHR_materials_ior"] = {{"ior", 1.0}};
+  b.doc["materials"][0]["extensions"]["KHR_materials_transmission"] = {{"transmissionFactor", 1},
+                                                                       {"transmissionTexture", texture}};
+  Scene s = load_gltf_scene(b.write(test::tmp_path("transmission_texture.gltf")));
+  s.sky.type = SkyType::None;
+  s.materials.push_back(test::emitter(glm::vec3(1.0f)));
+  Mesh behind;
+  add_uv_quad(behind, 0, 0, glm::vec2(0.0f), uint32_t(s.materials.size() - 1));
+  test::place(s, behind, glm::translate(glm::mat4(1.0f), {-1, -1, -1}) * glm::scale(glm::mat4(1.0f), {3, 3, 1}));
+  frame(s, 1, 1);
+  for (Precision p : {Precision::FP32, Precision::FP16}) {
+    const RenderResult r = render_framed(s, 1, 1, p, 256);
+    for (const auto& [x0, want, what] : {std::tuple{0, 64.0 / 255.0, "left (red 64)"},
+                                         std::tuple{6, 1.0, "right (red 255)"}}) {
+      double mean = 0;
+      for (int y = 0; y < 8; ++y)
+        for (int x = x0; x < x0 + 2; ++x) mean += r.mean.pixel(x, y)[1] / 16.0;
+      EXPECT_NEAR(mean, want, 0.035) << precision_name(p) << " " << what;
     }
   }
 }

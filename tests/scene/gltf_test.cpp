@@ -718,19 +718,36 @@ TEST(Gltf, TransmissionThinWalledOrSolid) {
   EXPECT_FALSE(s.materials[2].double_sided);
 }
 
-// The volume's attenuation and the transmission texture are not rendered:
-// named in the file's one warning.
-TEST(Gltf, VolumeAttenuationAndTransmissionTextureAreNamed) {
+// The volume's attenuation and the transmission texture (with its uv
+// transform) are read, without a warning; the thickness only says "solid".
+// A transmission texture under a factor of 0 is not stored.
+TEST(Gltf, VolumeAttenuationAndTransmissionTextureAreRead) {
   GltfBuilder b = test::textured_quad_gltf(test::png(2, 1, kTwoTexels));
-  b.doc["materials"][0]["extensions"] = {
-      {"KHR_materials_transmission", {{"transmissionFactor", 1}, {"transmissionTexture", {{"index", 0}}}}},
-      {"KHR_materials_volume", {{"thicknessFactor", 1}, {"attenuationColor", {1, 0.5, 0.5}}}}};
-  std::vector<std::string> warnings;
-  load(b, "tinted.gltf", {}, &warnings);
-  EXPECT_EQ(warnings, std::vector<std::string>{tmp("tinted.gltf") +
-                                               ": materials render without what octrace does not support yet: "
-                                               "KHR_materials_transmission's transmissionTexture, "
-                                               "KHR_materials_volume's attenuation (volumes render clear)"});
+  json texture = {{"index", 0}};
+  texture["extensions"]["KHR_texture_transform"]["offset"] = {0.5, 0.25};
+  json& extensions = b.doc["materials"][0]["extensions"];
+  extensions["KHR_materials_transmission"] = {{"transmissionFactor", 0.75}, {"transmissionTexture", texture}};
+  extensions["KHR_materials_volume"] = {
+      {"thicknessFactor", 0.01}, {"attenuationColor", {1, 0.5, 0.25}}, {"attenuationDistance", 2}};
+  const Scene s = load(b, "tinted.gltf");
+  const Material& m = s.materials.at(0);
+  EXPECT_EQ(m.transmission, 0.75f);
+  EXPECT_FALSE(m.thin_walled);
+  EXPECT_EQ(m.transmission_texture, 0u);
+  EXPECT_EQ(m.transmission_uv, glm::mat3x2(glm::vec2(1, 0), glm::vec2(0, 1), glm::vec2(0.5f, 0.25f)));
+  EXPECT_EQ(m.attenuation_color, glm::vec3(1, 0.5f, 0.25f));
+  EXPECT_EQ(m.attenuation_distance, 2.0f);
+  // sigma = -ln(colour) / distance.
+  const glm::vec3 sigma = absorption_coefficient(m);
+  EXPECT_EQ(sigma.x, 0.0f);
+  EXPECT_FLOAT_EQ(sigma.y, float(std::log(2.0) / 2.0));
+  EXPECT_FLOAT_EQ(sigma.z, float(std::log(4.0) / 2.0));
+  b.doc["materials"][0]["extensions"]["KHR_materials_transmission"]["transmissionFactor"] = 0;
+  EXPECT_FALSE(load(b, "clear.gltf").materials.at(0).transmission_texture.has_value());
+  // Without a distance nothing is absorbed (glTF's default is +infinity).
+  b.doc["materials"][0]["extensions"]["KHR_materials_transmission"]["transmissionFactor"] = 1;
+  b.doc["materials"][0]["extensions"]["KHR_materials_volume"].erase("attenuationDistance");
+  EXPECT_EQ(absorption_coefficient(load(b, "forever.gltf").materials.at(0)), glm::vec3(0.0f));
 }
 
 TEST(GltfErrors, TransmissionAndThicknessOutOfRange) {
@@ -743,6 +760,27 @@ TEST(GltfErrors, TransmissionAndThicknessOutOfRange) {
   b.doc["materials"][0] = {{"extensions", {{"KHR_materials_volume", {{"thicknessFactor", -1}}}}}};
   EXPECT_EQ(load_error(b, "thickness.gltf"),
             "PATH: materials[0].extensions.KHR_materials_volume.thicknessFactor: must be a finite number >= 0, got -1");
+  b.doc["materials"][0] = {{"extensions", {{"KHR_materials_volume", {{"attenuationColor", {0.5, 1.5, 0}}}}}}};
+  EXPECT_EQ(load_error(b, "colour.gltf"),
+            "PATH: materials[0].extensions.KHR_materials_volume.attenuationColor: must be 3 numbers in [0, 1], got "
+            "[0.5, 1.5, 0]");
+  b.doc["materials"][0] = {{"extensions", {{"KHR_materials_volume", {{"attenuationColor", {0.5, -0.1, 0}}}}}}};
+  EXPECT_EQ(load_error(b, "negative.gltf"),
+            "PATH: materials[0].extensions.KHR_materials_volume.attenuationColor: must be 3 numbers in [0, 1], got "
+            "[0.5, -0.1, 0]");
+  for (const char* d : {"0", "-2", "1e300"}) {
+    b.doc["materials"][0] = {{"extensions", {{"KHR_materials_volume", {{"attenuationDistance", json::parse(d)}}}}}};
+    EXPECT_EQ(load_error(b, "distance.gltf"),
+              std::string("PATH: materials[0].extensions.KHR_materials_volume.attenuationDistance: must be a finite "
+                          "number > 0 (leave it out for no absorption), got ") +
+                  (d[0] == '1' ? "inf" : d));
+  }
+  b.doc["materials"][0] = json::object();
+  b.doc["materials"][0]["extensions"]["KHR_materials_transmission"] = {{"transmissionFactor", 1},
+                                                                       {"transmissionTexture", {{"index", 3}}}};
+  EXPECT_EQ(load_error(b, "texture.gltf"),
+            "PATH: materials[0].extensions.KHR_materials_transmission.transmissionTexture.index: index 3 out of range "
+            "(0 textures)");
 }
 
 // alphaMode, alphaCutoff (default 0.5), baseColorFactor's alpha and doubleSided.
@@ -775,6 +813,41 @@ TEST(GltfErrors, BadAlphaCutoffAndMode) {
   b.doc["materials"][0] = {{"alphaMode", "CUTOUT"}};
   EXPECT_EQ(load_error(b, "mode.gltf"),
             "PATH: materials[0].alphaMode: must be \"OPAQUE\", \"MASK\" or \"BLEND\", got \"CUTOUT\"");
+}
+
+// The textured quad with vertex normals and a TANGENT of `tangents`
+// (accessor 4, VEC4 unless `type` says otherwise), its material normal-mapped or not.
+GltfBuilder tangent_quad(const std::vector<glm::vec4>& tangents, bool normal_mapped, const char* type = "VEC4") {
+  GltfBuilder b = test::textured_quad_gltf(test::png(2, 1, kTwoTexels));
+  json& attributes = b.doc["meshes"][0]["primitives"][0]["attributes"];
+  attributes["NORMAL"] = b.add_vec3(std::vector<glm::vec3>(4, glm::vec3(0, 0, 1)));
+  attributes["TANGENT"] = b.add_accessor(b.add_view(tangents), test::kFloat,
+                                         std::string(type) == "VEC3" ? tangents.size() * 4 / 3 : tangents.size(), type);
+  if (normal_mapped) b.doc["materials"][0]["normalTexture"] = {{"index", 0}};
+  return b;
+}
+
+// TANGENT (3.7.2.1) is kept where a normal map uses it, exactly as the file
+// has it; elsewhere it costs no memory. Either way a bad one is refused.
+TEST(Gltf, TangentsAreKeptUnderNormalMapsAndChecked) {
+  const std::vector<glm::vec4> good = {{1, 0, 0, 1}, {0, 1, 0, -1}, {0, 0, 1, 1}, {0.6f, 0.8f, 0, -1}};
+  EXPECT_EQ(load(tangent_quad(good, true), "mapped.gltf").meshes.at(0).tangents, good);
+  EXPECT_TRUE(load(tangent_quad(good, false), "unmapped.gltf").meshes.at(0).tangents.empty());
+  for (bool mapped : {true, false}) {
+    std::vector<glm::vec4> half_w = good;
+    half_w[2].w = 0.5f;
+    EXPECT_EQ(load_error(tangent_quad(half_w, mapped), "w.gltf"),
+              "PATH: meshes[0].primitives[0].attributes.TANGENT: accessors[4][2]: w (the handedness) must be 1 or -1, "
+              "got 0.5");
+    std::vector<glm::vec4> not_finite = good;
+    not_finite[1].x = INFINITY;
+    EXPECT_EQ(load_error(tangent_quad(not_finite, mapped), "inf.gltf"),
+              "PATH: accessors[4][1]: must be 4 finite numbers, got [inf, 1, 0, -1]");
+    EXPECT_EQ(load_error(tangent_quad({good[0], good[1], good[2]}, mapped), "count.gltf"),
+              "PATH: meshes[0].primitives[0].attributes.TANGENT: accessors[4] has 3 elements, POSITION 4");
+    EXPECT_EQ(load_error(tangent_quad(good, mapped, "VEC3"), "vec3.gltf"),
+              "PATH: accessors[4]: TANGENT must be VEC4, got VEC3");
+  }
 }
 
 // What is not rendered yet is named in one warning per file.

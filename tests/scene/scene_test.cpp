@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "core/errors.h"
+#include "core/text.h"
 #include "scene/gltf_builder.h"
 #include "test_util.h"
 
@@ -798,6 +799,48 @@ TEST(Validate, TexturesAndTheMaterialsThatUseThem) {
   EXPECT_EQ(error([](Scene& s) { s.textures[0].texels.pop_back(); }), "mine: textures[0].texels: 1 texels for 2x1");
   EXPECT_EQ(error([](Scene& s) { s.textures[0].height = 0; }), "mine: textures[0]: must be at least 1x1 texels, got 2x0");
   EXPECT_EQ(error([](Scene& s) { s.textures[0].wrap_t = Wrap(7); }), "mine: textures[0].wrap_t: unknown wrap mode 7");
+}
+
+// The transmission texture, the volume's attenuation and a mesh's tangents.
+TEST(Validate, TransmissionTextureAttenuationAndTangents) {
+  const auto error = [](auto change) {
+    Scene s;
+    Material m;
+    m.type = MaterialType::Pbr;
+    m.transmission = 1.0f;
+    s.materials.push_back(m);
+    s.meshes.push_back({"tri", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {}, {}, {0, 1, 2}, {0}});
+    s.instances.push_back({0, glm::mat4(1.0f)});
+    change(s);
+    return input_error([&] { validate_scene(s, "mine"); });
+  };
+  EXPECT_EQ(error([](Scene& s) { s.materials[0].transmission_texture = 0; }),
+            "mine: materials[0].transmission_texture: index 0 out of range (0 textures)");
+  EXPECT_EQ(error([](Scene& s) { s.materials[0].attenuation_color = {0.5f, 1.5f, 0.0f}; }),
+            "mine: materials[0].attenuation_color: must be 3 numbers in [0, 1], got [0.5, 1.5, 0]");
+  EXPECT_EQ(error([](Scene& s) { s.materials[0].attenuation_color.z = NAN; }),
+            "mine: materials[0].attenuation_color: must be 3 numbers in [0, 1], got [1, 1, nan]");
+  for (float d : {0.0f, -1.0f, NAN})
+    EXPECT_EQ(error([d](Scene& s) { s.materials[0].attenuation_distance = d; }),
+              "mine: materials[0].attenuation_distance: must be a number > 0 (infinite: no absorption), got " +
+                  float_string(d));
+  EXPECT_EQ(error([](Scene& s) {
+              s.materials[0].type = MaterialType::Lambertian;
+              s.materials[0].attenuation_distance = 1.0f;
+            }),
+            "mine: materials[0]: only pbr materials take a transmission texture and an attenuation");
+  EXPECT_EQ(error([](Scene& s) { s.meshes[0].tangents.assign(3, {1, 0, 0, 1}); }),
+            "mine: meshes[0].tangents: tangents need normals");
+  EXPECT_EQ(error([](Scene& s) {
+              s.meshes[0].normals.assign(3, {0, 0, 1});
+              s.meshes[0].tangents.assign(2, {1, 0, 0, 1});
+            }),
+            "mine: meshes[0].tangents: 2 tangents for 3 positions (must be as many, or none)");
+  EXPECT_EQ(error([](Scene& s) {
+              s.meshes[0].normals.assign(3, {0, 0, 1});
+              s.meshes[0].tangents.assign(3, {1, 0, 0, 0.5f});
+            }),
+            "mine: meshes[0].tangents[0]: must be a finite tangent with w = 1 or -1 (or all 0: none), got [1, 0, 0, 0.5]");
 }
 
 TEST(Validate, MeshesAndInstances) {
