@@ -54,7 +54,7 @@ def write_sun_sky(tmp, here):
         up = 1.0 - (y + 0.5) / h
         texels.append([(0.3 + 0.5 * up, 0.4 + 0.5 * up, 0.5 + 0.7 * up) for _ in range(w)])
     texels[h // 4][3 * w // 8] = (5000.0, 4500.0, 4000.0)
-    pfm = os.path.join(tmp, "sun_sky.pfm")
+    pfm = os.path.abspath(os.path.join(tmp, "sun_sky.pfm"))  # the scene reads it relative to itself otherwise
     with open(pfm, "wb") as f:
         f.write(b"PF\n%d %d\n-1.0\n" % (w, h))
         for y in reversed(range(h)):
