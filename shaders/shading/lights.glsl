@@ -181,17 +181,27 @@ bool sample_light(vec3 p, inout Rng rng, out LightSample ls) {
 
 // Whether the light sample is seen from the surface point p (geometric
 // normal ng, the primitive `prim` hit at distance hit_t): the shadow ray
-// leaves as a bounce would. A sphere light is seen when the first thing the
-// ray meets is its sphere, or nothing (a direction that grazes the sphere's
-// edge may miss it by rounding; nothing lies between); a punctual light
-// when nothing lies before it.
+// leaves as a bounce would, and asks accel/closest_hit.glsl's any-hit
+// question (occluded: the first blocker ends the walk). A sphere light is
+// seen when nothing but its own sphere lies before the point where the ray
+// meets that sphere (or anywhere on the ray, for a direction that grazes
+// the sphere's edge and misses it by rounding: nothing lies between); a
+// punctual light when nothing lies before it; the envmap when nothing lies
+// on the ray.
 bool light_visible(vec3 p, vec3 ng, float hit_t, uint prim, LightSample ls) {
   bool inward = dot(ls.dir, ng) < 0.0;
   Ray shadow = Ray(offset_ray_origin(p, inward ? -ng : ng, hit_t), ls.dir);
-  Hit h;
-  bool blocked = closest_hit_within(shadow, prim, inward, ls.t_max, h);
-  if (ls.sphere != NO_PRIM) return !blocked || (h.kind == PRIM_SPHERE && h.prim == ls.sphere);
-  return !blocked;
+  float t_max = ls.t_max;
+  if (ls.sphere != NO_PRIM) {
+    Hit light;
+    light.t = INF;
+    light.prim = NO_PRIM;
+    light.kind = PRIM_SPHERE;
+    light.inst = 0u;
+    test_sphere(shadow, ls.sphere, prim, inward, light);
+    t_max = light.t;
+  }
+  return !occluded(shadow, prim, inward, t_max, ls.sphere);
 }
 
 // The MIS weight of what a BSDF-sampled ray from p (with solid-angle pdf
