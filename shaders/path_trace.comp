@@ -58,6 +58,11 @@ layout(constant_id = SPEC_ABSORPTION) const bool HAS_ABSORPTION = true;
 layout(constant_id = SPEC_SAMPLE_LANES) const bool SAMPLE_LANES = true;
 layout(constant_id = SPEC_NEE) const bool NEE = true;
 layout(constant_id = SPEC_PUNCTUAL) const bool HAS_PUNCTUAL = true;
+layout(constant_id = SPEC_SKY_LIGHT) const bool SKY_LIGHT = true;
+// A sphere light needs spheres and an emitting material (emissive, or a
+// lambertian or pbr emission): a scene lit only by its sky or by punctual
+// lights compiles no sphere-light sampling.
+#define HAS_SPHERE_LIGHTS (HAS_SPHERES && (HAS_EMISSIVE || HAS_SURFACE_EMISSION))
 
 #include "shared/rng.h"
 #include "sampling/warp.glsl"
@@ -120,7 +125,12 @@ vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments)
     // BLEND's cut-out key for this ray (accel/closest_hit.glsl: alpha_cut).
     if (HAS_ALPHA) alpha_key = pcg4d(uvec4(pixel_index, sample_index, bounce | ALPHA_STREAM, pass.sample_seed)).x;
     if (!closest_hit(ray, from_prim, into_from, hit)) {
-      if (SKY != SKY_NONE) radiance += throughput * sky_radiance(ray.dir);
+      // The sky as a light: light sampling at the last vertex could have
+      // found this direction too (MIS, as emit_w below; the same form, so
+      // that a weight of 1 contracts alike).
+      float sky_w = 1.0;
+      if (NEE && SKY_LIGHT && prev_nee) sky_w = sky_weight(prev_pdf, ray.dir);
+      if (SKY != SKY_NONE) radiance += throughput * (sky_radiance(ray.dir) * real(sky_w));
       break;
     }
     Surface surf = surface_at(ray, hit);

@@ -7,8 +7,13 @@ relative MSE x device time against a reference (NEE on, --ref-spp samples,
 another sample seed); the ratio off / on of that product is how many times
 less time NEE needs for the same error (the product is constant in spp for
 an unbiased estimator, so the ratio is read at each spp and its median
-reported). Cost: device time per sample with NEE on over off, on scenes
-where light sampling adds little.
+reported). Two scenes: tools/nee/small_light.json (a sphere light of radius
+0.05, black sky) and the same objects under an environment map with a sun
+(a 64 x 32 map, written by this tool as a PFM: a dim sky of radiance 0.3 to
+1.2 and one texel of 5000, 4500, 4000 at 42 degrees of elevation; the sun
+subtends ~0.007 sr, so BSDF sampling finds it on ~0.2% of diffuse bounces).
+Cost: device time per sample with NEE on over off, on scenes where light
+sampling adds little.
 
   tools/nee_efficiency.py [--octrace build/app/octrace] [--device cpu] [--out docs/results/nee_lavapipe]
 
@@ -39,6 +44,54 @@ def rel_mse(args, test, ref):
     return json.loads(run([args.octrace, "compare", "--json", test, ref]))["rel_mse"]
 
 
+def write_sun_sky(tmp, here):
+    """The sun-sky scene: small_light.json's objects without the sphere light,
+    under a 64 x 32 envmap (PFM, rows bottom to top) with one bright texel."""
+    import struct
+    w, h = 64, 32
+    texels = []
+    for y in range(h):  # y = 0 the top row (+y)
+        up = 1.0 - (y + 0.5) / h
+        texels.append([(0.3 + 0.5 * up, 0.4 + 0.5 * up, 0.5 + 0.7 * up) for _ in range(w)])
+    texels[h // 4][3 * w // 8] = (5000.0, 4500.0, 4000.0)
+    pfm = os.path.abspath(os.path.join(tmp, "sun_sky.pfm"))  # the scene reads it relative to itself otherwise
+    with open(pfm, "wb") as f:
+        f.write(b"PF\n%d %d\n-1.0\n" % (w, h))
+        for y in reversed(range(h)):
+            for c in texels[y]:
+                f.write(struct.pack("<3f", *c))
+    with open(os.path.join(here, "nee", "small_light.json")) as f:
+        scene = json.load(f)
+    light = next(i for i, m in enumerate(scene["materials"]) if m["type"] == "emissive")
+    scene["spheres"] = [s for s in scene["spheres"] if s["material"] != light]
+    scene["sky"] = {"type": "envmap", "file": pfm, "strength": 1, "rotate": 0}
+    path = os.path.join(tmp, "sun_sky.json")
+    with open(path, "w") as f:
+        json.dump(scene, f)
+    return path
+
+
+def efficiency(args, flags, tmp, spps, name):
+    """Rows of (spp, (ms, rel MSE) on, off, ratio) on one scene."""
+    ref = os.path.join(tmp, "ref.pfm")
+    info = render(args, flags, ref, args.ref_spp, "on", 1000, args.size)
+    rows = []
+    for spp in spps:
+        row = {"spp": spp}
+        times = {"on": [], "off": []}
+        for _ in range(args.repeats):
+            for nee in ("on", "off"):
+                path = os.path.join(tmp, f"{nee}_{spp}.pfm")
+                times[nee].append(render(args, flags, path, spp, nee, 1, args.size)["times_ms"]["render"])
+        for nee in ("on", "off"):
+            row[nee] = (statistics.median(times[nee]), rel_mse(args, os.path.join(tmp, f"{nee}_{spp}.pfm"), ref))
+        row["ratio"] = (row["off"][0] * row["off"][1]) / (row["on"][0] * row["on"][1])
+        rows.append(row)
+        print(f"{name}: spp {spp}: on {row['on']}, off {row['off']}, efficiency ratio {row['ratio']:.1f}",
+              file=sys.stderr)
+    return info["device"], rows
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--octrace", default="build/app/octrace")
@@ -56,25 +109,12 @@ def main():
     small = ["--scene", os.path.join(here, "nee", "small_light.json")]
     spps = [int(s) for s in args.spps.split(",")]
 
-    ref = os.path.join(tmp, "ref.pfm")
-    info = render(args, small, ref, args.ref_spp, "on", 1000, args.size)
-    device = info["device"]
-    rows = []
-    for spp in spps:
-        row = {"spp": spp}
-        times = {"on": [], "off": []}
-        for _ in range(args.repeats):
-            for nee in ("on", "off"):
-                path = os.path.join(tmp, f"{nee}_{spp}.pfm")
-                times[nee].append(render(args, small, path, spp, nee, 1, args.size)["times_ms"]["render"])
-        for nee in ("on", "off"):
-            row[nee] = (statistics.median(times[nee]), rel_mse(args, os.path.join(tmp, f"{nee}_{spp}.pfm"), ref))
-        row["ratio"] = (row["off"][0] * row["off"][1]) / (row["on"][0] * row["on"][1])
-        rows.append(row)
-        print(f"spp {spp}: on {row['on']}, off {row['off']}, efficiency ratio {row['ratio']:.1f}", file=sys.stderr)
+    device, rows = efficiency(args, small, tmp, spps, "small sphere light")
+    sun = ["--scene", write_sun_sky(tmp, here)]
+    _, sun_rows = efficiency(args, sun, tmp, spps, "envmap with a sun")
 
     # Cost where NEE does not help: the rtiow field under the gradient sky (no
-    # light is sampled: the sky is not a light yet, so NEE compiles out), and
+    # light is sampled: a gradient sky is no light, so NEE compiles out), and
     # the same field with one small emitter far above, which lights little.
     cost = []
     far = os.path.join(tmp, "rtiow_far_light.json")
@@ -103,16 +143,18 @@ def main():
         f.write(f"Device: {device['name']} ({device['type']}); commit {commit}; "
                 f"`tools/nee_efficiency.py --device {args.device} --size {args.size} --ref-spp {args.ref_spp} "
                 f"--spps {args.spps}`.\n\n")
-        f.write(f"Equal-time efficiency on tools/nee/small_light.json (a sphere light of radius 0.05, "
-                f"no sky), {args.size}, depth 50, against a reference with NEE on, {args.ref_spp} spp, "
-                f"sample seed 1000. Time: device time of the passes, median of {args.repeats} runs "
-                f"interleaved on/off.\n\n")
-        f.write("| spp | NEE on: ms | rel MSE | NEE off: ms | rel MSE | (MSE x time) off / on |\n")
-        f.write("|---:|---:|---:|---:|---:|---:|\n")
-        for r in rows:
-            f.write(f"| {r['spp']} | {r['on'][0]:.1f} | {r['on'][1]:.3g} | {r['off'][0]:.1f} | "
-                    f"{r['off'][1]:.3g} | {r['ratio']:.1f} |\n")
-        f.write(f"\nMedian efficiency gain: **{statistics.median(r['ratio'] for r in rows):.1f}x**.\n\n")
+        for title, table in ((f"tools/nee/small_light.json (a sphere light of radius 0.05, no sky)", rows),
+                             ("an envmap with a sun (small_light.json's objects without the sphere light, under "
+                              "the 64 x 32 sun sky this tool writes: one texel of 5000)", sun_rows)):
+            f.write(f"Equal-time efficiency on {title}, {args.size}, depth 50, against a reference with NEE "
+                    f"on, {args.ref_spp} spp, sample seed 1000. Time: device time of the passes, median of "
+                    f"{args.repeats} runs interleaved on/off.\n\n")
+            f.write("| spp | NEE on: ms | rel MSE | NEE off: ms | rel MSE | (MSE x time) off / on |\n")
+            f.write("|---:|---:|---:|---:|---:|---:|\n")
+            for r in table:
+                f.write(f"| {r['spp']} | {r['on'][0]:.1f} | {r['on'][1]:.3g} | {r['off'][0]:.1f} | "
+                        f"{r['off'][1]:.3g} | {r['ratio']:.1f} |\n")
+            f.write(f"\nMedian efficiency gain: **{statistics.median(r['ratio'] for r in table):.1f}x**.\n\n")
         f.write(f"Cost where NEE helps little: device time of 16 spp at 160x90, median of {args.repeats} runs "
                 f"interleaved on/off.\n\n")
         f.write("| scene | NEE on ms | NEE off ms | on / off |\n|---|---:|---:|---:|\n")

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "accel/aabb.h"
+#include "scene/envmap.h"
 
 namespace octrace {
 
@@ -105,6 +106,29 @@ LightList build_light_list(const Scene& scene) {
     }
     out.lights.push_back(l);
     power.push_back(p);
+  }
+  // The sky, when it is an envmap that can be sampled: the list's last entry
+  // (the shader finds it there for the MIS weight of a path that escapes).
+  // Its power is pbrt-v4's ImageInfiniteLight::Phi: the flux through a disk
+  // of the scene's radius R from every direction, pi R^2 x the integral of
+  // the luminance over the sphere of directions; for the equirectangular map
+  // that integral is 2 pi^2 x the mean of f = luminance x sin theta over the
+  // texels (scene/envmap.h), the inverse of the tables' density scale. As for
+  // a directional light, R can make it dwarf a small lamp's power; the
+  // defensive mixture below keeps every other light at least 1 / (2n).
+  // Gradient and uniform skies are not lights: their radiance varies slowly
+  // or not at all, so cosine-weighted BSDF sampling is already close to the
+  // ideal density for them and a light sample would only add a shadow ray.
+  if (scene.sky.type == SkyType::Envmap && scene.sky.strength > 0.0f) {
+    const float scale = build_envmap_tables(scene.sky.image).marginal[scene.sky.image.height + 1];
+    if (scale > 0.0f) {
+      gpu::GpuLight l{};
+      l.type = gpu::LIGHT_ENVMAP;
+      l.sphere = gpu::NO_LIGHT;
+      out.lights.push_back(l);
+      const double integral = 2.0 * kPi * kPi / double(scale) * double(scene.sky.strength);
+      power.push_back(kPi * std::max(radius * radius, 1.0) * integral);
+    }
   }
   // Every sphere gets an entry once there is any light: the shader reads it
   // at every hit of a path that sampled a light.

@@ -1,7 +1,7 @@
 // The lights that next-event estimation samples (shaders/shading/lights.glsl),
-// built from the Scene on the CPU: emissive spheres and punctual lights, in
-// one list that is also an alias table picking a light in proportion to its
-// power. Plain data, no Vulkan; render/gpu_scene uploads it.
+// built from the Scene on the CPU: emissive spheres, punctual lights and an
+// envmap sky, in one list that is also an alias table picking a light in
+// proportion to its power. Plain data, no Vulkan; render/gpu_scene uploads it.
 //
 // Choice of light: by power, with Walker's alias method (A. J. Walker 1977,
 // "An Efficient Method for Generating Discrete Random Variables with General
@@ -20,6 +20,9 @@
 //                taken at its middle)
 //   directional  pi R^2 lum(E), R the radius of the scene's bounding sphere
 //                (pbrt-v4's DistantLight::Phi): the flux through the scene
+//   envmap       pi R^2 x integral of lum(L) over all directions (pbrt-v4's
+//                ImageInfiniteLight::Phi); the sky's envmap is the list's
+//                last light. Gradient and uniform skies are no lights.
 // Lights of power 0 (black) are left out. The weights the table picks by are
 // a defensive mixture, half power and half uniform (lights.cpp says why):
 // pmf[k] = power_k / (2 sum) + 1 / (2 n).

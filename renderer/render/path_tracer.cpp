@@ -128,8 +128,9 @@ void PathTracer::State::create_pipeline() {
                            {gpu::SPEC_SINGLE_SIDED, f.single_sided},
                            {gpu::SPEC_TRANSMISSION, f.transmission},
                            {gpu::SPEC_ABSORPTION, f.absorption},
-                           {gpu::SPEC_NEE, settings.nee && (f.sphere_lights || f.punctual)},
+                           {gpu::SPEC_NEE, settings.nee && (f.sphere_lights || f.punctual || f.sky_light)},
                            {gpu::SPEC_PUNCTUAL, f.punctual},
+                           {gpu::SPEC_SKY_LIGHT, f.sky_light},
                            {gpu::SPEC_PART_LOG2, g.part_log2}});
   bind_buffers(p, {{gpu::BINDING_SCENE, &g.params},
                    {gpu::BINDING_SPHERES, &g.spheres},

@@ -78,6 +78,7 @@ SceneFeatures scene_features(const Scene& scene) {
   }
   for (const Sphere& s : scene.spheres) f.sphere_lights |= !is_black(sphere_radiance(scene.materials[s.material]));
   for (const Light& l : scene.lights) f.punctual |= l.intensity > 0.0f && !is_black(l.color);
+  f.sky_light = scene.sky.type == SkyType::Envmap && !f.sky_black;
   f.any_light = f.emissive || f.surface_emission || !f.sky_black || f.punctual;
   f.spheres = !scene.spheres.empty();
   f.empty = !f.spheres && !f.triangles;
@@ -93,7 +94,7 @@ SceneFeatures all_features(const Scene& scene) {
   f.empty = false;
   f.spheres = f.triangles = f.vertex_normals = f.textures = f.surface_emission = f.normal_maps = f.alpha = f.single_sided = true;
   f.transmission = f.absorption = true;
-  f.sphere_lights = f.punctual = true;
+  f.sphere_lights = f.punctual = f.sky_light = true;
   return f;
 }
 
@@ -117,6 +118,7 @@ std::vector<std::string> feature_names(const SceneFeatures& f) {
   if (f.absorption) names.push_back("absorption");
   if (f.sphere_lights) names.push_back("sphere_lights");
   if (f.punctual) names.push_back("punctual");
+  if (f.sky_light) names.push_back("sky_light");
   constexpr const char* kSkyNames[] = {"sky_gradient", "sky_uniform", "sky_none", "sky_envmap"};
   names.push_back(kSkyNames[static_cast<uint32_t>(f.sky)]);
   if (f.sky_black) names.push_back("sky_black");

@@ -38,6 +38,9 @@ struct SceneFeatures {
   // Lights that next-event estimation samples (render/lights.h):
   bool sphere_lights = false;     // some sphere emits (sphere_radiance not black)
   bool punctual = false;          // some punctual light (point, spot, directional) is not black
+  // The sky is a light: an envmap that is not black. A gradient or uniform
+  // sky is not (render/lights.h says why): paths find it by escaping only.
+  bool sky_light = false;
 
   bool operator==(const SceneFeatures&) const = default;
 };

@@ -163,9 +163,8 @@ void test_primitive(Ray ray, uint i, uint from_prim, bool into_from, inout Hit h
 #undef OCTREE_WALK_NAME
 #undef OCTREE_LEAF
 
-// The nearest hit before t_max (INF: anywhere): shadow rays toward a
-// punctual light look only up to it. Alpha cut-outs and back-face culling
-// apply as to any ray.
+// The nearest hit before t_max (INF: anywhere). Alpha cut-outs and
+// back-face culling apply as to any ray (and to shadow rays: occluded).
 bool closest_hit_within(Ray ray, uint from_prim, bool into_from, float t_max, out Hit hit) {
   hit.t = t_max;
   hit.prim = NO_PRIM;
@@ -188,6 +187,51 @@ bool closest_hit_within(Ray ray, uint from_prim, bool into_from, float t_max, ou
 
 bool closest_hit(Ray ray, uint from_prim, bool into_from, out Hit hit) {
   return closest_hit_within(ray, from_prim, into_from, INF, hit);
+}
+
+// Shadow rays (light sampling) ask an any-hit question: does some primitive
+// other than `skip` (a sphere light's own sphere) lie on the ray before
+// t_max? The walk stops at the first blocker it finds, in whatever order,
+// with no Surface built. The stop reuses the closest-hit walk's early exit:
+// a blocker sets hit.t to -1, which rules out every node still on the stack
+// (their entry distance is >= 0) and every box and primitive test after it.
+// Inside a mesh instance the walk still finds its nearest triangle; the top
+// level stops after it.
+uint shadow_skip = NO_PRIM;
+
+void test_primitive_any(Ray ray, uint i, uint from_prim, bool into_from, inout Hit hit) {
+  if (i == shadow_skip) return;
+  test_primitive(ray, i, from_prim, into_from, hit);
+  if (hit.prim != NO_PRIM) hit.t = -1.0;
+}
+
+#define OCTREE_WALK_NAME traverse_top_any
+#define OCTREE_LEAF(ref) test_primitive_any(ray, ref, from_prim, into_from, hit)
+#include "accel/octree_walk.glsl"
+#undef OCTREE_WALK_NAME
+#undef OCTREE_LEAF
+
+bool occluded(Ray ray, uint from_prim, bool into_from, float t_max, uint skip) {
+  Hit hit;
+  hit.t = t_max;
+  hit.prim = NO_PRIM;
+  hit.kind = PRIM_SPHERE;
+  hit.inst = 0u;
+  shadow_skip = skip;
+  if (ACCEL == ACCEL_BRUTE) {
+    if (HAS_SPHERES)
+      for (uint i = 0; i < scene.sphere_count && hit.prim == NO_PRIM; ++i)
+        if (i != skip) test_sphere(ray, i, from_prim, into_from, hit);
+    if (HAS_TRIANGLES)
+      for (uint i = 0; i < scene.instance_count && hit.prim == NO_PRIM; ++i) test_instance(ray, i, from_prim, hit);
+    return hit.prim != NO_PRIM;
+  }
+  for (uint i = 0; i < scene.big_count && hit.prim == NO_PRIM; ++i)
+    test_primitive_any(ray, ref_at(i), from_prim, into_from, hit);
+  if (hit.prim != NO_PRIM) return true;
+  RayShear no_shear;
+  traverse_top_any(0u, ray, no_shear, from_prim, into_from, InstanceRef(0u, 0u, 0u), hit);
+  return hit.prim != NO_PRIM;
 }
 
 // The surface at a hit that closest_hit returned.

@@ -8,9 +8,14 @@
 // a BSDF-sampled ray by pb^2 / (pl^2 + pb^2), with pl the light strategy's
 // and pb the BSDF's solid-angle density of the direction. Delta lights
 // (point, spot, directional) are reached by NEE only: weight 1.
+// The sky's envmap is a light too (render/lights.h: the list's last entry,
+// picked by its power), sampled by its 2D CDF (shading/envmap.glsl); its
+// shadow ray looks to infinity, and a BSDF-sampled ray that escapes to it is
+// weighted against pmf x envmap_pdf (sky_weight).
 // The includer declares `scene`, `lights`, `sphere_lights`, `spheres`,
-// `sphere_materials`, the specialization constant HAS_PUNCTUAL, and includes
-// accel/closest_hit.glsl before this file.
+// `sphere_materials`, the specialization constants HAS_PUNCTUAL, SKY_LIGHT
+// and HAS_SPHERE_LIGHTS, and includes accel/closest_hit.glsl and
+// shading/sky.glsl before this file.
 #ifndef OCTRACE_LIGHTS_GLSL
 #define OCTRACE_LIGHTS_GLSL
 
@@ -131,12 +136,21 @@ bool sample_light(vec3 p, inout Rng rng, out LightSample ls) {
   ls.value = vec3(0.0);
   ls.pdf = 0.0;
   ls.sphere = NO_PRIM;
-  if (l.type == LIGHT_SPHERE) {
+  if (HAS_SPHERE_LIGHTS && l.type == LIGHT_SPHERE) {
     float pdf;
     if (!sample_sphere_light(p, l.position, l.radius, u1, u2, ls.dir, pdf)) return false;
     ls.pdf = l.pmf * pdf;
     ls.value = vec3(sphere_light_radiance(l.sphere)) / ls.pdf;
     ls.sphere = l.sphere;
+    return true;
+  }
+  if (SKY_LIGHT && l.type == LIGHT_ENVMAP) {
+    // A direction by the map's luminance x sin theta; the radiance is read
+    // from the texel it falls in, as an escaping ray reads it.
+    float pdf;
+    if (!envmap_sample(vec2(u1, u2), ls.dir, pdf)) return false;
+    ls.pdf = l.pmf * pdf;
+    ls.value = envmap_radiance(ls.dir) / ls.pdf;
     return true;
   }
   if (!HAS_PUNCTUAL) return false;
@@ -167,29 +181,49 @@ bool sample_light(vec3 p, inout Rng rng, out LightSample ls) {
 
 // Whether the light sample is seen from the surface point p (geometric
 // normal ng, the primitive `prim` hit at distance hit_t): the shadow ray
-// leaves as a bounce would. A sphere light is seen when the first thing the
-// ray meets is its sphere, or nothing (a direction that grazes the sphere's
-// edge may miss it by rounding; nothing lies between); a punctual light
-// when nothing lies before it.
+// leaves as a bounce would, and asks accel/closest_hit.glsl's any-hit
+// question (occluded: the first blocker ends the walk). A sphere light is
+// seen when nothing but its own sphere lies before the point where the ray
+// meets that sphere (or anywhere on the ray, for a direction that grazes
+// the sphere's edge and misses it by rounding: nothing lies between); a
+// punctual light when nothing lies before it; the envmap when nothing lies
+// on the ray.
 bool light_visible(vec3 p, vec3 ng, float hit_t, uint prim, LightSample ls) {
   bool inward = dot(ls.dir, ng) < 0.0;
   Ray shadow = Ray(offset_ray_origin(p, inward ? -ng : ng, hit_t), ls.dir);
-  Hit h;
-  bool blocked = closest_hit_within(shadow, prim, inward, ls.t_max, h);
-  if (ls.sphere != NO_PRIM) return !blocked || (h.kind == PRIM_SPHERE && h.prim == ls.sphere);
-  return !blocked;
+  float t_max = ls.t_max;
+  if (ls.sphere != NO_PRIM) {
+    Hit light;
+    light.t = INF;
+    light.prim = NO_PRIM;
+    light.kind = PRIM_SPHERE;
+    light.inst = 0u;
+    test_sphere(shadow, ls.sphere, prim, inward, light);
+    t_max = light.t;
+  }
+  return !occluded(shadow, prim, inward, t_max, ls.sphere);
 }
 
 // The MIS weight of what a BSDF-sampled ray from p (with solid-angle pdf
 // bsdf_pdf) finds emitted at its hit, where light sampling from p could have
 // found it too; 1 for an emitter that is no light of the list.
 float emission_weight(vec3 p, float bsdf_pdf, Ray ray, Hit hit, Surface surf) {
-  if (!(HAS_SPHERES && (!HAS_TRIANGLES || hit.kind == PRIM_SPHERE))) return 1.0;
+  if (!(HAS_SPHERE_LIGHTS && (!HAS_TRIANGLES || hit.kind == PRIM_SPHERE))) return 1.0;
   uint li = sphere_lights[hit.prim];
   if (li == NO_LIGHT) return 1.0;
   GpuLight l = lights[li];
   float pl = l.pmf * sphere_light_pdf(p, l.position, l.radius, ray.dir, hit.t, surf.ng);
   return power_heuristic(bsdf_pdf, pl);
+}
+
+// The MIS weight of the sky that a BSDF-sampled ray from a vertex that
+// sampled a light (with solid-angle pdf bsdf_pdf) escapes to along dir: the
+// light strategy's density there is the envmap's pmf x envmap_pdf(dir); 1
+// for a sky that is no light (the list's last entry is another kind).
+float sky_weight(float bsdf_pdf, vec3 dir) {
+  uint last = scene.light_count - 1u;
+  if (lights[last].type != LIGHT_ENVMAP) return 1.0;
+  return power_heuristic(bsdf_pdf, lights[last].pmf * envmap_pdf(dir));
 }
 
 #endif

@@ -186,6 +186,10 @@ OCT_CONST(uint, SPEC_PART_LOG2, 27u);
 OCT_CONST(uint, SPEC_NEE, 20u);
 // Whether the scene has punctual lights (point, spot, directional).
 OCT_CONST(uint, SPEC_PUNCTUAL, 21u);
+// Whether the sky is a light of the light list (an envmap that is not black;
+// render/lights.h): light sampling may pick it, and a path that escapes to
+// it after a vertex that sampled a light takes an MIS weight.
+OCT_CONST(uint, SPEC_SKY_LIGHT, 22u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 255u);
 
@@ -201,6 +205,7 @@ OCT_CONST(uint, LIGHT_SPHERE, 0u);       // an emissive sphere, sampled by solid
 OCT_CONST(uint, LIGHT_POINT, 1u);
 OCT_CONST(uint, LIGHT_SPOT, 2u);
 OCT_CONST(uint, LIGHT_DIRECTIONAL, 3u);
+OCT_CONST(uint, LIGHT_ENVMAP, 4u);       // the sky's envmap, sampled by its 2D CDF; always the list's last
 OCT_CONST(uint, NO_LIGHT, 0xffffffffu);
 
 // 80 bytes. One light of the light list (render/lights.h builds it), which
@@ -216,6 +221,8 @@ OCT_CONST(uint, NO_LIGHT, 0xffffffffu);
 //                cos_outer: the cosines of glTF's cone angles
 //   directional  direction (unit, where the light travels); intensity =
 //                irradiance (rgb)
+//   envmap       nothing: the texels, strength and tables are the sky's
+//                (SceneParams, the envmap bindings); the last entry of the list
 struct GpuLight {
   vec3 position;
   uint type;  // LIGHT_*

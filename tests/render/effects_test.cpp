@@ -203,7 +203,25 @@ const EffectsCase CASES[] = {
        s.sky = test::envmap_sky(test::test_envmap(32, 16, 500.0f), 1.5f, 30.0f);
        return s;
      },
-     {"metal", "fuzzy_metal", "sky_envmap"}},
+     {"metal", "fuzzy_metal", "sky_light", "sky_envmap"}},
+    // The envmap as the only light: NEE compiles sky sampling only.
+    {"envmap_sun_lambertian",
+     [] {
+       Scene s = family(lambertian({0.7f, 0.4f, 0.3f}));
+       s.sky = test::envmap_sky(test::test_envmap(32, 16, 2000.0f), 1.0f, 200.0f);
+       return s;
+     },
+     {"lambertian", "sky_light", "sky_envmap"}},
+    // The sky and a sphere light in one list, a pbr surface sampling both.
+    {"envmap_and_sphere_light",
+     [] {
+       Scene s = family(test::pbr(0.8f, 0.0f, 0.4f));
+       s.materials.push_back(emitter({40, 30, 20}));
+       s.spheres.push_back({{0.5f, 1.8f, 0.5f}, 0.1f, 1});
+       s.sky = test::envmap_sky(test::test_envmap(32, 16, 2000.0f), 1.0f, 200.0f);
+       return s;
+     },
+     {"emissive", "pbr", "sphere_lights", "sky_light", "sky_envmap"}},
     {"envmap_strength_0",
      [] {
        Scene s = family(metal({0.8f, 0.7f, 0.6f}, 0.2f));

@@ -4,6 +4,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "render/gpu_scene.h"
+#include "render/lights.h"
+#include "scene/envmap.h"
 #include "test_util.h"
 
 namespace octrace {
@@ -148,6 +150,31 @@ TEST(GpuScene, TexturesArePackedIntoOneTexelBuffer) {
   EXPECT_EQ(t.table[1].height, 3u);
   EXPECT_EQ(t.table[0].wrap, gpu::WRAP_CLAMP_TO_EDGE | gpu::WRAP_MIRRORED_REPEAT << 16);
   EXPECT_EQ(t.table[1].wrap, gpu::WRAP_REPEAT | gpu::WRAP_CLAMP_TO_EDGE << 16);
+}
+
+// The sky as a light (render/lights.h): an envmap joins the light list as
+// its last entry, with power pi R^2 x the integral of its luminance over the
+// sphere (2 pi^2 / the tables' density scale); the pick is the 50/50 mix of
+// power and uniform. A gradient sky and a black envmap are no lights.
+TEST(Lights, EnvmapIsTheLastLightWeightedByItsPower) {
+  Scene s;
+  s.materials = {test::emitter(glm::vec3(4.0f))};
+  s.spheres = {{{0, 0, 0}, 0.5f, 0}};
+  EXPECT_EQ(build_light_list(s).lights.size(), 1u);  // gradient sky: no light
+  s.sky = test::envmap_sky(test::test_envmap(32, 16, 2000.0f), 2.0f);
+  const LightList list = build_light_list(s);
+  ASSERT_EQ(list.lights.size(), 2u);
+  EXPECT_EQ(list.lights[0].type, gpu::LIGHT_SPHERE);
+  EXPECT_EQ(list.lights[1].type, gpu::LIGHT_ENVMAP);
+  const double pi = 3.14159265358979;
+  const double sphere = 4 * pi * pi * 0.25 * 4.0;
+  const float scale = build_envmap_tables(s.sky.image).marginal[16 + 1];
+  const double sky = pi * 1.0 * 2.0 * 2 * pi * pi / double(scale);  // R = 0.5: R^2 clamped to 1
+  const double expected = 0.5 * sky / (sky + sphere) + 0.25;
+  EXPECT_NEAR(list.lights[1].pmf, expected, 1e-6);
+  EXPECT_NEAR(list.lights[0].pmf + list.lights[1].pmf, 1.0, 1e-6);
+  s.sky.strength = 0.0f;
+  EXPECT_EQ(build_light_list(s).lights.size(), 1u);
 }
 
 }  // namespace

@@ -1,0 +1,58 @@
+#!/usr/bin/python3
+"""The cost of NEE in two builds, side by side: device time of the rtiow
+field with one emitter (r = 0.5) 30 above it (the scene of
+tools/nee_efficiency.py's cost row), 160x90, 16 spp, NEE on and off, each
+build, interleaved run by run so that a change in the machine's load hits
+all four alike; prints the medians, new / old with NEE on, and on / off for
+each build (an optimisation of light sampling: optimisation-log.md).
+
+  tools/nee_cost_ab.py OLD_BINARY NEW_BINARY [--device cpu] [--repeats 7]
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import tempfile
+
+
+def render(binary, args, scene, nee, out):
+    r = subprocess.run([binary, "render", "--json", "--quiet", "--device", args.device, "--size", "160x90",
+                        "--spp", "16", "--nee", nee, "--scene", scene, "--out", out],
+                       capture_output=True, text=True, check=True)
+    return json.loads(r.stdout)["times_ms"]["render"]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("old")
+    ap.add_argument("new")
+    ap.add_argument("--device", default="auto")
+    ap.add_argument("--repeats", type=int, default=7)
+    args = ap.parse_args()
+    tmp = tempfile.mkdtemp(prefix="nee_cost_ab")
+    scene = os.path.join(tmp, "rtiow_far_light.json")
+    subprocess.run([args.old, "render", "--quiet", "--device", args.device, "--size", "8x8", "--spp", "1",
+                    "--dump-scene", scene, "--out", os.path.join(tmp, "dump.png")], check=True)
+    with open(scene) as f:
+        s = json.load(f)
+    s["materials"].append({"type": "emissive", "radiance": [50, 50, 50]})
+    s["spheres"].append({"center": [0, 30, 0], "radius": 0.5, "material": len(s["materials"]) - 1})
+    with open(scene, "w") as f:
+        json.dump(s, f)
+    runs = {(b, nee): [] for b in ("old", "new") for nee in ("on", "off")}
+    for _ in range(args.repeats):
+        for (b, nee), times in runs.items():
+            times.append(render(getattr(args, b), args, scene, nee, os.path.join(tmp, "out.pfm")))
+    for (b, nee), times in runs.items():
+        print(f"{b} nee {nee}: median {statistics.median(times):.1f} ms ({' '.join(f'{t:.0f}' for t in times)})")
+    m = {k: statistics.median(v) for k, v in runs.items()}
+    print(f"new / old, NEE on: {m['new', 'on'] / m['old', 'on']:.3f}")
+    print(f"NEE on / off: old {m['old', 'on'] / m['old', 'off']:.2f}, new {m['new', 'on'] / m['new', 'off']:.2f}")
+    for name in os.listdir(tmp):
+        os.remove(os.path.join(tmp, name))
+    os.rmdir(tmp)
+
+
+if __name__ == "__main__":
+    main()
