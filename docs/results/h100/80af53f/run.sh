@@ -1,0 +1,16 @@
+set -u; rm -rf build-gpu; mkdir build-gpu; tar xzf .gpub/bin.tgz -C build-gpu
+for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig; export XDG_RUNTIME_DIR=/tmp
+B=build-gpu/app/octrace
+$B devices >/dev/null 2>&1 || export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+mkdir -p /work; [ -e /work/main ] || ln -s "$PWD" /work/main
+R=/tmp/res; mkdir -p $R; date -u > $R/date.txt; cat build-gpu/COMMIT >> $R/date.txt
+(
+export OCTRACE_TEST_DEVICE=gpu
+for t in accel_test render_test effects_test texture_test interrupt_test golden_test big_scene_test envmap_render_test; do
+  timeout 150 build-gpu/tests/$t > $R/gpu_$t.txt 2>&1; echo "$t rc=$? $(grep -E '^\[  (PASSED|FAILED)' $R/gpu_$t.txt | tr '\n' ' ')"; grep "^\[  FAILED" $R/gpu_$t.txt | head -5
+done
+OCTRACE_HARDCASES_TABLE=$R/hardcases_gpu.tsv timeout 200 build-gpu/tests/hardcases_test > $R/gpu_hardcases_test.txt 2>&1; echo "hardcases rc=$? $(grep -E '^\[  (PASSED|FAILED)' $R/gpu_hardcases_test.txt | tr '\n' ' ')"; grep "^\[  FAILED" $R/gpu_hardcases_test.txt | head -5
+)
+NEW_FLAGS="--nee off" DEVICE=gpu timeout 120 tools/identity_check.sh .exp/old4e2d208 $B /tmp/idc > $R/identity.txt 2>&1; tail -1 $R/identity.txt
+timeout 150 python3 tools/nee_efficiency.py --octrace $B --device gpu --out $R/nee > $R/nee.log 2>&1; echo "nee rc=$?"; tail -25 $R/nee/nee.md 2>/dev/null
+find /tmp/res -name "*.png" -size +200k -delete; find /tmp/res -name "*.pfm" -delete; find /tmp/res -name "*.exr" -delete; find /tmp/res -name "*.accum" -delete; tar czf $OUT/results.tgz -C /tmp res; ls -la $OUT
