@@ -15,9 +15,10 @@
 // An emissive mesh triangle is a light too (one per triangle and instance),
 // sampled by area and reached by BSDF-sampled rays that hit it, weighted
 // against pmf x its solid-angle pdf (emission_weight).
-// The includer declares `scene`, `lights`, `sphere_lights`, `spheres`,
-// `sphere_materials`, the specialization constants HAS_PUNCTUAL, SKY_LIGHT
-// HAS_SPHERE_LIGHTS and HAS_TRIANGLE_LIGHTS, `triangle_lights`, and includes accel/closest_hit.glsl and
+// The includer declares `scene`, `lights`, `sphere_lights`,
+// `triangle_lights`, `spheres`, `sphere_materials`, `instances`, `meshes`,
+// the specialization constants HAS_PUNCTUAL, SKY_LIGHT, HAS_SPHERE_LIGHTS
+// and HAS_TRIANGLE_LIGHTS, and includes accel/closest_hit.glsl and
 // shading/sky.glsl before this file.
 #ifndef OCTRACE_LIGHTS_GLSL
 #define OCTRACE_LIGHTS_GLSL

@@ -1579,7 +1579,7 @@ Scene quad_light(glm::vec3 centre, glm::vec3 facing, float size = 0.4f) {
 void quad_light_behind(CaseRun& run) {
   double worst = 0;
   for (bool nee : {true, false}) {
-    RenderSettings st = settings(24, 16, 16, 4);
+    RenderSettings st = settings(24, 16, 4, 4);
     st.nee = nee;
     worst = std::max(worst, max_value(run.render(quad_light({0.3f, 2.2f, -1.0f}, {0, 1, 0}), st).mean));
   }
@@ -1776,7 +1776,7 @@ const HardCase CASES[] = {
     {"envmap_sun_nee_on_off", [](CaseRun& r) { nee_on_off(r, sun_sky(), 256, 4, 0.5); }},
     {"quad_light_nee_on_off", [](CaseRun& r) { nee_on_off(r, quad_light({0.3f, 2.6f, -2.0f}, {0, -1, 0}, 2.0f), 512, 2, 0.5); }},
     {"quad_light_grazing_nee_on_off", [](CaseRun& r) {
-       nee_on_off(r, quad_light({0.0f, 0.02f, 0.0f}, {0, -1, 0}), 128, 4, 0);
+       nee_on_off(r, quad_light({0.0f, 0.02f, 0.0f}, {0, -1, 0}), 64, 4, 0);
      }},
     {"quad_light_behind", quad_light_behind},
 };
