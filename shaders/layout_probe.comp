@@ -153,9 +153,9 @@ void main() {
     lights[i].pmf = o + 135;
     lights[i].alias_q = o + 136;
     lights[i].alias = u + 137;
-    lights[i].pad0 = u + 138;
-    lights[i].pad1 = u + 139;
-    lights[i].pad2 = u + 140;
+    lights[i].instance = u + 138;
+    lights[i].triangle = u + 139;
+    lights[i].pad0 = u + 140;
     transmissions[i].absorption = vec3(o + 141, o + 142, o + 143);
     transmissions[i].transmission_texture = u + 144;
   }

@@ -28,6 +28,7 @@ layout(std430, binding = BINDING_ENVMAP_MARGINAL) readonly buffer EnvmapMarginal
 layout(std430, binding = BINDING_ENVMAP_CONDITIONAL) readonly buffer EnvmapConditionalBuf { float envmap_conditional[]; };
 layout(std430, binding = BINDING_LIGHTS) readonly buffer LightBuf { GpuLight lights[]; };
 layout(std430, binding = BINDING_SPHERE_LIGHTS) readonly buffer SphereLightBuf { uint sphere_lights[]; };
+layout(std430, binding = BINDING_TRIANGLE_LIGHTS) readonly buffer TriangleLightBuf { uint triangle_lights[]; };
 
 layout(push_constant) uniform Push { PassParams pass; };
 
@@ -59,10 +60,13 @@ layout(constant_id = SPEC_SAMPLE_LANES) const bool SAMPLE_LANES = true;
 layout(constant_id = SPEC_NEE) const bool NEE = true;
 layout(constant_id = SPEC_PUNCTUAL) const bool HAS_PUNCTUAL = true;
 layout(constant_id = SPEC_SKY_LIGHT) const bool SKY_LIGHT = true;
+layout(constant_id = SPEC_TRIANGLE_LIGHTS) const bool TRIANGLE_LIGHTS = true;
 // A sphere light needs spheres and an emitting material (emissive, or a
 // lambertian or pbr emission): a scene lit only by its sky or by punctual
 // lights compiles no sphere-light sampling.
 #define HAS_SPHERE_LIGHTS (HAS_SPHERES && (HAS_EMISSIVE || HAS_SURFACE_EMISSION))
+// Emissive triangles as lights need triangles too.
+#define HAS_TRIANGLE_LIGHTS (TRIANGLE_LIGHTS && HAS_TRIANGLES && (HAS_EMISSIVE || HAS_SURFACE_EMISSION))
 
 #include "shared/rng.h"
 #include "sampling/warp.glsl"

@@ -7,8 +7,10 @@ relative MSE x device time against a reference (NEE on, --ref-spp samples,
 another sample seed); the ratio off / on of that product is how many times
 less time NEE needs for the same error (the product is constant in spp for
 an unbiased estimator, so the ratio is read at each spp and its median
-reported). Two scenes: tools/nee/small_light.json (a sphere light of radius
-0.05, black sky) and the same objects under an environment map with a sun
+reported). Three scenes: tools/nee/small_light.json (a sphere light of radius
+0.05, black sky), the same objects with a 0.2 x 0.2 quad light (two
+emissive triangles, a glb this tool writes with make_grid_glb.py) in place of
+the sphere, and the same objects under an environment map with a sun
 (a 64 x 32 map, written by this tool as a PFM: a dim sky of radiance 0.3 to
 1.2 and one texel of 5000, 4500, 4000 at 42 degrees of elevation; the sun
 subtends ~0.007 sr, so BSDF sampling finds it on ~0.2% of diffuse bounces).
@@ -71,6 +73,24 @@ def write_sun_sky(tmp, here):
     return path
 
 
+def write_quad_light(tmp, here):
+    """small_light.json with the sphere light replaced by a quad of two
+    emissive triangles (make_grid_glb.py's one-quad sheet, 10 x 10, scaled
+    to 0.2 x 0.2) of the same radiance, at the sphere's place."""
+    glb = os.path.abspath(os.path.join(tmp, "quad.glb"))
+    run([sys.executable, os.path.join(here, "make_grid_glb.py"), "1", glb])
+    with open(os.path.join(here, "nee", "small_light.json")) as f:
+        scene = json.load(f)
+    light = next(i for i, m in enumerate(scene["materials"]) if m["type"] == "emissive")
+    centre = next(s["center"] for s in scene["spheres"] if s["material"] == light)
+    scene["spheres"] = [s for s in scene["spheres"] if s["material"] != light]
+    scene["meshes"] = [{"file": glb, "material": light, "transform": {"scale": 0.02, "translate": centre}}]
+    path = os.path.join(tmp, "quad_light.json")
+    with open(path, "w") as f:
+        json.dump(scene, f)
+    return path
+
+
 def efficiency(args, flags, tmp, spps, name):
     """Rows of (spp, (ms, rel MSE) on, off, ratio) on one scene."""
     ref = os.path.join(tmp, "ref.pfm")
@@ -110,6 +130,8 @@ def main():
     spps = [int(s) for s in args.spps.split(",")]
 
     device, rows = efficiency(args, small, tmp, spps, "small sphere light")
+    quad = ["--scene", write_quad_light(tmp, here)]
+    _, quad_rows = efficiency(args, quad, tmp, spps, "quad light (emissive triangles)")
     sun = ["--scene", write_sun_sky(tmp, here)]
     _, sun_rows = efficiency(args, sun, tmp, spps, "envmap with a sun")
 
@@ -144,6 +166,8 @@ def main():
                 f"`tools/nee_efficiency.py --device {args.device} --size {args.size} --ref-spp {args.ref_spp} "
                 f"--spps {args.spps}`.\n\n")
         for title, table in ((f"tools/nee/small_light.json (a sphere light of radius 0.05, no sky)", rows),
+                             ("a quad light (small_light.json's objects with a 0.2 x 0.2 quad of two emissive "
+                              "triangles in place of the sphere light)", quad_rows),
                              ("an envmap with a sun (small_light.json's objects without the sphere light, under "
                               "the 64 x 32 sun sky this tool writes: one texel of 5000)", sun_rows)):
             f.write(f"Equal-time efficiency on {title}, {args.size}, depth 50, against a reference with NEE "

@@ -109,7 +109,9 @@ static_assert(offsetof(GpuLight, cos_outer) == 52);
 static_assert(offsetof(GpuLight, pmf) == 56);
 static_assert(offsetof(GpuLight, alias_q) == 60);
 static_assert(offsetof(GpuLight, alias) == 64);
-static_assert(offsetof(GpuLight, pad2) == 76);
+static_assert(offsetof(GpuLight, instance) == 68);
+static_assert(offsetof(GpuLight, triangle) == 72);
+static_assert(offsetof(GpuLight, pad0) == 76);
 static_assert(uint32_t(LightType::Point) + 1 == LIGHT_POINT && uint32_t(LightType::Spot) + 1 == LIGHT_SPOT &&
               uint32_t(LightType::Directional) + 1 == LIGHT_DIRECTIONAL);
 static_assert(sizeof(GpuInstance) == 64);

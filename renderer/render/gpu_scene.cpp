@@ -445,6 +445,7 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   const LightList lights = build_light_list(scene);
   check_fits(ctx.limits.maxStorageBufferRange, lights.lights.size() * sizeof(gpu::GpuLight), std::to_string(lights.lights.size()) + " lights");
   check_fits(ctx.limits.maxStorageBufferRange, lights.sphere_lights.size() * 4, "the light indices of " + std::to_string(scene.spheres.size()) + " spheres");
+  check_fits(ctx.limits.maxStorageBufferRange, lights.triangle_lights.size() * 4, "the light indices of the emissive triangles");
   p.light_count = uint32_t(lights.lights.size());
 
   Hash64 hash;
@@ -530,7 +531,8 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
                    transmission.size() * sizeof(gpu::GpuTransmission) +
                    (envmap_texels.size() + envmap_tables.marginal.size() + envmap_tables.conditional.size()) *
                        sizeof(float) +
-                   lights.lights.size() * sizeof(gpu::GpuLight) + lights.sphere_lights.size() * sizeof(uint32_t);
+                   lights.lights.size() * sizeof(gpu::GpuLight) + lights.sphere_lights.size() * sizeof(uint32_t) +
+                   lights.triangle_lights.size() * sizeof(uint32_t);
   for (const auto& a : arrays) total += a.bytes;
   const DeviceMemory memory = device_memory(ctx);
   if (total > memory.bytes) {
@@ -574,6 +576,8 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   create_buffer(g.sphere_lights, ctx, lights.sphere_lights.size() * 4, false, "sphere light buffer");
   upload_buffer(ctx, g.lights, lights.lights.data(), lights.lights.size() * sizeof(gpu::GpuLight));
   upload_buffer(ctx, g.sphere_lights, lights.sphere_lights.data(), lights.sphere_lights.size() * 4);
+  create_buffer(g.triangle_lights, ctx, lights.triangle_lights.size() * 4, false, "triangle light buffer");
+  upload_buffer(ctx, g.triangle_lights, lights.triangle_lights.data(), lights.triangle_lights.size() * 4);
   create_buffer(g.nodes, ctx, 0, false, "octree node buffer");
   create_buffer(g.refs, ctx, 0, false, "octree reference buffer");
   upload_buffer(ctx, g.params, &p, sizeof p);

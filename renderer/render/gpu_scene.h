@@ -36,6 +36,7 @@ struct GpuScene {
   Buffer nodes, refs;       // the octree (16-byte placeholders without one)
   Buffer lights;            // GpuLight per light (render/lights.h; placeholder without lights)
   Buffer sphere_lights;     // per sphere, its light's index (placeholder when no sphere emits)
+  Buffer triangle_lights;   // per instance and triangle, its light's index (shared.h; {0} when no triangle emits)
   // The environment map's texels (3 floats each) and sampling tables
   // (scene/envmap.h; placeholders without an envmap).
   Buffer envmap_texels, envmap_marginal, envmap_conditional;

@@ -107,6 +107,43 @@ LightList build_light_list(const Scene& scene) {
     out.lights.push_back(l);
     power.push_back(p);
   }
+  // Emissive triangles, one light per triangle of each instance, with its
+  // world-space vertices. A triangle of no area (never hit) is no light.
+  out.triangle_lights.assign(1, 0u);
+  for (size_t k = 0; k < scene.instances.size(); ++k) {
+    const Instance& inst = scene.instances[k];
+    const Mesh& mesh = scene.meshes[inst.mesh];
+    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+      const glm::vec3 emission = triangle_emission(scene.materials[mesh.materials[t]]);
+      const double lum = luminance(emission);
+      if (!(lum > 0.0)) continue;
+      glm::vec3 v[3];
+      for (int j = 0; j < 3; ++j) v[j] = glm::vec3(inst.transform * glm::vec4(mesh.positions[mesh.indices[3 * t + j]], 1.0f));
+      const glm::dvec3 c = glm::cross(glm::dvec3(v[1]) - glm::dvec3(v[0]), glm::dvec3(v[2]) - glm::dvec3(v[0]));
+      const double area = 0.5 * std::sqrt(c.x * c.x + c.y * c.y + c.z * c.z);
+      if (!(area > 0.0) || !std::isfinite(area)) continue;
+      if (out.triangle_lights[0] == 0u) {
+        out.triangle_lights.assign(1 + scene.instances.size(), gpu::NO_LIGHT);
+        out.triangle_lights[0] = uint32_t(scene.instances.size());
+      }
+      if (out.triangle_lights[1 + k] == gpu::NO_LIGHT) {
+        out.triangle_lights[1 + k] = uint32_t(out.triangle_lights.size());
+        out.triangle_lights.resize(out.triangle_lights.size() + mesh.triangle_count(), gpu::NO_LIGHT);
+      }
+      out.triangle_lights[out.triangle_lights[1 + k] + t] = uint32_t(out.lights.size());
+      gpu::GpuLight l{};
+      l.type = gpu::LIGHT_TRIANGLE;
+      l.position = v[0];
+      l.direction = v[1];
+      l.intensity = v[2];
+      l.radius = float(area);
+      l.sphere = gpu::NO_LIGHT;
+      l.instance = uint32_t(k);
+      l.triangle = uint32_t(t);
+      out.lights.push_back(l);
+      power.push_back(kPi * area * lum);
+    }
+  }
   // The sky, when it is an envmap that can be sampled: the list's last entry
   // (the shader finds it there for the MIS weight of a path that escapes).
   // Its power is pbrt-v4's ImageInfiniteLight::Phi: the flux through a disk

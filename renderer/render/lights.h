@@ -1,5 +1,6 @@
 // The lights that next-event estimation samples (shaders/shading/lights.glsl),
-// built from the Scene on the CPU: emissive spheres, punctual lights and an
+// built from the Scene on the CPU: emissive spheres, punctual lights,
+// emissive mesh triangles (one light per triangle and instance) and an
 // envmap sky, in one list that is also an alias table picking a light in
 // proportion to its power. Plain data, no Vulkan; render/gpu_scene uploads it.
 //
@@ -20,6 +21,10 @@
 //                taken at its middle)
 //   directional  pi R^2 lum(E), R the radius of the scene's bounding sphere
 //                (pbrt-v4's DistantLight::Phi): the flux through the scene
+//   triangle     pi * area * lum(E), E = triangle_emission (scene/features.h:
+//                the emission factor; an emission texture's mean is left out,
+//                so a textured light is picked as if its texture were white),
+//                area in world space (the instance's placement applied)
 //   envmap       pi R^2 x integral of lum(L) over all directions (pbrt-v4's
 //                ImageInfiniteLight::Phi); the sky's envmap is the list's
 //                last light. Gradient and uniform skies are no lights.
@@ -51,6 +56,10 @@ struct LightList {
   // Per sphere, the index of its light (gpu::NO_LIGHT for one that does not
   // emit); empty when no sphere emits.
   std::vector<uint32_t> sphere_lights;
+  // The light index of each emissive triangle, by instance and triangle
+  // (shaders/shared/shared.h, BINDING_TRIANGLE_LIGHTS, has the layout):
+  // {0} when no triangle emits.
+  std::vector<uint32_t> triangle_lights;
 };
 
 // Rec. 709 luminance.

@@ -19,6 +19,15 @@ glm::vec3 sphere_radiance(const Material& m) {
   }
 }
 
+glm::vec3 triangle_emission(const Material& m) {
+  switch (m.type) {
+    case MaterialType::Emissive: return m.radiance;
+    case MaterialType::Lambertian:
+    case MaterialType::Pbr: return m.emission;
+    default: return glm::vec3(0.0f);
+  }
+}
+
 SceneFeatures scene_features(const Scene& scene) {
   SceneFeatures f;
   std::vector<bool> used(scene.materials.size(), false);
@@ -37,6 +46,7 @@ SceneFeatures scene_features(const Scene& scene) {
         used[material] = true;
         f.alpha |= scene.materials[material].alpha_mode != AlphaMode::Opaque;
         f.single_sided |= !scene.materials[material].double_sided;
+        f.triangle_lights |= !is_black(triangle_emission(scene.materials[material]));
       }
   }
   for (size_t i = 0; i < scene.materials.size(); ++i) {
@@ -94,7 +104,7 @@ SceneFeatures all_features(const Scene& scene) {
   f.empty = false;
   f.spheres = f.triangles = f.vertex_normals = f.textures = f.surface_emission = f.normal_maps = f.alpha = f.single_sided = true;
   f.transmission = f.absorption = true;
-  f.sphere_lights = f.punctual = f.sky_light = true;
+  f.sphere_lights = f.punctual = f.sky_light = f.triangle_lights = true;
   return f;
 }
 
@@ -119,6 +129,7 @@ std::vector<std::string> feature_names(const SceneFeatures& f) {
   if (f.sphere_lights) names.push_back("sphere_lights");
   if (f.punctual) names.push_back("punctual");
   if (f.sky_light) names.push_back("sky_light");
+  if (f.triangle_lights) names.push_back("triangle_lights");
   constexpr const char* kSkyNames[] = {"sky_gradient", "sky_uniform", "sky_none", "sky_envmap"};
   names.push_back(kSkyNames[static_cast<uint32_t>(f.sky)]);
   if (f.sky_black) names.push_back("sky_black");

@@ -41,6 +41,7 @@ struct SceneFeatures {
   // The sky is a light: an envmap that is not black. A gradient or uniform
   // sky is not (render/lights.h says why): paths find it by escaping only.
   bool sky_light = false;
+  bool triangle_lights = false;   // some placed mesh triangle emits (triangle_emission not black)
 
   bool operator==(const SceneFeatures&) const = default;
 };
@@ -51,6 +52,14 @@ struct SceneFeatures {
 // read the texture at a point it picks by direction only; such a sphere is
 // still found by the paths that hit it).
 glm::vec3 sphere_radiance(const Material& m);
+
+// The emission factor of a triangle of material m, and so whether it is a
+// light (0 for none): an emissive material's radiance, a lambertian or pbr
+// material's emission (glTF's emissiveFactor x emissive_strength). An
+// emission texture is left out here (the light's power takes the factor
+// alone) but not where the light is sampled: NEE picks a point on the
+// triangle and reads the texture there, as a hit does.
+glm::vec3 triangle_emission(const Material& m);
 
 // Only the materials that primitives use count (an unused glass material in
 // the list does not make the scene need glass code); only meshes that some

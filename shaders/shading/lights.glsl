@@ -12,9 +12,13 @@
 // picked by its power), sampled by its 2D CDF (shading/envmap.glsl); its
 // shadow ray looks to infinity, and a BSDF-sampled ray that escapes to it is
 // weighted against pmf x envmap_pdf (sky_weight).
-// The includer declares `scene`, `lights`, `sphere_lights`, `spheres`,
-// `sphere_materials`, the specialization constants HAS_PUNCTUAL, SKY_LIGHT
-// and HAS_SPHERE_LIGHTS, and includes accel/closest_hit.glsl and
+// An emissive mesh triangle is a light too (one per triangle and instance),
+// sampled by area and reached by BSDF-sampled rays that hit it, weighted
+// against pmf x its solid-angle pdf (emission_weight).
+// The includer declares `scene`, `lights`, `sphere_lights`,
+// `triangle_lights`, `spheres`, `sphere_materials`, `instances`, `meshes`,
+// the specialization constants HAS_PUNCTUAL, SKY_LIGHT, HAS_SPHERE_LIGHTS
+// and HAS_TRIANGLE_LIGHTS, and includes accel/closest_hit.glsl and
 // shading/sky.glsl before this file.
 #ifndef OCTRACE_LIGHTS_GLSL
 #define OCTRACE_LIGHTS_GLSL
@@ -114,6 +118,52 @@ real3 sphere_light_radiance(uint sphere) {
   return m.type == MAT_EMISSIVE ? m.color : m.emission;
 }
 
+// Barycentrics (of v0, v1, v2) of a point uniform on a triangle's area,
+// from two numbers uniform in [0, 1): the square-root warp b0 = 1 - sqrt(u1),
+// b1 = u2 sqrt(u1) (Turk 1990, "Generating Random Points in Triangles",
+// Graphics Gems; pbrt-v3, section 13.6.5, UniformSampleTriangle).
+vec3 sample_triangle_barycentrics(float u1, float u2) {
+  float su = sqrt(u1);
+  float b0 = 1.0 - su, b1 = u2 * su;
+  return vec3(b0, b1, 1.0 - b0 - b1);
+}
+
+// Triangle light l's triangle, as an index into the triangle array.
+uint triangle_light_triangle(GpuLight l) { return meshes[instances[l.instance].mesh].first_triangle + l.triangle; }
+
+// What triangle `tri` emits at barycentrics b, as a path that hits it reads
+// it (path_trace.comp): an emissive material's radiance; a lambertian or pbr
+// material's surface_emission at the uv there, texture included.
+real3 triangle_light_radiance(uint tri, vec3 b) {
+  Material m = load_material(triangle_at(tri).material);
+  if (HAS_EMISSIVE && m.type == MAT_EMISSIVE) return m.color;
+  if (!HAS_SURFACE_EMISSION || (m.type != MAT_LAMBERTIAN && m.type != MAT_PBR)) return real3(0.0);
+  vec2 uv = vec2(0.0);
+  if (HAS_TEXTURES && scene.triangle_uvs != 0u) {
+    GpuTriangleUvs u = triangle_uvs_at(tri);
+    uv = b.x * u.uv0 + b.y * u.uv1 + b.z * u.uv2;
+  }
+  return surface_emission(m, uv);
+}
+
+// The light-list index of triangle hit `hit` (NO_LIGHT for a triangle that
+// is no light), from the table shared.h (BINDING_TRIANGLE_LIGHTS) lays out.
+uint triangle_light_index(Hit hit) {
+  if (hit.inst >= triangle_lights[0]) return NO_LIGHT;
+  uint start = triangle_lights[1u + hit.inst];
+  if (start == NO_LIGHT) return NO_LIGHT;
+  return triangle_lights[start + hit.prim - instances[hit.inst].first_id];
+}
+
+// The solid-angle pdf of a point sampled uniformly on triangle light l (area
+// A = l.radius) seen at distance dist along a direction whose cosine with
+// the triangle's normal is cos_l: dist^2 / (A |cos_l|) (the area measure
+// turned into solid angle; Veach 1997, eq. 8.10). 0 seen edge-on.
+float triangle_light_pdf(GpuLight l, float dist, float cos_l) {
+  float c = abs(cos_l);
+  return c > 0.0 ? dist * dist / (l.radius * c) : 0.0;
+}
+
 // A light sample seen from a shading point.
 struct LightSample {
   vec3 dir;      // unit, toward the light
@@ -142,6 +192,32 @@ bool sample_light(vec3 p, inout Rng rng, out LightSample ls) {
     ls.pdf = l.pmf * pdf;
     ls.value = vec3(sphere_light_radiance(l.sphere)) / ls.pdf;
     ls.sphere = l.sphere;
+    return true;
+  }
+  if (HAS_TRIANGLE_LIGHTS && l.type == LIGHT_TRIANGLE) {
+    // A point uniform on the triangle (world-space vertices), seen from p;
+    // the shadow ray stops just before it (a relative 1e-4, far above fp32
+    // rounding of the intersection's t: the light's own triangle is not
+    // found as a blocker).
+    vec3 b = sample_triangle_barycentrics(u1, u2);
+    vec3 w = b.x * l.position + b.y * l.direction + b.z * l.intensity - p;
+    float dist2 = dot(w, w);
+    if (!(dist2 > 0.0)) return false;
+    float dist = sqrt(dist2);
+    ls.dir = w / dist;
+    ls.t_max = dist * (1.0 - 1e-4);
+    // The normal as a hit computes it (geometry/triangle.glsl): its side
+    // decides the back face of a single-sided material, which no ray hits
+    // (accel/closest_hit.glsl) and so emits nothing.
+    uint tri = triangle_light_triangle(l);
+    GpuTriangle t = triangle_at(tri);
+    vec3 ng = normal_to_world(instances[l.instance], cross(t.v1 - t.v0, t.v2 - t.v0));
+    float cos_l = dot(ng, ls.dir) * inversesqrt(dot(ng, ng));
+    if (HAS_SINGLE_SIDED && material_at(t.material).double_sided == 0u && !(cos_l < 0.0)) return false;
+    float pdf = triangle_light_pdf(l, dist, cos_l);
+    if (!(pdf > 0.0) || isinf(pdf)) return false;
+    ls.pdf = l.pmf * pdf;
+    ls.value = vec3(triangle_light_radiance(tri, b)) / ls.pdf;
     return true;
   }
   if (SKY_LIGHT && l.type == LIGHT_ENVMAP) {
@@ -206,8 +282,15 @@ bool light_visible(vec3 p, vec3 ng, float hit_t, uint prim, LightSample ls) {
 
 // The MIS weight of what a BSDF-sampled ray from p (with solid-angle pdf
 // bsdf_pdf) finds emitted at its hit, where light sampling from p could have
-// found it too; 1 for an emitter that is no light of the list.
+// found it too (the light strategy's density of that point, mirroring
+// sample_light); 1 for an emitter that is no light of the list.
 float emission_weight(vec3 p, float bsdf_pdf, Ray ray, Hit hit, Surface surf) {
+  if (HAS_TRIANGLE_LIGHTS && (!HAS_SPHERES || hit.kind == PRIM_TRIANGLE)) {
+    uint li = triangle_light_index(hit);
+    if (li == NO_LIGHT) return 1.0;
+    GpuLight l = lights[li];
+    return power_heuristic(bsdf_pdf, l.pmf * triangle_light_pdf(l, hit.t, dot(surf.ng, ray.dir)));
+  }
   if (!(HAS_SPHERE_LIGHTS && (!HAS_TRIANGLES || hit.kind == PRIM_SPHERE))) return 1.0;
   uint li = sphere_lights[hit.prim];
   if (li == NO_LIGHT) return 1.0;

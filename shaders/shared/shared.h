@@ -98,9 +98,17 @@ OCT_CONST(uint, BINDING_TEXTURE_TRANSFORMS, 17u);
 // Light sampling (shading/lights.glsl): the light list (GpuLight, with its
 // alias table), and per sphere the index of its light in that list
 // (NO_LIGHT for a sphere that does not emit), for the MIS weight of a
-// BSDF-sampled ray that hits it. 20 is kept for emissive triangles.
+// BSDF-sampled ray that hits it.
 OCT_CONST(uint, BINDING_LIGHTS, 18u);
 OCT_CONST(uint, BINDING_SPHERE_LIGHTS, 19u);
+// The light index of a hit on an emissive triangle (render/lights.h,
+// LightList::triangle_lights), in uints: [0] = how many instances the table
+// covers (0: no triangle emits; the array is then the one word, within the
+// 16-byte placeholder), [1 + instance] = where that instance's per-triangle
+// entries start (NO_LIGHT: none of its triangles emits), [start + local
+// triangle] = its light's index or NO_LIGHT. Memory: one word per instance
+// and one per triangle of each instance that has an emissive triangle.
+OCT_CONST(uint, BINDING_TRIANGLE_LIGHTS, 20u);
 // The environment map (SKY_ENVMAP; renderer/scene/envmap.h): its texels, 3
 // floats (linear rgb, fp32) per texel, row 0 the top (+y); and the sampling
 // tables: the marginal CDF over rows (height + 1 floats, then the density
@@ -190,6 +198,10 @@ OCT_CONST(uint, SPEC_PUNCTUAL, 21u);
 // render/lights.h): light sampling may pick it, and a path that escapes to
 // it after a vertex that sampled a light takes an MIS weight.
 OCT_CONST(uint, SPEC_SKY_LIGHT, 22u);
+// Whether some placed mesh triangle emits (render/lights.h: an emissive
+// triangle is a light of the list): off, triangle-light sampling and its
+// MIS weight compile out.
+OCT_CONST(uint, SPEC_TRIANGLE_LIGHTS, 23u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 255u);
 
@@ -206,6 +218,7 @@ OCT_CONST(uint, LIGHT_POINT, 1u);
 OCT_CONST(uint, LIGHT_SPOT, 2u);
 OCT_CONST(uint, LIGHT_DIRECTIONAL, 3u);
 OCT_CONST(uint, LIGHT_ENVMAP, 4u);       // the sky's envmap, sampled by its 2D CDF; always the list's last
+OCT_CONST(uint, LIGHT_TRIANGLE, 5u);     // an emissive mesh triangle of one instance, sampled by area
 OCT_CONST(uint, NO_LIGHT, 0xffffffffu);
 
 // 80 bytes. One light of the light list (render/lights.h builds it), which
@@ -223,6 +236,10 @@ OCT_CONST(uint, NO_LIGHT, 0xffffffffu);
 //                irradiance (rgb)
 //   envmap       nothing: the texels, strength and tables are the sky's
 //                (SceneParams, the envmap bindings); the last entry of the list
+//   triangle     position, direction, intensity = the world-space vertices
+//                v0, v1, v2; radius = the world-space area; instance = the
+//                instance, triangle = the triangle's index in its mesh (the
+//                material and uvs, read as a hit reads them)
 struct GpuLight {
   vec3 position;
   uint type;  // LIGHT_*
@@ -235,9 +252,9 @@ struct GpuLight {
   float pmf;
   float alias_q;
   uint alias;
+  uint instance;
+  uint triangle;
   uint pad0;
-  uint pad1;
-  uint pad2;
 };
 
 // 16 bytes. Sphere i's material index is sphere_materials[i] (a separate array,

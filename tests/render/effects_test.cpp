@@ -143,7 +143,7 @@ const EffectsCase CASES[] = {
                                 glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)));
        return s;
      },
-     {"lambertian", "triangles", "vertex_normals", "textures", "surface_emission", "sky_gradient"}},
+     {"lambertian", "triangles", "vertex_normals", "textures", "surface_emission", "triangle_lights", "sky_gradient"}},
     {"pbr_spheres_and_textured_mesh",
      [] {
        // glTF's material on spheres (metal, dielectric, in between, rough and
@@ -222,6 +222,25 @@ const EffectsCase CASES[] = {
        return s;
      },
      {"emissive", "pbr", "sphere_lights", "sky_light", "sky_envmap"}},
+    // Emissive triangles as lights beside a sphere light: one single-sided
+    // quad mesh placed twice (two lights per placement), over pbr spheres.
+    {"triangle_and_sphere_lights",
+     [] {
+       Scene s = family(test::pbr(0.8f, 0.0f, 0.4f));
+       s.sky.type = SkyType::None;
+       s.materials.push_back(emitter({40, 30, 20}));
+       s.spheres.push_back({{0.5f, 1.8f, 0.5f}, 0.1f, 1});
+       Material panel = emitter({5, 8, 12});
+       panel.double_sided = false;
+       s.materials.push_back(panel);
+       const glm::mat4 down = glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1, 0, 0));
+       s.meshes.push_back(test::grid(1, 2));
+       s.instances.push_back({0, glm::translate(glm::mat4(1.0f), glm::vec3(-1.5f, 2.0f, -0.5f)) * down});
+       s.instances.push_back({0, glm::translate(glm::mat4(1.0f), glm::vec3(0.8f, 1.6f, 0.5f)) * down *
+                                     glm::scale(glm::mat4(1.0f), glm::vec3(0.5f))});
+       return s;
+     },
+     {"emissive", "pbr", "triangles", "single_sided", "sphere_lights", "triangle_lights", "sky_none", "sky_black"}},
     {"envmap_strength_0",
      [] {
        Scene s = family(metal({0.8f, 0.7f, 0.6f}, 0.2f));

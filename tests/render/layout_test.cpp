@@ -215,9 +215,9 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(lights[i].pmf, o + 135) << "light " << i;
     EXPECT_EQ(lights[i].alias_q, o + 136) << "light " << i;
     EXPECT_EQ(lights[i].alias, u + 137) << "light " << i;
-    EXPECT_EQ(lights[i].pad0, u + 138) << "light " << i;
-    EXPECT_EQ(lights[i].pad1, u + 139) << "light " << i;
-    EXPECT_EQ(lights[i].pad2, u + 140) << "light " << i;
+    EXPECT_EQ(lights[i].instance, u + 138) << "light " << i;
+    EXPECT_EQ(lights[i].triangle, u + 139) << "light " << i;
+    EXPECT_EQ(lights[i].pad0, u + 140) << "light " << i;
     EXPECT_EQ(transmissions[i].absorption, glm::vec3(o + 141, o + 142, o + 143)) << "transmission " << i;
     EXPECT_EQ(transmissions[i].transmission_texture, u + 144) << "transmission " << i;
   }

@@ -411,8 +411,8 @@ TEST_F(TextureTest, EmissionIsFactorTimesTextureTimesStrengthAndTheSurfaceStillR
   s.sky.type = SkyType::None;
   frame(s, 1, 1);
   EXPECT_EQ(feature_names(scene_features(s)),
-            (std::vector<std::string>{"pbr", "triangles", "textures", "surface_emission", "single_sided", "sky_none",
-                                      "sky_black"}));
+            (std::vector<std::string>{"pbr", "triangles", "textures", "surface_emission", "single_sided",
+                                      "triangle_lights", "sky_none", "sky_black"}));
   const glm::dvec3 emission(4 * srgb(255), 2 * srgb(128), 1 * srgb(64));
   for (Precision p : kPrecisions) {
     const RenderResult r = render_framed(s, 1, 1, p);
