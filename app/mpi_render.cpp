@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <deque>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -28,7 +30,7 @@ namespace {
 
 using json = nlohmann::json;
 
-constexpr int kTagRequest = 11, kTagReply = 12, kTagState = 20, kTagCheckpoint = 21;
+constexpr int kTagRequest = 11, kTagReply = 12, kTagDevice = 13, kTagState = 20, kTagCheckpoint = 21;
 // A reply {kCheckpoint, 0}: send your state (a checkpoint), then ask again.
 constexpr uint32_t kCheckpoint = UINT32_MAX;
 // The states travel in slices of kSlice pixels (3 messages of 16 bytes per
@@ -52,6 +54,12 @@ void wait_gently(MPI_Request& request) {
 }
 
 enum class Phase { Render, Final, Done };
+
+// A time on this host's monotonic clock (steady_clock: CLOCK_MONOTONIC on
+// Linux, one for every process of the host), in ms.
+double ms_since_epoch(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(t.time_since_epoch()).count();
+}
 
 // Every slice's messages are posted at once: OpenMPI announces each to rank
 // 0, which copies it out of this process's memory (the single-copy
@@ -147,16 +155,19 @@ struct Job {
     drain_done.notify_all();
   }
 
-  // Under `mutex`: the next batch for a rank that wants `want` samples
-  // ({first, 0} when there is none), after it reported `completed`.
-  std::pair<uint32_t, uint32_t> take(uint32_t completed, uint32_t want, bool stop_request, int sig) {
-    std::lock_guard<std::mutex> lock(mutex);
+  // Under `mutex`: a rank reports `completed` samples (and a signal).
+  void report_locked(uint32_t completed, bool stop_request, int sig) {
     done += completed;
     if (completed && progress) progress(already + done, already + work);
     if (stop_request && !stop) {
       stop = true;
       signal = sig;
     }
+  }
+
+  // Under `mutex`: the next batch for a rank that wants `want` samples
+  // ({first, 0} when there is none; {kCheckpoint, 0}: send your state).
+  std::pair<uint32_t, uint32_t> give_locked(uint32_t want) {
     if (failed || stop || next >= work) {
       call_off_checkpoint_locked();
       return {0, 0};
@@ -179,6 +190,96 @@ struct Job {
     return {first, n};
   }
 
+  // Turns on a shared device (docs/multi_gpu.md, "Ranks that share a
+  // device"). Processes that share one GPU get time slices of it from the
+  // driver, which switches between their contexts at a cost (on the H100 at
+  // 67ee20c each of 2 or 4 ranks' device time grew 1.7x); so rank 0 lets at
+  // most one rank per physical device (host + VkPhysicalDeviceIDProperties::
+  // deviceUUID) hold a batch. A rank that asks while another rank of its
+  // device holds one waits in the device's queue (first come, first served)
+  // and is answered when that batch comes back (the holder's next request).
+  bool turns = true;                       // --device-turns (rank 0's)
+  std::vector<std::string> device_of;      // by rank: "host/uuid"; empty: unknown, no turns
+  std::map<std::string, int> holder;       // device -> the rank that holds a batch of it
+  std::map<std::string, std::deque<int>> queue;  // device -> ranks waiting for it, in order
+  std::vector<uint32_t> wants;             // by rank: the samples a queued rank asked for
+  std::vector<Clock::time_point> queued_at;
+  std::vector<uint32_t> turns_waited;      // by rank: requests that waited for the device
+  std::vector<double> turn_wait_ms;        // by rank: the time they waited
+  // Answers decided on a thread that may not call MPI (rank 0's render
+  // thread): the batch server sends them. Rank 0's own answer goes to
+  // rank0_reply.
+  std::vector<std::pair<int, std::pair<uint32_t, uint32_t>>> due;
+  std::optional<std::pair<uint32_t, uint32_t>> rank0_reply;
+  std::condition_variable rank0_answered;
+
+  void init_turns_locked() {
+    if (!device_of.empty()) return;
+    device_of.assign(size_t(size), std::string());
+    wants.assign(size_t(size), 0);
+    queued_at.assign(size_t(size), Clock::time_point{});
+    turns_waited.assign(size_t(size), 0);
+    turn_wait_ms.assign(size_t(size), 0.0);
+  }
+  const std::string& device_key_locked(int r) {
+    init_turns_locked();
+    return device_of[size_t(r)];
+  }
+  void deliver_answer_locked(int r, std::pair<uint32_t, uint32_t> got) {
+    if (r == 0) {
+      rank0_reply = got;
+      rank0_answered.notify_all();
+    } else {
+      due.push_back({r, got});
+    }
+  }
+  // Rank r's batch came back (or r failed): the device goes to the first
+  // rank in its queue that gets a batch (the others are answered too: with
+  // "no more", or a checkpoint request).
+  void release_locked(int r) {
+    const std::string& key = device_key_locked(r);
+    if (key.empty()) return;
+    auto h = holder.find(key);
+    if (h == holder.end() || h->second != r) return;
+    holder.erase(h);
+    std::deque<int>& q = queue[key];
+    while (!q.empty() && !holder.count(key)) {
+      const int next_rank = q.front();
+      q.pop_front();
+      turn_wait_ms[size_t(next_rank)] += ms_since(queued_at[size_t(next_rank)]);
+      const auto got = give_locked(wants[size_t(next_rank)]);
+      if (got.second > 0) holder[key] = next_rank;
+      deliver_answer_locked(next_rank, got);
+    }
+  }
+  // Rank r asks for `want` samples after it rendered `completed`: answered
+  // now, or queued behind the rank that holds its device.
+  void request_locked(int r, uint32_t completed, uint32_t want, bool stop_request, int sig) {
+    report_locked(completed, stop_request, sig);
+    release_locked(r);
+    const std::string& key = device_key_locked(r);
+    if (turns && !key.empty() && holder.count(key)) {
+      wants[size_t(r)] = want;
+      queued_at[size_t(r)] = Clock::now();
+      ++turns_waited[size_t(r)];
+      queue[key].push_back(r);
+      return;
+    }
+    const auto got = give_locked(want);
+    if (turns && !key.empty() && got.second > 0) holder[key] = r;
+    deliver_answer_locked(r, got);
+  }
+
+  // Rank 0's render thread: its next batch (after `completed`), waiting for
+  // its turn on a device it shares.
+  std::pair<uint32_t, uint32_t> take(uint32_t completed, uint32_t want, bool stop_request, int sig) {
+    std::unique_lock<std::mutex> lock(mutex);
+    rank0_reply.reset();
+    request_locked(0, completed, want, stop_request, sig);
+    rank0_answered.wait(lock, [&] { return rank0_reply.has_value(); });
+    return *rank0_reply;
+  }
+
   // Rank 0's thread: answers the other ranks' requests until each has been
   // told there is no more work or has reported a failure.
   void serve() {
@@ -189,13 +290,28 @@ struct Job {
     };
     std::vector<Pending> pending;  // first requests, held until the start
     std::vector<Pending> held;     // requests of ranks that delivered, held until the checkpoint is written
+    // Sends the answers decided (here or on rank 0's render thread).
+    const auto flush = [&] {
+      std::vector<std::pair<int, std::pair<uint32_t, uint32_t>>> answers;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        answers.swap(due);
+      }
+      for (const auto& [source, got] : answers) {
+        uint32_t reply[2] = {got.first, got.second};
+        MPI_Send(reply, 2, MPI_UINT32_T, source, kTagReply, MPI_COMM_WORLD);
+        if (got.second == 0 && got.first != kCheckpoint) --active_ranks;
+      }
+    };
     const auto answer = [&](int source, const int64_t* msg) {
-      const auto [first, n] = take(uint32_t(msg[1]), uint32_t(msg[2]), msg[0] == kStop, int(msg[3]));
-      uint32_t reply[2] = {first, n};
-      MPI_Send(reply, 2, MPI_UINT32_T, source, kTagReply, MPI_COMM_WORLD);
-      if (n == 0 && first != kCheckpoint) --active_ranks;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        request_locked(source, uint32_t(msg[1]), uint32_t(msg[2]), msg[0] == kStop, int(msg[3]));
+      }
+      flush();
     };
     while (active_ranks > 0) {
+      flush();
       bool go = false;
       {
         std::lock_guard<std::mutex> lock(mutex);
@@ -236,6 +352,16 @@ struct Job {
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
         continue;
       }
+      if (status.MPI_TAG == kTagDevice) {
+        int length = 0;
+        MPI_Get_count(&status, MPI_CHAR, &length);
+        std::string key(size_t(length), '\0');
+        MPI_Recv(key.data(), length, MPI_CHAR, status.MPI_SOURCE, kTagDevice, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        std::lock_guard<std::mutex> lock(mutex);
+        device_key_locked(status.MPI_SOURCE);
+        device_of[size_t(status.MPI_SOURCE)] = key;
+        continue;
+      }
       if (status.MPI_TAG == kTagCheckpoint) {
         Accumulation acc{width, height, {}, {}, {}};
         receive_state(status.MPI_SOURCE, kTagCheckpoint, acc);
@@ -246,9 +372,12 @@ struct Job {
       int64_t msg[4];
       MPI_Recv(msg, 4, MPI_INT64_T, status.MPI_SOURCE, kTagRequest, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
       if (msg[0] == kFailed) {
-        std::lock_guard<std::mutex> lock(mutex);
-        failed = true;
-        call_off_checkpoint_locked();
+        {
+          std::lock_guard<std::mutex> lock(mutex);
+          failed = true;
+          call_off_checkpoint_locked();
+          release_locked(status.MPI_SOURCE);
+        }
         --active_ranks;
         continue;
       }
@@ -384,6 +513,12 @@ std::string device_for_rank(const std::string& requested) {
   return std::to_string(gpus[size_t(g_job.local_rank) % gpus.size()]);
 }
 
+void set_device_turns(bool on) {
+  if (g_job.rank != 0) return;
+  std::lock_guard<std::mutex> lock(g_job.mutex);
+  g_job.turns = on;
+}
+
 void set_work(uint32_t spp, uint32_t already, ProgressFn progress) {
   if (g_job.rank != 0) return;
   std::lock_guard<std::mutex> lock(g_job.mutex);
@@ -418,9 +553,15 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
   share.host = job.host;
   uint32_t completed = 0, batch = 1;
   const auto ready = Clock::now();
-  if (job.rank == 0) {
+  // The device this rank renders on, for turns (empty: no UUID, no turns).
+  const std::string device_key = share.device_uuid.empty() ? std::string() : job.host + "/" + share.device_uuid;
+  if (job.rank != 0) {
+    MPI_Send(device_key.data(), int(device_key.size()), MPI_CHAR, 0, kTagDevice, MPI_COMM_WORLD);
+  } else {
     {
       std::lock_guard<std::mutex> lock(job.mutex);
+      job.device_key_locked(0);
+      job.device_of[0] = device_key;
       job.rank0_ready = true;
       if (job.size == 1) {
         job.started = true;
@@ -479,6 +620,7 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
       share.max_gap_ms = std::max(share.max_gap_ms, ms_between(*last_batch_end, batch_start));
     share.device_ms += tracer.run_passes(pass, first_sample + got.first, got.second);
     last_batch_end = Clock::now();
+    share.spans.push_back({ms_since_epoch(batch_start), ms_since_epoch(*last_batch_end)});
     const double passes_ms = ms_between(batch_start, *last_batch_end);
     share.passes_ms += passes_ms;
     ++share.batches;
@@ -510,7 +652,11 @@ json share_json(const RankShare& s) {
           {"passes_wall_ms", s.passes_ms},
           {"batch_wait_ms", s.batch_wait_ms},
           {"max_gap_ms", s.max_gap_ms},
-          {"batches", s.batches}};
+          {"batches", s.batches},
+          {"device_uuid", s.device_uuid},
+          {"turns_waited", s.turns_waited},
+          {"turn_wait_ms", s.turn_wait_ms},
+          {"batch_spans_ms", s.spans}};
 }
 
 RankShare share_of(const json& j) {
@@ -532,6 +678,10 @@ RankShare share_of(const json& j) {
   s.batch_wait_ms = j.at("batch_wait_ms");
   s.max_gap_ms = j.at("max_gap_ms");
   s.batches = j.at("batches");
+  s.device_uuid = j.at("device_uuid");
+  s.turns_waited = j.at("turns_waited");
+  s.turn_wait_ms = j.at("turn_wait_ms");
+  s.spans = j.at("batch_spans_ms").get<std::vector<std::pair<double, double>>>();
   return s;
 }
 
@@ -540,10 +690,11 @@ std::string share_line(const RankShare& s) {
   std::snprintf(line, sizeof line,
                 "rank %d    %s, %s: %u spp in %u batches, %.1f ms of passes (device); set-up %.1f ms (device %.1f, "
                 "accel build %.1f, upload %.1f, pipeline %.1f), then %.1f ms waiting for the other ranks; of %.1f ms "
-                "rendering: %.1f in batches, %.1f waiting for rank 0's answers, the rest between (longest gap %.1f)",
+                "rendering: %.1f in batches, %.1f waiting for rank 0's answers (of it %.1f in %u turns for the "
+                "device), the rest between (longest gap %.1f)",
                 s.rank, s.host.c_str(), s.device.c_str(), s.samples, s.batches, s.device_ms, s.setup_ms,
                 s.device_init_ms, s.accel_build_ms, s.upload_ms, s.pipeline_ms, s.start_wait_ms, s.wall_ms,
-                s.passes_ms, s.batch_wait_ms, s.max_gap_ms);
+                s.passes_ms, s.batch_wait_ms, s.turn_wait_ms, s.turns_waited, s.max_gap_ms);
   return line;
 }
 
@@ -656,8 +807,15 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
   out.nonfinite_samples = 0;
   for (const json& j : reports) {
     out.shares.push_back(share_of(j.at("share")));
+    // The turns are counted where they are decided.
+    RankShare& r = out.shares.back();
+    if (job.size > 1 && size_t(r.rank) < job.turns_waited.size()) {
+      r.turns_waited = job.turns_waited[size_t(r.rank)];
+      r.turn_wait_ms = job.turn_wait_ms[size_t(r.rank)];
+    }
     out.nonfinite_samples += j.at("nonfinite").get<uint64_t>();
   }
+  out.device_turns = job.turns;
   out.samples = job.already + job.next;
   out.interrupted = job.next < job.work;
   out.signal = job.signal;
@@ -687,6 +845,7 @@ int fail(int code, const std::string& message) {
         std::lock_guard<std::mutex> lock(job.mutex);
         job.failed = true;
         job.call_off_checkpoint_locked();
+        job.release_locked(0);  // a rank waiting for rank 0's device is answered
       }
       job.join_server();
     } else if (!job.released) {
