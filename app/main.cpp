@@ -618,6 +618,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       j["times_ms"]["reduce_merge"] = red.merge_ms;
       j["times_ms"]["reduce_merge_wait"] = red.merge_wait_ms;
       j["times_ms"]["reduce_send"] = red.send_ms;
+      j["reduce_shared"] = red.shared;
     }
 #endif
     if (settings.accel == Accel::Bvh) {

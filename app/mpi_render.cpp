@@ -30,7 +30,8 @@ namespace {
 
 using json = nlohmann::json;
 
-constexpr int kTagRequest = 11, kTagReply = 12, kTagDevice = 13, kTagState = 20, kTagCheckpoint = 21;
+constexpr int kTagRequest = 11, kTagReply = 12, kTagDevice = 13, kTagState = 20, kTagCheckpoint = 21,
+              kTagShared = 22;
 // A reply {kCheckpoint, 0}: send your state (a checkpoint), then ask again.
 constexpr uint32_t kCheckpoint = UINT32_MAX;
 // The states travel in slices of kSlice pixels (3 messages of 16 bytes per
@@ -94,9 +95,112 @@ std::string replaced(std::string text, const std::string& from, const std::strin
   return text;
 }
 
+
+// Waits for a request, checking every 0.1 ms: shorter than wait_gently's
+// naps (the reduce waits for many slices), still without spinning a core.
+void wait_briefly(MPI_Request& request) {
+  for (;;) {
+    int flag = 0;
+    MPI_Test(&request, &flag, MPI_STATUS_IGNORE);
+    if (flag) return;
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
+  }
+}
+
+// The reduce on one host without the MPI transport (docs/multi_gpu.md, "The
+// reduce"): the ranks of rank 0's host allocate one MPI shared-memory window
+// (MPI_Win_allocate_shared) with a ring of kSharedRing slices (sum, comp,
+// sq) per rank but rank 0. A rank copies slice s of its state into ring slot
+// s % kSharedRing once rank 0 has merged slice s - kSharedRing, then tells
+// rank 0 (a message of the slices written, after MPI_Win_sync: the unified
+// memory model's pattern, MPI 4.0 sec. 12.7); rank 0 merges the slice from
+// the window in place and tells the rank how many slices it has merged. The
+// ring, not a window of the whole state: fresh pages of a shared-memory file
+// cost a fault and a zeroed page each (4 KiB; tmpfs gives no huge pages by
+// default), which for a 398 MB window took ~0.5 s on the 2-core VM, while
+// the ring's 12 MiB stay mapped and in cache. OCTRACE_MPI_REDUCE (rank 0's
+// environment): "shared" this, "messages" every state through OpenMPI's
+// transport, as ranks on other hosts always do.
+constexpr size_t kSharedRing = 4;
+constexpr size_t kSharedSlotPixels = 3 * kSlice;  // sum, comp, sq of one slice
+
+struct SharedWindow {
+  MPI_Win win = MPI_WIN_NULL;
+  bool ok = false;  // every rank of the host has its segment
+  std::vector<const glm::vec4*> base;  // rank 0: by world rank, the segment (null: not in the window)
+};
+
+// Collective over the host's ranks (rank 0's host): `bytes` for this rank's
+// segment. Falls back (ok = false, on every rank of the host) when any
+// rank's allocation fails.
+SharedWindow allocate_shared(MPI_Comm node, const std::vector<int>& node_ranks, size_t bytes, int world_size) {
+  SharedWindow w;
+  MPI_Comm_set_errhandler(node, MPI_ERRORS_RETURN);
+  void* mine = nullptr;
+  int ok = MPI_Win_allocate_shared(MPI_Aint(bytes), int(sizeof(glm::vec4)), MPI_INFO_NULL, node, &mine, &w.win) ==
+           MPI_SUCCESS;
+  int all = 0;
+  MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, node);
+  MPI_Comm_set_errhandler(node, MPI_ERRORS_ARE_FATAL);
+  if (!all) {
+    if (w.win != MPI_WIN_NULL) MPI_Win_free(&w.win);
+    return w;
+  }
+  w.ok = true;
+  w.base.assign(size_t(world_size), nullptr);
+  for (size_t k = 1; k < node_ranks.size(); ++k) {
+    MPI_Aint segment = 0;
+    int unit = 0;
+    void* at = nullptr;
+    MPI_Win_shared_query(w.win, int(k), &segment, &unit, &at);
+    w.base[size_t(node_ranks[k])] = static_cast<const glm::vec4*>(at);
+  }
+  MPI_Win_lock_all(MPI_MODE_NOCHECK, w.win);
+  return w;
+}
+
+// At the end of the job: every rank of the host leaves the window.
+void free_shared(SharedWindow& w) {
+  if (!w.ok) return;
+  MPI_Win_unlock_all(w.win);
+  MPI_Win_free(&w.win);
+  w.ok = false;
+}
+
+// A rank of rank 0's host: its state through its ring in the window.
+void write_shared(const Accumulation& acc, const SharedWindow& w, void* segment) {
+  const size_t pixels = acc.sum.size(), slices = (pixels + kSlice - 1) / kSlice;
+  glm::vec4* ring = static_cast<glm::vec4*>(segment);
+  int64_t merged = 0;  // slices rank 0 has merged, as its messages say
+  const auto wait_merged = [&](int64_t n) {
+    while (merged < n) {
+      MPI_Request request;
+      MPI_Irecv(&merged, 1, MPI_INT64_T, 0, kTagShared, MPI_COMM_WORLD, &request);
+      wait_briefly(request);
+    }
+  };
+  for (size_t s = 0; s < slices; ++s) {
+    if (s >= kSharedRing) wait_merged(int64_t(s - kSharedRing + 1));  // slot s % kSharedRing is free
+    const size_t begin = s * kSlice, count = std::min(kSlice, pixels - begin);
+    glm::vec4* slot = ring + (s % kSharedRing) * kSharedSlotPixels;
+    int array = 0;
+    for (const std::vector<glm::vec4>* v : {&acc.sum, &acc.comp, &acc.sq})
+      std::memcpy(slot + size_t(array++) * kSlice, v->data() + begin, count * sizeof(glm::vec4));
+    MPI_Win_sync(w.win);
+    const int64_t written = int64_t(s + 1);
+    MPI_Send(&written, 1, MPI_INT64_T, 0, kTagShared, MPI_COMM_WORLD);
+  }
+  wait_merged(int64_t(slices));  // every message of rank 0's received
+}
+
 struct Job {
   bool active = false;
   int rank = 0, size = 1, local_rank = 0;
+  // The ranks of this host (MPI_COMM_TYPE_SHARED, ordered by world rank) and
+  // their world ranks: those on rank 0's host reduce through shared memory.
+  MPI_Comm node = MPI_COMM_NULL;
+  std::vector<int> node_ranks;
+  SharedWindow window;  // the reduce's rings, on rank 0's host (allocate_shared)
   std::string host;
   Phase phase = Phase::Render;
   bool released = false;  // rank > 0: the server answered "no more" (or was told of a failure)
@@ -484,10 +588,18 @@ void init(int* argc, char*** argv) {
   int length = 0;
   MPI_Get_processor_name(name, &length);
   job.host.assign(name, size_t(length));
-  MPI_Comm node;
-  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, job.rank, MPI_INFO_NULL, &node);
-  MPI_Comm_rank(node, &job.local_rank);
-  MPI_Comm_free(&node);
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, job.rank, MPI_INFO_NULL, &job.node);
+  MPI_Comm_rank(job.node, &job.local_rank);
+  int node_size = 1;
+  MPI_Comm_size(job.node, &node_size);
+  job.node_ranks.resize(size_t(node_size));
+  MPI_Allgather(&job.rank, 1, MPI_INT, job.node_ranks.data(), 1, MPI_INT, job.node);
+  // The window of the reduce's rings, once for the job (its size does not
+  // depend on the image; allocating it takes tens of ms in a rank that has
+  // set up Vulkan, which the reduce would otherwise wait for).
+  if (job.node_ranks.front() == 0 && node_size > 1)
+    job.window = allocate_shared(job.node, job.node_ranks,
+                                 job.rank == 0 ? 0 : kSharedRing * kSharedSlotPixels * sizeof(glm::vec4), job.size);
   if (provided < MPI_THREAD_SERIALIZED) {
     // Rank 0's batch server is a second thread that calls MPI.
     if (job.rank == 0) std::fprintf(stderr, "octrace: error: this MPI library offers no MPI_THREAD_SERIALIZED\n");
@@ -711,28 +823,63 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
   // state (in place: no second state of the image's size is allocated or
   // zero-filled) on worker threads while the next slices arrive, so the
   // reduce costs about the transfer, not transfer + merge. Per pixel the
-  // merge is merge_accumulations' (rank order).
+  // merge is merge_accumulations' (rank order). The ranks of rank 0's host
+  // hand their states over in a shared-memory window (allocate_shared),
+  // the others as messages.
+  const auto reduce_start = Clock::now();
   const size_t pixels = acc.sum.size();
+  int shared_mode = 1;
+  if (job.rank == 0) {
+    const char* mode = std::getenv("OCTRACE_MPI_REDUCE");
+    shared_mode = !(mode && std::string(mode) == "messages");
+  }
+  MPI_Request mode_request;
+  MPI_Ibcast(&shared_mode, 1, MPI_INT, 0, MPI_COMM_WORLD, &mode_request);
+  wait_gently(mode_request);
+  const SharedWindow& window = job.window;
+  const bool shared = shared_mode && window.ok;
   if (job.rank != 0) {
     const auto send_start = Clock::now();
-    send_state(acc, kTagState);
+    if (shared) {
+      MPI_Aint segment = 0;
+      int unit = 0;
+      void* mine = nullptr;
+      MPI_Win_shared_query(window.win, job.local_rank, &segment, &unit, &mine);
+      write_shared(acc, window, mine);
+    } else {
+      send_state(acc, kTagState);
+    }
     const double send_ms = ms_since(send_start);
     MPI_Send(&send_ms, 1, MPI_DOUBLE, 0, kTagState, MPI_COMM_WORLD);
     return false;
   }
-  const auto reduce_start = Clock::now();
   ReduceTimes& times = out.reduce;
   out.merged = std::move(acc);
   Accumulation& merged = out.merged;
   const int others = job.size - 1;
   const size_t slices = (pixels + kSlice - 1) / kSlice;
+  const auto in_window = [&](int r) { return shared && window.base[size_t(r)] != nullptr; };
+  // How far each rank of the window has written (pixels), as its messages say.
+  std::vector<int64_t> written(size_t(job.size), 0);
+  const auto wait_for_window = [&](int r, size_t slices_written) {
+    while (written[size_t(r)] < int64_t(slices_written)) {
+      MPI_Request request;
+      MPI_Irecv(&written[size_t(r)], 1, MPI_INT64_T, r, kTagShared, MPI_COMM_WORLD, &request);
+      wait_briefly(request);
+    }
+    MPI_Win_sync(window.win);
+  };
   // kRing slots of one slice per other rank, reused: slice s arrives in slot
   // s % kRing while the workers merge slice s - 1 and slice s + 1 is on its
   // way (its receives are posted).
   constexpr size_t kRing = 3;
   const size_t slot_pixels = std::min(kSlice, pixels);
-  std::vector<std::vector<glm::vec4>> slots(kRing * size_t(others) * 3, std::vector<glm::vec4>(slot_pixels));
-  const auto slot = [&](size_t s, int r, int array) -> glm::vec4* {
+  std::vector<std::vector<glm::vec4>> slots(kRing * size_t(others) * 3);
+  for (size_t k = 0; k < slots.size(); ++k)
+    if (!in_window(int(k / 3 % size_t(others)) + 1)) slots[k].resize(slot_pixels);
+  // Where slice s of rank r's `array` (0 sum, 1 comp, 2 sq) is.
+  const auto slot = [&](size_t s, int r, int array) -> const glm::vec4* {
+    if (in_window(r)) return window.base[size_t(r)] + (s % kSharedRing) * kSharedSlotPixels + size_t(array) * kSlice;
     return slots[((s % kRing) * size_t(others) + size_t(r - 1)) * 3 + size_t(array)].data();
   };
   std::vector<std::vector<MPI_Request>> requests(kRing);
@@ -741,9 +888,9 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
     std::vector<MPI_Request>& slice_requests = requests[s % kRing];
     slice_requests.assign(size_t(others) * 3, MPI_REQUEST_NULL);
     for (int r = 1; r < job.size; ++r)
-      for (int array = 0; array < 3; ++array)
-        MPI_Irecv(slot(s, r, array), int(count * 4), MPI_FLOAT, r, kTagState, MPI_COMM_WORLD,
-                  &slice_requests[size_t(r - 1) * 3 + size_t(array)]);
+      for (int array = 0; array < 3 && !in_window(r); ++array)
+        MPI_Irecv(const_cast<glm::vec4*>(slot(s, r, array)), int(count * 4), MPI_FLOAT, r, kTagState,
+                  MPI_COMM_WORLD, &slice_requests[size_t(r - 1) * 3 + size_t(array)]);
   };
   // The merge of a slice is shared by this thread and workers that stay for
   // the whole reduce (one per further core), between two barriers (start,
@@ -775,6 +922,11 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
       }
     });
   times.alloc_ms = ms_since(reduce_start);
+  // The ranks of the window may reuse the slots of the slices merged.
+  const auto tell_merged = [&](int64_t n) {
+    for (int r = 1; r < job.size; ++r)
+      if (in_window(r)) MPI_Send(&n, 1, MPI_INT64_T, r, kTagShared, MPI_COMM_WORLD);
+  };
   const auto wait_for_merge = [&] {
     const auto wait_start = Clock::now();
     done.arrive_and_wait();
@@ -784,8 +936,13 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
   for (size_t s = 0; s < slices; ++s) {
     const auto receive_start = Clock::now();
     MPI_Waitall(int(requests[s % kRing].size()), requests[s % kRing].data(), MPI_STATUSES_IGNORE);
+    for (int r = 1; r < job.size; ++r)
+      if (in_window(r)) wait_for_window(r, s + 1);
     times.receive_ms += ms_since(receive_start);
-    if (s > 0) wait_for_merge();  // slice s - 1: its slot is free again
+    if (s > 0) {
+      wait_for_merge();  // slice s - 1: its slot is free again
+      tell_merged(int64_t(s));
+    }
     if (s + kRing - 1 < slices) post(s + kRing - 1);
     merging = s;
     const auto start_wait = Clock::now();
@@ -794,10 +951,12 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
     merge_share(0);
   }
   if (slices > 0) wait_for_merge();
+  tell_merged(int64_t(slices));
   merging = SIZE_MAX;
   start.arrive_and_wait();
   for (std::thread& t : pool) t.join();
   times.merge_ms = *std::max_element(merge_ms.begin(), merge_ms.end());
+  times.shared = shared;
   times.total_ms = ms_since(reduce_start);
   for (int r = 1; r < job.size; ++r) {
     double send_ms = 0;
@@ -831,6 +990,7 @@ int final_code(int code) {
   MPI_Ibcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
   wait_gently(request);
   job.phase = Phase::Done;
+  free_shared(job.window);
   MPI_Finalize();
   return code;
 }

@@ -86,7 +86,8 @@ struct ReduceTimes {
   double receive_ms = 0;     // waiting for data
   double merge_wait_ms = 0;  // waiting for the merging threads (a slice's start and end)
   double merge_ms = 0;       // merging (worker threads, overlapped with receiving)
-  double send_ms = 0;        // the slowest other rank's sending of its state
+  double send_ms = 0;        // the slowest other rank's sending of its state (or writing it to the window)
+  bool shared = false;       // the ranks of rank 0's host wrote their states to a shared-memory window
 };
 
 // What rank 0 has once the ranks have reported.

@@ -93,7 +93,9 @@ const std::string kArgs = "render --size 40x24 --spheres 60 --spp 12 ";
 // time (each rank's batch spans, on the host's monotonic clock; without the
 // turns the two ranks render at once and their spans overlap), and the
 // ranks waited for each other. The 3 ranks render with --device-turns off:
-// no rank waits for a turn, and the image is the same. (A merged state resumed under
+// no rank waits for a turn, and the image is the same. The 2 ranks' states
+// reach rank 0 through a shared-memory window (one host), the 3 ranks' as
+// messages (OCTRACE_MPI_REDUCE=messages, as from ranks of other hosts). (A merged state resumed under
 // another number of ranks: CheckpointsOfTheMergedStateResume.)
 TEST(Mpi, TwoAndThreeRanksRenderTheSamplesOfOneProcess) {
   const std::string one = tmp("one.pfm");
@@ -101,7 +103,9 @@ TEST(Mpi, TwoAndThreeRanksRenderTheSamplesOfOneProcess) {
   for (int ranks : {2, 3}) {
     const std::string out = tmp("ranks" + std::to_string(ranks) + ".pfm");
     fs::remove(out);
-    RunResult r = mpirun(ranks, kArgs + (ranks == 2 ? "--batch-ms 0.001 " : "--device-turns off ") + "--json --out " + out);
+    const std::string env = ranks == 3 ? "OCTRACE_MPI_REDUCE=messages " : "";
+    RunResult r = run_shell(env + mpirun_prefix() + "-np " + std::to_string(ranks) + " " + OCTRACE_BIN + " " + kArgs +
+                            (ranks == 2 ? "--batch-ms 0.001 " : "--device-turns off ") + "--json --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
     const nlohmann::json j = json_of(r.output);
     ASSERT_TRUE(j.contains("ranks")) << r.output;
@@ -127,6 +131,7 @@ TEST(Mpi, TwoAndThreeRanksRenderTheSamplesOfOneProcess) {
     EXPECT_EQ(samples, 12u);
     EXPECT_EQ(j["samples"].get<uint32_t>(), 12u);
     EXPECT_EQ(j.at("device_turns").get<bool>(), ranks == 2);
+    EXPECT_EQ(j.at("reduce_shared").get<bool>(), ranks == 2);
     std::vector<std::pair<double, double>> spans;
     uint32_t turns = 0;
     for (const nlohmann::json& rank : j["ranks"]) {
