@@ -495,6 +495,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       mpi::RankShare share;
       share.device = ctx.info.name;
       share.device_uuid = ctx.info.uuid;
+      share.device_software = ctx.info.software;
       share.setup_ms = device_ms + ms_since(setup_start);
       share.device_init_ms = device_ms;
       share.accel_build_ms = tracer.setup_timings().accel_build_ms;
@@ -828,12 +829,13 @@ int main(int argc, char** argv) {
                          "Under MPI: each rank asks rank 0 for the samples that take about MS milliseconds at its "
                          "speed so far (at most 1024; fewer near the end, so that the ranks finish together). "
                          "Default 250");
-  std::string device_turns = "on";
+  std::string device_turns = "auto";
   render_cmd
       ->add_option("--device-turns", device_turns,
                    "Under MPI: ranks that share one physical device (same host and device UUID) render one batch at "
-                   "a time, in turns (on), or all at once (off: the driver time-slices their contexts)")
-      ->check(CLI::IsMember({"on", "off"}))
+                   "a time, in turns: on GPUs (auto), on every device, lavapipe too (on), or never (off: the "
+                   "driver time-slices their contexts)")
+      ->check(CLI::IsMember({"auto", "on", "off"}))
       ->capture_default_str();
   bool mpi_flag = false;  // read before parsing (mpi::launched)
   render_cmd->add_flag("--mpi", mpi_flag,
@@ -925,7 +927,9 @@ int main(int argc, char** argv) {
 #endif
         throw InputError("--device-turns: applies to the ranks of an MPI job only (mpirun -np N octrace render ...)");
 #ifdef OCTRACE_MPI
-      mpi::set_device_turns(device_turns == "on");
+      mpi::set_device_turns(device_turns == "on"    ? mpi::DeviceTurns::On
+                            : device_turns == "off" ? mpi::DeviceTurns::Off
+                                                    : mpi::DeviceTurns::Auto);
 #endif
     }
     if (*render_cmd)

@@ -302,7 +302,7 @@ struct Job {
   // deviceUUID) hold a batch. A rank that asks while another rank of its
   // device holds one waits in the device's queue (first come, first served)
   // and is answered when that batch comes back (the holder's next request).
-  bool turns = true;                       // --device-turns (rank 0's)
+  DeviceTurns turns = DeviceTurns::Auto;   // --device-turns (rank 0's)
   std::vector<std::string> device_of;      // by rank: "host/uuid"; empty: unknown, no turns
   std::map<std::string, int> holder;       // device -> the rank that holds a batch of it
   std::map<std::string, std::deque<int>> queue;  // device -> ranks waiting for it, in order
@@ -317,6 +317,13 @@ struct Job {
   std::optional<std::pair<uint32_t, uint32_t>> rank0_reply;
   std::condition_variable rank0_answered;
 
+  // Whether the ranks of device `key` ("gpu HOST/UUID" or "cpu HOST/UUID")
+  // take turns: a software device (lavapipe) renders on each process's own
+  // CPU threads, with no context to switch, so only with --device-turns on.
+  bool takes_turns(const std::string& key) const {
+    if (key.empty() || turns == DeviceTurns::Off) return false;
+    return turns == DeviceTurns::On || key.rfind("gpu ", 0) == 0;
+  }
   void init_turns_locked() {
     if (!device_of.empty()) return;
     device_of.assign(size_t(size), std::string());
@@ -362,7 +369,8 @@ struct Job {
     report_locked(completed, stop_request, sig);
     release_locked(r);
     const std::string& key = device_key_locked(r);
-    if (turns && !key.empty() && holder.count(key)) {
+    const bool take_turns = takes_turns(key);
+    if (take_turns && holder.count(key)) {
       wants[size_t(r)] = want;
       queued_at[size_t(r)] = Clock::now();
       ++turns_waited[size_t(r)];
@@ -370,7 +378,7 @@ struct Job {
       return;
     }
     const auto got = give_locked(want);
-    if (turns && !key.empty() && got.second > 0) holder[key] = r;
+    if (take_turns && got.second > 0) holder[key] = r;
     deliver_answer_locked(r, got);
   }
 
@@ -625,10 +633,10 @@ std::string device_for_rank(const std::string& requested) {
   return std::to_string(gpus[size_t(g_job.local_rank) % gpus.size()]);
 }
 
-void set_device_turns(bool on) {
+void set_device_turns(DeviceTurns turns) {
   if (g_job.rank != 0) return;
   std::lock_guard<std::mutex> lock(g_job.mutex);
-  g_job.turns = on;
+  g_job.turns = turns;
 }
 
 void set_work(uint32_t spp, uint32_t already, ProgressFn progress) {
@@ -666,7 +674,9 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
   uint32_t completed = 0, batch = 1;
   const auto ready = Clock::now();
   // The device this rank renders on, for turns (empty: no UUID, no turns).
-  const std::string device_key = share.device_uuid.empty() ? std::string() : job.host + "/" + share.device_uuid;
+  const std::string device_key =
+      share.device_uuid.empty() ? std::string()
+                                : (share.device_software ? "cpu " : "gpu ") + job.host + "/" + share.device_uuid;
   if (job.rank != 0) {
     MPI_Send(device_key.data(), int(device_key.size()), MPI_CHAR, 0, kTagDevice, MPI_COMM_WORLD);
   } else {
@@ -974,7 +984,7 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
     }
     out.nonfinite_samples += j.at("nonfinite").get<uint64_t>();
   }
-  out.device_turns = job.turns;
+  out.device_turns = job.turns == DeviceTurns::On ? "on" : job.turns == DeviceTurns::Off ? "off" : "auto";
   out.samples = job.already + job.next;
   out.interrupted = job.next < job.work;
   out.signal = job.signal;

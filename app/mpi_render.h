@@ -71,6 +71,7 @@ struct RankShare {
   double max_gap_ms = 0;     // the longest time between one batch's end and the next one's start
   uint32_t batches = 0;      // batches it rendered
   std::string device_uuid;   // its device's VkPhysicalDeviceIDProperties::deviceUUID (hex)
+  bool device_software = false;  // a CPU device (lavapipe)
   uint32_t turns_waited = 0; // requests that waited for another rank's batch on its device
   double turn_wait_ms = 0;   // of batch_wait_ms, the time they waited (rank 0's clock)
   // Each batch's start and end on this host's monotonic clock (ms since its
@@ -99,7 +100,7 @@ struct Gathered {
   int signal = 0;                    // which signal (SIGINT, SIGTERM)
   uint64_t nonfinite_samples = 0;
   ReduceTimes reduce;                // where the reduce's time went
-  bool device_turns = true;          // ranks sharing a device took turns (--device-turns)
+  std::string device_turns;          // --device-turns in force: auto, on, off
 };
 
 #ifdef OCTRACE_MPI
@@ -121,9 +122,11 @@ const std::string& host();
 // A list (--device all | 0,2) is refused: one device per rank.
 std::string device_for_rank(const std::string& requested);
 
-// Rank 0: --device-turns (on by default): ranks on one physical device (the
-// same host and deviceUUID) render one batch at a time, in turns.
-void set_device_turns(bool on);
+// Rank 0: --device-turns: ranks on one physical device (the same host and
+// deviceUUID) render one batch at a time, in turns: on GPUs (Auto, the
+// default), on every device (On: lavapipe too), or never (Off).
+enum class DeviceTurns { Auto, On, Off };
+void set_device_turns(DeviceTurns turns);
 
 // Rank 0: the job's total samples per pixel, the samples a resumed state
 // already holds, and the progress function (called with the job's totals).

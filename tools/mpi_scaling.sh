@@ -17,8 +17,8 @@
 # Settings through the environment (defaults in brackets): SIZE [1200x800],
 # SPP [1000], RANKS ["1 2 4"; "none": only the merge], BATCH_MS [250: the
 # --batch-ms values to run, e.g. "250 2000"], SCENE_FLAGS [the default
-# scene], TURNS ["on off": the --device-turns values to run: ranks sharing
-# the device take turns, or render at once], MERGE_SIZE [3840x2160],
+# scene], TURNS ["auto off": the --device-turns values to run: ranks sharing
+# a GPU take turns, or render at once], MERGE_SIZE [3840x2160],
 # MERGE_SPP [1], REDUCE ["shared messages": the reduce through the host's
 # shared-memory window, or as messages, OCTRACE_MPI_REDUCE], MPIRUN
 # [mpirun], MPIRUN_FLAGS [-q --oversubscribe --bind-to none; e.g. add
@@ -30,7 +30,7 @@ set -euo pipefail
 [ $# -ge 2 ] || { echo "usage: $0 OCTRACE_BINARY OUT_DIR [RUNS]" >&2; exit 2; }
 bin=$1 out=$2 runs=${3:-3}
 size=${SIZE:-1200x800} spp=${SPP:-1000} ranks_list=${RANKS:-"1 2 4"} scene_flags=${SCENE_FLAGS:-}
-batch_list=${BATCH_MS:-250} turns_list=${TURNS:-"on off"} reduce_list=${REDUCE:-"shared messages"}
+batch_list=${BATCH_MS:-250} turns_list=${TURNS:-"auto off"} reduce_list=${REDUCE:-"shared messages"}
 [ "$ranks_list" = none ] && ranks_list=""
 merge_size=${MERGE_SIZE:-3840x2160} merge_spp=${MERGE_SPP:-1}
 mpirun=${MPIRUN:-mpirun}

@@ -88,12 +88,13 @@ const std::string kArgs = "render --size 40x24 --spheres 60 --spp 12 ";
 // process; the summary names each rank. The 2 ranks ask for batches of 1
 // microsecond (--batch-ms): every batch is then one sample (a pass takes
 // longer), so each rank renders as many batches as samples. Both ranks open
-// the one lavapipe (the same device UUID on the same host), so they take
-// turns (--device-turns on, the default): no two of their batches overlap in
-// time (each rank's batch spans, on the host's monotonic clock; without the
-// turns the two ranks render at once and their spans overlap), and the
-// ranks waited for each other. The 3 ranks render with --device-turns off:
-// no rank waits for a turn, and the image is the same. The 2 ranks' states
+// the one lavapipe (the same device UUID on the same host) and are told to
+// take turns (--device-turns on; the default, auto, takes turns on GPUs
+// only): no two of their batches overlap in time (each rank's batch spans,
+// on the host's monotonic clock; without the turns the two ranks render at
+// once and their spans overlap), and the ranks waited for each other. The
+// 3 ranks render with the default: on lavapipe no rank waits for a turn,
+// and the image is the same. The 2 ranks' states
 // reach rank 0 through a shared-memory window (one host), the 3 ranks' as
 // messages (OCTRACE_MPI_REDUCE=messages, as from ranks of other hosts). (A merged state resumed under
 // another number of ranks: CheckpointsOfTheMergedStateResume.)
@@ -105,7 +106,7 @@ TEST(Mpi, TwoAndThreeRanksRenderTheSamplesOfOneProcess) {
     fs::remove(out);
     const std::string env = ranks == 3 ? "OCTRACE_MPI_REDUCE=messages " : "";
     RunResult r = run_shell(env + mpirun_prefix() + "-np " + std::to_string(ranks) + " " + OCTRACE_BIN + " " + kArgs +
-                            (ranks == 2 ? "--batch-ms 0.001 " : "--device-turns off ") + "--json --out " + out);
+                            (ranks == 2 ? "--batch-ms 0.001 --device-turns on " : "") + "--json --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
     const nlohmann::json j = json_of(r.output);
     ASSERT_TRUE(j.contains("ranks")) << r.output;
@@ -130,7 +131,7 @@ TEST(Mpi, TwoAndThreeRanksRenderTheSamplesOfOneProcess) {
     }
     EXPECT_EQ(samples, 12u);
     EXPECT_EQ(j["samples"].get<uint32_t>(), 12u);
-    EXPECT_EQ(j.at("device_turns").get<bool>(), ranks == 2);
+    EXPECT_EQ(j.at("device_turns").get<std::string>(), ranks == 2 ? "on" : "auto");
     EXPECT_EQ(j.at("reduce_shared").get<bool>(), ranks == 2);
     std::vector<std::pair<double, double>> spans;
     uint32_t turns = 0;
