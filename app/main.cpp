@@ -494,6 +494,8 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
                             });
       mpi::RankShare share;
       share.device = ctx.info.name;
+      share.device_uuid = ctx.info.uuid;
+      share.device_software = ctx.info.software;
       share.setup_ms = device_ms + ms_since(setup_start);
       share.device_init_ms = device_ms;
       share.accel_build_ms = tracer.setup_timings().accel_build_ms;
@@ -609,6 +611,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       for (const mpi::RankShare& r : gathered.shares) per_rank.push_back(mpi::share_json(r));
       j["ranks"] = per_rank;
       j["batch_ms"] = batch_ms > 0 ? batch_ms : mpi::kBatchMs;
+      j["device_turns"] = gathered.device_turns;
       const mpi::ReduceTimes& red = gathered.reduce;
       j["times_ms"]["reduce"] = red.total_ms;
       j["times_ms"]["reduce_alloc"] = red.alloc_ms;
@@ -616,6 +619,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       j["times_ms"]["reduce_merge"] = red.merge_ms;
       j["times_ms"]["reduce_merge_wait"] = red.merge_wait_ms;
       j["times_ms"]["reduce_send"] = red.send_ms;
+      j["reduce_shared"] = red.shared;
     }
 #endif
     if (settings.accel == Accel::Bvh) {
@@ -825,6 +829,14 @@ int main(int argc, char** argv) {
                          "Under MPI: each rank asks rank 0 for the samples that take about MS milliseconds at its "
                          "speed so far (at most 1024; fewer near the end, so that the ranks finish together). "
                          "Default 250");
+  std::string device_turns = "auto";
+  render_cmd
+      ->add_option("--device-turns", device_turns,
+                   "Under MPI: ranks that share one physical device (same host and device UUID) render one batch at "
+                   "a time, in turns: on GPUs (auto), on every device, lavapipe too (on), or never (off: the "
+                   "driver time-slices their contexts)")
+      ->check(CLI::IsMember({"auto", "on", "off"}))
+      ->capture_default_str();
   bool mpi_flag = false;  // read before parsing (mpi::launched)
   render_cmd->add_flag("--mpi", mpi_flag,
                        "Run as one rank of an MPI job; implied when started by mpirun (OMPI_COMM_WORLD_SIZE, "
@@ -909,6 +921,17 @@ int main(int argc, char** argv) {
 
   int code = 0;
   try {
+    if (*render_cmd && render_cmd->count("--device-turns") > 0) {
+#ifdef OCTRACE_MPI
+      if (!mpi::active())
+#endif
+        throw InputError("--device-turns: applies to the ranks of an MPI job only (mpirun -np N octrace render ...)");
+#ifdef OCTRACE_MPI
+      mpi::set_device_turns(device_turns == "on"    ? mpi::DeviceTurns::On
+                            : device_turns == "off" ? mpi::DeviceTurns::Off
+                                                    : mpi::DeviceTurns::Auto);
+#endif
+    }
     if (*render_cmd)
       code = cmd_render(scene_opts, render_opts, outputs, state_out, checkpoint_seconds, resume_prefix, batch_ms, as_json,
                         quiet);

@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <deque>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -28,7 +30,8 @@ namespace {
 
 using json = nlohmann::json;
 
-constexpr int kTagRequest = 11, kTagReply = 12, kTagState = 20, kTagCheckpoint = 21;
+constexpr int kTagRequest = 11, kTagReply = 12, kTagDevice = 13, kTagState = 20, kTagCheckpoint = 21,
+              kTagShared = 22;
 // A reply {kCheckpoint, 0}: send your state (a checkpoint), then ask again.
 constexpr uint32_t kCheckpoint = UINT32_MAX;
 // The states travel in slices of kSlice pixels (3 messages of 16 bytes per
@@ -52,6 +55,12 @@ void wait_gently(MPI_Request& request) {
 }
 
 enum class Phase { Render, Final, Done };
+
+// A time on this host's monotonic clock (steady_clock: CLOCK_MONOTONIC on
+// Linux, one for every process of the host), in ms.
+double ms_since_epoch(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(t.time_since_epoch()).count();
+}
 
 // Every slice's messages are posted at once: OpenMPI announces each to rank
 // 0, which copies it out of this process's memory (the single-copy
@@ -86,9 +95,138 @@ std::string replaced(std::string text, const std::string& from, const std::strin
   return text;
 }
 
+// Waits for a request, checking every 0.1 ms: shorter than wait_gently's
+// naps (the reduce waits for many slices), still without spinning a core.
+void wait_briefly(MPI_Request& request) {
+  for (;;) {
+    int flag = 0;
+    MPI_Test(&request, &flag, MPI_STATUS_IGNORE);
+    if (flag) return;
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
+  }
+}
+
+// The reduce on one host without the MPI transport (docs/multi_gpu.md,
+// "Reduce"): the ranks of rank 0's host allocate one MPI shared-memory window
+// (MPI_Win_allocate_shared) with a ring of kSharedRing slices (sum, comp,
+// sq) per rank but rank 0. A rank copies slice s of its state into ring slot
+// s % kSharedRing once rank 0 has merged slice s - kSharedRing, then tells
+// rank 0 (a message of the slices written, after MPI_Win_sync: the unified
+// memory model's pattern, MPI 4.0 sec. 12.7); rank 0 merges the slice from
+// the window in place and tells the rank how many slices it has merged. The
+// ring, not a window of the whole state: fresh pages of a shared-memory file
+// cost a fault and a zeroed page each (4 KiB; tmpfs gives no huge pages by
+// default), which for a 398 MB window took ~0.5 s on the 2-core VM, while
+// the ring's 12 MiB stay mapped and in cache. OCTRACE_MPI_REDUCE (rank 0's
+// environment): "shared" this, "messages" every state through OpenMPI's
+// transport, as ranks on other hosts always do.
+constexpr size_t kSharedRing = 4;
+constexpr size_t kSharedSlotPixels = 3 * kSlice;  // sum, comp, sq of one slice
+
+struct SharedWindow {
+  MPI_Win win = MPI_WIN_NULL;
+  bool ok = false;  // every rank of the host has its segment
+  std::vector<const glm::vec4*> base;  // rank 0: by world rank, the segment (null: not in the window)
+};
+
+// Collective over the host's ranks (rank 0's host): `bytes` for this rank's
+// segment. Falls back (ok = false, on every rank of the host) when any
+// rank's allocation fails.
+SharedWindow allocate_shared(MPI_Comm node, const std::vector<int>& node_ranks, size_t bytes, int world_size) {
+  SharedWindow w;
+  MPI_Comm_set_errhandler(node, MPI_ERRORS_RETURN);
+  void* mine = nullptr;
+  int ok = MPI_Win_allocate_shared(MPI_Aint(bytes), int(sizeof(glm::vec4)), MPI_INFO_NULL, node, &mine, &w.win) ==
+           MPI_SUCCESS;
+  int all = 0;
+  MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, node);
+  MPI_Comm_set_errhandler(node, MPI_ERRORS_ARE_FATAL);
+  if (!all) {
+    if (w.win != MPI_WIN_NULL) MPI_Win_free(&w.win);
+    return w;
+  }
+  w.ok = true;
+  w.base.assign(size_t(world_size), nullptr);
+  for (size_t k = 1; k < node_ranks.size(); ++k) {
+    MPI_Aint segment = 0;
+    int unit = 0;
+    void* at = nullptr;
+    MPI_Win_shared_query(w.win, int(k), &segment, &unit, &at);
+    w.base[size_t(node_ranks[k])] = static_cast<const glm::vec4*>(at);
+  }
+  MPI_Win_lock_all(MPI_MODE_NOCHECK, w.win);
+  return w;
+}
+
+// At the end of the job: every rank of the host leaves the window.
+void free_shared(SharedWindow& w) {
+  if (!w.ok) return;
+  MPI_Win_unlock_all(w.win);
+  MPI_Win_free(&w.win);
+  w.ok = false;
+}
+
+// A rank of rank 0's host: its state through its ring in the window. The
+// copy of a slice is shared by this thread and workers that stay for the
+// whole reduce (one per further core, as rank 0's merge), between two
+// barriers: one thread copies 398 MB at ~10 GB/s, longer than rank 0's merge
+// of it on 16 cores.
+void write_shared(const Accumulation& acc, const SharedWindow& w, void* segment) {
+  const size_t pixels = acc.sum.size(), slices = (pixels + kSlice - 1) / kSlice;
+  glm::vec4* ring = static_cast<glm::vec4*>(segment);
+  int64_t merged = 0;  // slices rank 0 has merged, as its messages say
+  const auto wait_merged = [&](int64_t n) {
+    while (merged < n) {
+      MPI_Request request;
+      MPI_Irecv(&merged, 1, MPI_INT64_T, 0, kTagShared, MPI_COMM_WORLD, &request);
+      wait_briefly(request);
+    }
+  };
+  const size_t threads = std::max(1u, std::thread::hardware_concurrency());
+  std::barrier<> start{ptrdiff_t(threads)}, done{ptrdiff_t(threads)};
+  size_t copying = SIZE_MAX;  // the slice being copied; SIZE_MAX: none left, the workers end
+  const auto copy_share = [&](size_t t) {
+    const size_t s = copying, begin = s * kSlice, count = std::min(kSlice, pixels - begin);
+    const size_t at = count * t / threads, n = count * (t + 1) / threads - at;
+    glm::vec4* slot = ring + (s % kSharedRing) * kSharedSlotPixels;
+    int array = 0;
+    for (const std::vector<glm::vec4>* v : {&acc.sum, &acc.comp, &acc.sq})
+      std::memcpy(slot + size_t(array++) * kSlice + at, v->data() + begin + at, n * sizeof(glm::vec4));
+  };
+  std::vector<std::thread> pool;
+  for (size_t t = 1; t < threads; ++t)
+    pool.emplace_back([&, t] {
+      for (;;) {
+        start.arrive_and_wait();
+        if (copying == SIZE_MAX) return;
+        copy_share(t);
+        done.arrive_and_wait();
+      }
+    });
+  for (size_t s = 0; s < slices; ++s) {
+    if (s >= kSharedRing) wait_merged(int64_t(s - kSharedRing + 1));  // slot s % kSharedRing is free
+    copying = s;
+    start.arrive_and_wait();
+    copy_share(0);
+    done.arrive_and_wait();
+    MPI_Win_sync(w.win);
+    const int64_t written = int64_t(s + 1);
+    MPI_Send(&written, 1, MPI_INT64_T, 0, kTagShared, MPI_COMM_WORLD);
+  }
+  copying = SIZE_MAX;
+  start.arrive_and_wait();
+  for (std::thread& t : pool) t.join();
+  wait_merged(int64_t(slices));  // every message of rank 0's received
+}
+
 struct Job {
   bool active = false;
   int rank = 0, size = 1, local_rank = 0;
+  // The ranks of this host (MPI_COMM_TYPE_SHARED, ordered by world rank) and
+  // their world ranks: those on rank 0's host reduce through shared memory.
+  MPI_Comm node = MPI_COMM_NULL;
+  std::vector<int> node_ranks;
+  SharedWindow window;  // the reduce's rings, on rank 0's host (allocate_shared)
   std::string host;
   Phase phase = Phase::Render;
   bool released = false;  // rank > 0: the server answered "no more" (or was told of a failure)
@@ -147,16 +285,19 @@ struct Job {
     drain_done.notify_all();
   }
 
-  // Under `mutex`: the next batch for a rank that wants `want` samples
-  // ({first, 0} when there is none), after it reported `completed`.
-  std::pair<uint32_t, uint32_t> take(uint32_t completed, uint32_t want, bool stop_request, int sig) {
-    std::lock_guard<std::mutex> lock(mutex);
+  // Under `mutex`: a rank reports `completed` samples (and a signal).
+  void report_locked(uint32_t completed, bool stop_request, int sig) {
     done += completed;
     if (completed && progress) progress(already + done, already + work);
     if (stop_request && !stop) {
       stop = true;
       signal = sig;
     }
+  }
+
+  // Under `mutex`: the next batch for a rank that wants `want` samples
+  // ({first, 0} when there is none; {kCheckpoint, 0}: send your state).
+  std::pair<uint32_t, uint32_t> give_locked(uint32_t want) {
     if (failed || stop || next >= work) {
       call_off_checkpoint_locked();
       return {0, 0};
@@ -179,6 +320,104 @@ struct Job {
     return {first, n};
   }
 
+  // Turns on a shared device (docs/multi_gpu.md, "Ranks that share a
+  // device"). Processes that share one GPU get time slices of it from the
+  // driver, which switches between their contexts at a cost (on the H100 at
+  // 67ee20c each of 2 or 4 ranks' device time grew 1.7x); so rank 0 lets at
+  // most one rank per physical device (host + VkPhysicalDeviceIDProperties::
+  // deviceUUID) hold a batch. A rank that asks while another rank of its
+  // device holds one waits in the device's queue (first come, first served)
+  // and is answered when that batch comes back (the holder's next request).
+  DeviceTurns turns = DeviceTurns::Auto;   // --device-turns (rank 0's)
+  std::vector<std::string> device_of;      // by rank: "host/uuid"; empty: unknown, no turns
+  std::map<std::string, int> holder;       // device -> the rank that holds a batch of it
+  std::map<std::string, std::deque<int>> queue;  // device -> ranks waiting for it, in order
+  std::vector<uint32_t> wants;             // by rank: the samples a queued rank asked for
+  std::vector<Clock::time_point> queued_at;
+  std::vector<uint32_t> turns_waited;      // by rank: requests that waited for the device
+  std::vector<double> turn_wait_ms;        // by rank: the time they waited
+  // Answers decided on a thread that may not call MPI (rank 0's render
+  // thread): the batch server sends them. Rank 0's own answer goes to
+  // rank0_reply.
+  std::vector<std::pair<int, std::pair<uint32_t, uint32_t>>> due;
+  std::optional<std::pair<uint32_t, uint32_t>> rank0_reply;
+  std::condition_variable rank0_answered;
+
+  // Whether the ranks of device `key` ("gpu HOST/UUID" or "cpu HOST/UUID")
+  // take turns: a software device (lavapipe) renders on each process's own
+  // CPU threads, with no context to switch, so only with --device-turns on.
+  bool takes_turns(const std::string& key) const {
+    if (key.empty() || turns == DeviceTurns::Off) return false;
+    return turns == DeviceTurns::On || key.rfind("gpu ", 0) == 0;
+  }
+  void init_turns_locked() {
+    if (!device_of.empty()) return;
+    device_of.assign(size_t(size), std::string());
+    wants.assign(size_t(size), 0);
+    queued_at.assign(size_t(size), Clock::time_point{});
+    turns_waited.assign(size_t(size), 0);
+    turn_wait_ms.assign(size_t(size), 0.0);
+  }
+  const std::string& device_key_locked(int r) {
+    init_turns_locked();
+    return device_of[size_t(r)];
+  }
+  void deliver_answer_locked(int r, std::pair<uint32_t, uint32_t> got) {
+    if (r == 0) {
+      rank0_reply = got;
+      rank0_answered.notify_all();
+    } else {
+      due.push_back({r, got});
+    }
+  }
+  // Rank r's batch came back (or r failed): the device goes to the first
+  // rank in its queue that gets a batch (the others are answered too: with
+  // "no more", or a checkpoint request).
+  void release_locked(int r) {
+    const std::string& key = device_key_locked(r);
+    if (key.empty()) return;
+    auto h = holder.find(key);
+    if (h == holder.end() || h->second != r) return;
+    holder.erase(h);
+    std::deque<int>& q = queue[key];
+    while (!q.empty() && !holder.count(key)) {
+      const int next_rank = q.front();
+      q.pop_front();
+      turn_wait_ms[size_t(next_rank)] += ms_since(queued_at[size_t(next_rank)]);
+      const auto got = give_locked(wants[size_t(next_rank)]);
+      if (got.second > 0) holder[key] = next_rank;
+      deliver_answer_locked(next_rank, got);
+    }
+  }
+  // Rank r asks for `want` samples after it rendered `completed`: answered
+  // now, or queued behind the rank that holds its device.
+  void request_locked(int r, uint32_t completed, uint32_t want, bool stop_request, int sig) {
+    report_locked(completed, stop_request, sig);
+    release_locked(r);
+    const std::string& key = device_key_locked(r);
+    const bool take_turns = takes_turns(key);
+    if (take_turns && holder.count(key)) {
+      wants[size_t(r)] = want;
+      queued_at[size_t(r)] = Clock::now();
+      ++turns_waited[size_t(r)];
+      queue[key].push_back(r);
+      return;
+    }
+    const auto got = give_locked(want);
+    if (take_turns && got.second > 0) holder[key] = r;
+    deliver_answer_locked(r, got);
+  }
+
+  // Rank 0's render thread: its next batch (after `completed`), waiting for
+  // its turn on a device it shares.
+  std::pair<uint32_t, uint32_t> take(uint32_t completed, uint32_t want, bool stop_request, int sig) {
+    std::unique_lock<std::mutex> lock(mutex);
+    rank0_reply.reset();
+    request_locked(0, completed, want, stop_request, sig);
+    rank0_answered.wait(lock, [&] { return rank0_reply.has_value(); });
+    return *rank0_reply;
+  }
+
   // Rank 0's thread: answers the other ranks' requests until each has been
   // told there is no more work or has reported a failure.
   void serve() {
@@ -189,13 +428,28 @@ struct Job {
     };
     std::vector<Pending> pending;  // first requests, held until the start
     std::vector<Pending> held;     // requests of ranks that delivered, held until the checkpoint is written
+    // Sends the answers decided (here or on rank 0's render thread).
+    const auto flush = [&] {
+      std::vector<std::pair<int, std::pair<uint32_t, uint32_t>>> answers;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        answers.swap(due);
+      }
+      for (const auto& [source, got] : answers) {
+        uint32_t reply[2] = {got.first, got.second};
+        MPI_Send(reply, 2, MPI_UINT32_T, source, kTagReply, MPI_COMM_WORLD);
+        if (got.second == 0 && got.first != kCheckpoint) --active_ranks;
+      }
+    };
     const auto answer = [&](int source, const int64_t* msg) {
-      const auto [first, n] = take(uint32_t(msg[1]), uint32_t(msg[2]), msg[0] == kStop, int(msg[3]));
-      uint32_t reply[2] = {first, n};
-      MPI_Send(reply, 2, MPI_UINT32_T, source, kTagReply, MPI_COMM_WORLD);
-      if (n == 0 && first != kCheckpoint) --active_ranks;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        request_locked(source, uint32_t(msg[1]), uint32_t(msg[2]), msg[0] == kStop, int(msg[3]));
+      }
+      flush();
     };
     while (active_ranks > 0) {
+      flush();
       bool go = false;
       {
         std::lock_guard<std::mutex> lock(mutex);
@@ -236,6 +490,16 @@ struct Job {
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
         continue;
       }
+      if (status.MPI_TAG == kTagDevice) {
+        int length = 0;
+        MPI_Get_count(&status, MPI_CHAR, &length);
+        std::string key(size_t(length), '\0');
+        MPI_Recv(key.data(), length, MPI_CHAR, status.MPI_SOURCE, kTagDevice, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        std::lock_guard<std::mutex> lock(mutex);
+        device_key_locked(status.MPI_SOURCE);
+        device_of[size_t(status.MPI_SOURCE)] = key;
+        continue;
+      }
       if (status.MPI_TAG == kTagCheckpoint) {
         Accumulation acc{width, height, {}, {}, {}};
         receive_state(status.MPI_SOURCE, kTagCheckpoint, acc);
@@ -246,9 +510,12 @@ struct Job {
       int64_t msg[4];
       MPI_Recv(msg, 4, MPI_INT64_T, status.MPI_SOURCE, kTagRequest, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
       if (msg[0] == kFailed) {
-        std::lock_guard<std::mutex> lock(mutex);
-        failed = true;
-        call_off_checkpoint_locked();
+        {
+          std::lock_guard<std::mutex> lock(mutex);
+          failed = true;
+          call_off_checkpoint_locked();
+          release_locked(status.MPI_SOURCE);
+        }
         --active_ranks;
         continue;
       }
@@ -355,10 +622,18 @@ void init(int* argc, char*** argv) {
   int length = 0;
   MPI_Get_processor_name(name, &length);
   job.host.assign(name, size_t(length));
-  MPI_Comm node;
-  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, job.rank, MPI_INFO_NULL, &node);
-  MPI_Comm_rank(node, &job.local_rank);
-  MPI_Comm_free(&node);
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, job.rank, MPI_INFO_NULL, &job.node);
+  MPI_Comm_rank(job.node, &job.local_rank);
+  int node_size = 1;
+  MPI_Comm_size(job.node, &node_size);
+  job.node_ranks.resize(size_t(node_size));
+  MPI_Allgather(&job.rank, 1, MPI_INT, job.node_ranks.data(), 1, MPI_INT, job.node);
+  // The window of the reduce's rings, once for the job (its size does not
+  // depend on the image; allocating it takes tens of ms in a rank that has
+  // set up Vulkan, which the reduce would otherwise wait for).
+  if (job.node_ranks.front() == 0 && node_size > 1)
+    job.window = allocate_shared(job.node, job.node_ranks,
+                                 job.rank == 0 ? 0 : kSharedRing * kSharedSlotPixels * sizeof(glm::vec4), job.size);
   if (provided < MPI_THREAD_SERIALIZED) {
     // Rank 0's batch server is a second thread that calls MPI.
     if (job.rank == 0) std::fprintf(stderr, "octrace: error: this MPI library offers no MPI_THREAD_SERIALIZED\n");
@@ -382,6 +657,12 @@ std::string device_for_rank(const std::string& requested) {
     if (!d.software) gpus.push_back(d.index);
   if (gpus.empty()) return "auto";
   return std::to_string(gpus[size_t(g_job.local_rank) % gpus.size()]);
+}
+
+void set_device_turns(DeviceTurns turns) {
+  if (g_job.rank != 0) return;
+  std::lock_guard<std::mutex> lock(g_job.mutex);
+  g_job.turns = turns;
 }
 
 void set_work(uint32_t spp, uint32_t already, ProgressFn progress) {
@@ -418,9 +699,17 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
   share.host = job.host;
   uint32_t completed = 0, batch = 1;
   const auto ready = Clock::now();
-  if (job.rank == 0) {
+  // The device this rank renders on, for turns (empty: no UUID, no turns).
+  const std::string device_key =
+      share.device_uuid.empty() ? std::string()
+                                : (share.device_software ? "cpu " : "gpu ") + job.host + "/" + share.device_uuid;
+  if (job.rank != 0) {
+    MPI_Send(device_key.data(), int(device_key.size()), MPI_CHAR, 0, kTagDevice, MPI_COMM_WORLD);
+  } else {
     {
       std::lock_guard<std::mutex> lock(job.mutex);
+      job.device_key_locked(0);
+      job.device_of[0] = device_key;
       job.rank0_ready = true;
       if (job.size == 1) {
         job.started = true;
@@ -479,6 +768,7 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
       share.max_gap_ms = std::max(share.max_gap_ms, ms_between(*last_batch_end, batch_start));
     share.device_ms += tracer.run_passes(pass, first_sample + got.first, got.second);
     last_batch_end = Clock::now();
+    share.spans.push_back({ms_since_epoch(batch_start), ms_since_epoch(*last_batch_end)});
     const double passes_ms = ms_between(batch_start, *last_batch_end);
     share.passes_ms += passes_ms;
     ++share.batches;
@@ -510,7 +800,11 @@ json share_json(const RankShare& s) {
           {"passes_wall_ms", s.passes_ms},
           {"batch_wait_ms", s.batch_wait_ms},
           {"max_gap_ms", s.max_gap_ms},
-          {"batches", s.batches}};
+          {"batches", s.batches},
+          {"device_uuid", s.device_uuid},
+          {"turns_waited", s.turns_waited},
+          {"turn_wait_ms", s.turn_wait_ms},
+          {"batch_spans_ms", s.spans}};
 }
 
 RankShare share_of(const json& j) {
@@ -532,6 +826,10 @@ RankShare share_of(const json& j) {
   s.batch_wait_ms = j.at("batch_wait_ms");
   s.max_gap_ms = j.at("max_gap_ms");
   s.batches = j.at("batches");
+  s.device_uuid = j.at("device_uuid");
+  s.turns_waited = j.at("turns_waited");
+  s.turn_wait_ms = j.at("turn_wait_ms");
+  s.spans = j.at("batch_spans_ms").get<std::vector<std::pair<double, double>>>();
   return s;
 }
 
@@ -540,10 +838,11 @@ std::string share_line(const RankShare& s) {
   std::snprintf(line, sizeof line,
                 "rank %d    %s, %s: %u spp in %u batches, %.1f ms of passes (device); set-up %.1f ms (device %.1f, "
                 "accel build %.1f, upload %.1f, pipeline %.1f), then %.1f ms waiting for the other ranks; of %.1f ms "
-                "rendering: %.1f in batches, %.1f waiting for rank 0's answers, the rest between (longest gap %.1f)",
+                "rendering: %.1f in batches, %.1f waiting for rank 0's answers (of it %.1f in %u turns for the "
+                "device), the rest between (longest gap %.1f)",
                 s.rank, s.host.c_str(), s.device.c_str(), s.samples, s.batches, s.device_ms, s.setup_ms,
                 s.device_init_ms, s.accel_build_ms, s.upload_ms, s.pipeline_ms, s.start_wait_ms, s.wall_ms,
-                s.passes_ms, s.batch_wait_ms, s.max_gap_ms);
+                s.passes_ms, s.batch_wait_ms, s.turn_wait_ms, s.turns_waited, s.max_gap_ms);
   return line;
 }
 
@@ -560,28 +859,63 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
   // state (in place: no second state of the image's size is allocated or
   // zero-filled) on worker threads while the next slices arrive, so the
   // reduce costs about the transfer, not transfer + merge. Per pixel the
-  // merge is merge_accumulations' (rank order).
+  // merge is merge_accumulations' (rank order). The ranks of rank 0's host
+  // hand their states over in a shared-memory window (allocate_shared),
+  // the others as messages.
+  const auto reduce_start = Clock::now();
   const size_t pixels = acc.sum.size();
+  int shared_mode = 1;
+  if (job.rank == 0) {
+    const char* mode = std::getenv("OCTRACE_MPI_REDUCE");
+    shared_mode = !(mode && std::string(mode) == "messages");
+  }
+  MPI_Request mode_request;
+  MPI_Ibcast(&shared_mode, 1, MPI_INT, 0, MPI_COMM_WORLD, &mode_request);
+  wait_gently(mode_request);
+  const SharedWindow& window = job.window;
+  const bool shared = shared_mode && window.ok;
   if (job.rank != 0) {
     const auto send_start = Clock::now();
-    send_state(acc, kTagState);
+    if (shared) {
+      MPI_Aint segment = 0;
+      int unit = 0;
+      void* mine = nullptr;
+      MPI_Win_shared_query(window.win, job.local_rank, &segment, &unit, &mine);
+      write_shared(acc, window, mine);
+    } else {
+      send_state(acc, kTagState);
+    }
     const double send_ms = ms_since(send_start);
     MPI_Send(&send_ms, 1, MPI_DOUBLE, 0, kTagState, MPI_COMM_WORLD);
     return false;
   }
-  const auto reduce_start = Clock::now();
   ReduceTimes& times = out.reduce;
   out.merged = std::move(acc);
   Accumulation& merged = out.merged;
   const int others = job.size - 1;
   const size_t slices = (pixels + kSlice - 1) / kSlice;
+  const auto in_window = [&](int r) { return shared && window.base[size_t(r)] != nullptr; };
+  // How far each rank of the window has written (pixels), as its messages say.
+  std::vector<int64_t> written(size_t(job.size), 0);
+  const auto wait_for_window = [&](int r, size_t slices_written) {
+    while (written[size_t(r)] < int64_t(slices_written)) {
+      MPI_Request request;
+      MPI_Irecv(&written[size_t(r)], 1, MPI_INT64_T, r, kTagShared, MPI_COMM_WORLD, &request);
+      wait_briefly(request);
+    }
+    MPI_Win_sync(window.win);
+  };
   // kRing slots of one slice per other rank, reused: slice s arrives in slot
   // s % kRing while the workers merge slice s - 1 and slice s + 1 is on its
   // way (its receives are posted).
   constexpr size_t kRing = 3;
   const size_t slot_pixels = std::min(kSlice, pixels);
-  std::vector<std::vector<glm::vec4>> slots(kRing * size_t(others) * 3, std::vector<glm::vec4>(slot_pixels));
-  const auto slot = [&](size_t s, int r, int array) -> glm::vec4* {
+  std::vector<std::vector<glm::vec4>> slots(kRing * size_t(others) * 3);
+  for (size_t k = 0; k < slots.size(); ++k)
+    if (!in_window(int(k / 3 % size_t(others)) + 1)) slots[k].resize(slot_pixels);
+  // Where slice s of rank r's `array` (0 sum, 1 comp, 2 sq) is.
+  const auto slot = [&](size_t s, int r, int array) -> const glm::vec4* {
+    if (in_window(r)) return window.base[size_t(r)] + (s % kSharedRing) * kSharedSlotPixels + size_t(array) * kSlice;
     return slots[((s % kRing) * size_t(others) + size_t(r - 1)) * 3 + size_t(array)].data();
   };
   std::vector<std::vector<MPI_Request>> requests(kRing);
@@ -590,9 +924,9 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
     std::vector<MPI_Request>& slice_requests = requests[s % kRing];
     slice_requests.assign(size_t(others) * 3, MPI_REQUEST_NULL);
     for (int r = 1; r < job.size; ++r)
-      for (int array = 0; array < 3; ++array)
-        MPI_Irecv(slot(s, r, array), int(count * 4), MPI_FLOAT, r, kTagState, MPI_COMM_WORLD,
-                  &slice_requests[size_t(r - 1) * 3 + size_t(array)]);
+      for (int array = 0; array < 3 && !in_window(r); ++array)
+        MPI_Irecv(const_cast<glm::vec4*>(slot(s, r, array)), int(count * 4), MPI_FLOAT, r, kTagState,
+                  MPI_COMM_WORLD, &slice_requests[size_t(r - 1) * 3 + size_t(array)]);
   };
   // The merge of a slice is shared by this thread and workers that stay for
   // the whole reduce (one per further core), between two barriers (start,
@@ -624,6 +958,11 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
       }
     });
   times.alloc_ms = ms_since(reduce_start);
+  // The ranks of the window may reuse the slots of the slices merged.
+  const auto tell_merged = [&](int64_t n) {
+    for (int r = 1; r < job.size; ++r)
+      if (in_window(r)) MPI_Send(&n, 1, MPI_INT64_T, r, kTagShared, MPI_COMM_WORLD);
+  };
   const auto wait_for_merge = [&] {
     const auto wait_start = Clock::now();
     done.arrive_and_wait();
@@ -633,8 +972,13 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
   for (size_t s = 0; s < slices; ++s) {
     const auto receive_start = Clock::now();
     MPI_Waitall(int(requests[s % kRing].size()), requests[s % kRing].data(), MPI_STATUSES_IGNORE);
+    for (int r = 1; r < job.size; ++r)
+      if (in_window(r)) wait_for_window(r, s + 1);
     times.receive_ms += ms_since(receive_start);
-    if (s > 0) wait_for_merge();  // slice s - 1: its slot is free again
+    if (s > 0) {
+      wait_for_merge();  // slice s - 1: its slot is free again
+      tell_merged(int64_t(s));
+    }
     if (s + kRing - 1 < slices) post(s + kRing - 1);
     merging = s;
     const auto start_wait = Clock::now();
@@ -643,10 +987,12 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
     merge_share(0);
   }
   if (slices > 0) wait_for_merge();
+  tell_merged(int64_t(slices));
   merging = SIZE_MAX;
   start.arrive_and_wait();
   for (std::thread& t : pool) t.join();
   times.merge_ms = *std::max_element(merge_ms.begin(), merge_ms.end());
+  times.shared = shared;
   times.total_ms = ms_since(reduce_start);
   for (int r = 1; r < job.size; ++r) {
     double send_ms = 0;
@@ -656,8 +1002,15 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
   out.nonfinite_samples = 0;
   for (const json& j : reports) {
     out.shares.push_back(share_of(j.at("share")));
+    // The turns are counted where they are decided.
+    RankShare& r = out.shares.back();
+    if (job.size > 1 && size_t(r.rank) < job.turns_waited.size()) {
+      r.turns_waited = job.turns_waited[size_t(r.rank)];
+      r.turn_wait_ms = job.turn_wait_ms[size_t(r.rank)];
+    }
     out.nonfinite_samples += j.at("nonfinite").get<uint64_t>();
   }
+  out.device_turns = job.turns == DeviceTurns::On ? "on" : job.turns == DeviceTurns::Off ? "off" : "auto";
   out.samples = job.already + job.next;
   out.interrupted = job.next < job.work;
   out.signal = job.signal;
@@ -673,6 +1026,7 @@ int final_code(int code) {
   MPI_Ibcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
   wait_gently(request);
   job.phase = Phase::Done;
+  free_shared(job.window);
   MPI_Finalize();
   return code;
 }
@@ -687,6 +1041,7 @@ int fail(int code, const std::string& message) {
         std::lock_guard<std::mutex> lock(job.mutex);
         job.failed = true;
         job.call_off_checkpoint_locked();
+        job.release_locked(0);  // a rank waiting for rank 0's device is answered
       }
       job.join_server();
     } else if (!job.released) {

@@ -70,6 +70,13 @@ struct RankShare {
   double batch_wait_ms = 0;  // of it, waiting for rank 0's answer to a request
   double max_gap_ms = 0;     // the longest time between one batch's end and the next one's start
   uint32_t batches = 0;      // batches it rendered
+  std::string device_uuid;   // its device's VkPhysicalDeviceIDProperties::deviceUUID (hex)
+  bool device_software = false;  // a CPU device (lavapipe)
+  uint32_t turns_waited = 0; // requests that waited for another rank's batch on its device
+  double turn_wait_ms = 0;   // of batch_wait_ms, the time they waited (rank 0's clock)
+  // Each batch's start and end on this host's monotonic clock (ms since its
+  // epoch: comparable between the ranks of one host only).
+  std::vector<std::pair<double, double>> spans;
 };
 
 // The reduce's parts (rank 0, wall ms): the parts overlap, so they do not
@@ -80,7 +87,8 @@ struct ReduceTimes {
   double receive_ms = 0;     // waiting for data
   double merge_wait_ms = 0;  // waiting for the merging threads (a slice's start and end)
   double merge_ms = 0;       // merging (worker threads, overlapped with receiving)
-  double send_ms = 0;        // the slowest other rank's sending of its state
+  double send_ms = 0;        // the slowest other rank's sending of its state (or writing it to the window)
+  bool shared = false;       // the ranks of rank 0's host wrote their states to a shared-memory window
 };
 
 // What rank 0 has once the ranks have reported.
@@ -92,6 +100,7 @@ struct Gathered {
   int signal = 0;                    // which signal (SIGINT, SIGTERM)
   uint64_t nonfinite_samples = 0;
   ReduceTimes reduce;                // where the reduce's time went
+  std::string device_turns;          // --device-turns in force: auto, on, off
 };
 
 #ifdef OCTRACE_MPI
@@ -112,6 +121,12 @@ const std::string& host();
 // the node-local rank modulo the node's GPUs, or "auto" without a GPU.
 // A list (--device all | 0,2) is refused: one device per rank.
 std::string device_for_rank(const std::string& requested);
+
+// Rank 0: --device-turns: ranks on one physical device (the same host and
+// deviceUUID) render one batch at a time, in turns: on GPUs (Auto, the
+// default), on every device (On: lavapipe too), or never (Off).
+enum class DeviceTurns { Auto, On, Off };
+void set_device_turns(DeviceTurns turns);
 
 // Rank 0: the job's total samples per pixel, the samples a resumed state
 // already holds, and the progress function (called with the job's totals).

@@ -30,6 +30,10 @@ struct DeviceInfo {
   std::string type;    // "discrete GPU", "integrated GPU", "virtual GPU", "CPU", "other"
   std::string driver;  // driver name and info, e.g. "llvmpipe Mesa 22.3.6 (LLVM 15.0.6)"
   std::string api_version;
+  // VkPhysicalDeviceIDProperties::deviceUUID in hex (Vulkan 1.2 devices): the
+  // same for every process that opens the same physical device on a host (the
+  // MPI front end lets such ranks take turns, docs/multi_gpu.md).
+  std::string uuid;
   bool software = false;         // a CPU implementation (lavapipe, SwiftShader)
   bool vulkan12 = false;         // device API >= 1.2 (we need it)
   bool compute = false;          // a queue family with compute

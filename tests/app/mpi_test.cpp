@@ -87,7 +87,16 @@ const std::string kArgs = "render --size 40x24 --spheres 60 --spp 12 ";
 // 2 and 3 ranks (12 samples: uneven shares with 3 ranks' batches) against one
 // process; the summary names each rank. The 2 ranks ask for batches of 1
 // microsecond (--batch-ms): every batch is then one sample (a pass takes
-// longer), so each rank renders as many batches as samples. (A merged state resumed under
+// longer), so each rank renders as many batches as samples. Both ranks open
+// the one lavapipe (the same device UUID on the same host) and are told to
+// take turns (--device-turns on; the default, auto, takes turns on GPUs
+// only): no two of their batches overlap in time (each rank's batch spans,
+// on the host's monotonic clock; without the turns the two ranks render at
+// once and their spans overlap), and the ranks waited for each other. The
+// 3 ranks render with the default: on lavapipe no rank waits for a turn,
+// and the image is the same. The 2 ranks' states
+// reach rank 0 through a shared-memory window (one host), the 3 ranks' as
+// messages (OCTRACE_MPI_REDUCE=messages, as from ranks of other hosts). (A merged state resumed under
 // another number of ranks: CheckpointsOfTheMergedStateResume.)
 TEST(Mpi, TwoAndThreeRanksRenderTheSamplesOfOneProcess) {
   const std::string one = tmp("one.pfm");
@@ -95,7 +104,9 @@ TEST(Mpi, TwoAndThreeRanksRenderTheSamplesOfOneProcess) {
   for (int ranks : {2, 3}) {
     const std::string out = tmp("ranks" + std::to_string(ranks) + ".pfm");
     fs::remove(out);
-    RunResult r = mpirun(ranks, kArgs + (ranks == 2 ? "--batch-ms 0.001 " : "") + "--json --out " + out);
+    const std::string env = ranks == 3 ? "OCTRACE_MPI_REDUCE=messages " : "";
+    RunResult r = run_shell(env + mpirun_prefix() + "-np " + std::to_string(ranks) + " " + OCTRACE_BIN + " " + kArgs +
+                            (ranks == 2 ? "--batch-ms 0.001 --device-turns on " : "") + "--json --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
     const nlohmann::json j = json_of(r.output);
     ASSERT_TRUE(j.contains("ranks")) << r.output;
@@ -120,6 +131,24 @@ TEST(Mpi, TwoAndThreeRanksRenderTheSamplesOfOneProcess) {
     }
     EXPECT_EQ(samples, 12u);
     EXPECT_EQ(j["samples"].get<uint32_t>(), 12u);
+    EXPECT_EQ(j.at("device_turns").get<std::string>(), ranks == 2 ? "on" : "auto");
+    EXPECT_EQ(j.at("reduce_shared").get<bool>(), ranks == 2);
+    std::vector<std::pair<double, double>> spans;
+    uint32_t turns = 0;
+    for (const nlohmann::json& rank : j["ranks"]) {
+      EXPECT_EQ(rank.at("device_uuid"), j["ranks"][0].at("device_uuid")) << "one lavapipe";
+      turns += rank.at("turns_waited").get<uint32_t>();
+      for (const auto& span : rank.at("batch_spans_ms")) spans.push_back({span[0].get<double>(), span[1].get<double>()});
+    }
+    if (ranks == 2) {
+      ASSERT_EQ(spans.size(), 12u);
+      std::sort(spans.begin(), spans.end());
+      for (size_t i = 1; i < spans.size(); ++i)
+        EXPECT_LE(spans[i - 1].second, spans[i].first) << "batches " << i - 1 << " and " << i << " overlap";
+      EXPECT_GT(turns, 0u);
+    } else {
+      EXPECT_EQ(turns, 0u);
+    }
     expect_same_render(out, one);
   }
 }
@@ -271,13 +300,8 @@ TEST(Mpi, ABuildWithoutMpiRefusesALaunch) {
 
 #endif
 
-// The job array of docs/multi_gpu.md ("Job arrays without MPI"), as a Slurm
-// array would run it: task K renders --first-sample K*N --spp N --state
-// PART_K (here 3 tasks of 4 samples, out of order), `octrace merge` joins the
-// parts; the image equals one render of the 12 samples, and the merged
-// --state holds them (it merges again to the same image).
-// --batch-ms belongs to an MPI job: a one-process render refuses it (and a
-// bad value) in one line, exit 2, no output.
+// --batch-ms and --device-turns belong to an MPI job: a one-process render
+// refuses them (and a bad value) in one line, exit 2, no output.
 TEST(Mpi, OneProcessRefusesBatchMs) {
   const std::string out = tmp("never_batch.png");
   fs::remove(out);
@@ -287,8 +311,17 @@ TEST(Mpi, OneProcessRefusesBatchMs) {
     EXPECT_NE(r.output.find("octrace: error: --batch-ms: "), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(out)) << value;
   }
+  const RunResult r = run_octrace("render --size 8x8 --spp 1 --quiet --device-turns off --out " + out);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("octrace: error: --device-turns: "), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
 }
 
+// The job array of docs/multi_gpu.md ("Job arrays without MPI"), as a Slurm
+// array would run it: task K renders --first-sample K*N --spp N --state
+// PART_K (here 3 tasks of 4 samples, out of order), `octrace merge` joins the
+// parts; the image equals one render of the 12 samples, and the merged
+// --state holds them (it merges again to the same image).
 TEST(JobArray, ThreePartsMergeIntoOneRender) {
   const std::string one = tmp("array_one.pfm"), merged = tmp("array_merged.pfm"), again = tmp("array_again.pfm");
   ASSERT_EQ(run_octrace(kArgs + "--quiet --out " + one).code, 0);
