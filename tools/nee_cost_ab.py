@@ -13,7 +13,11 @@ import json
 import os
 import statistics
 import subprocess
+import sys
 import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from nee_efficiency import far_light_scene  # noqa: E402
 
 
 def render(binary, args, scene, nee, out):
@@ -31,15 +35,7 @@ def main():
     ap.add_argument("--repeats", type=int, default=7)
     args = ap.parse_args()
     tmp = tempfile.mkdtemp(prefix="nee_cost_ab")
-    scene = os.path.join(tmp, "rtiow_far_light.json")
-    subprocess.run([args.old, "render", "--quiet", "--device", args.device, "--size", "8x8", "--spp", "1",
-                    "--dump-scene", scene, "--out", os.path.join(tmp, "dump.png")], check=True)
-    with open(scene) as f:
-        s = json.load(f)
-    s["materials"].append({"type": "emissive", "radiance": [50, 50, 50]})
-    s["spheres"].append({"center": [0, 30, 0], "radius": 0.5, "material": len(s["materials"]) - 1})
-    with open(scene, "w") as f:
-        json.dump(s, f)
+    scene = far_light_scene(args.old, args.device, tmp)
     runs = {(b, nee): [] for b in ("old", "new") for nee in ("on", "off")}
     for _ in range(args.repeats):
         for (b, nee), times in runs.items():

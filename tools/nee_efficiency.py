@@ -112,6 +112,23 @@ def efficiency(args, flags, tmp, spps, name):
     return info["device"], rows
 
 
+def far_light_scene(octrace, device, tmp):
+    """The default rtiow field (dumped by OCTRACE) with one small emitter
+    (r = 0.5, radiance 50) 30 above it, which lights little: where NEE costs
+    a shadow ray per vertex for almost nothing. Returns the JSON's path."""
+    far = os.path.join(tmp, "rtiow_far_light.json")
+    subprocess.run([octrace, "render", "--quiet", "--device", device, "--size", "8x8", "--spp", "1",
+                    "--dump-scene", far, "--out", os.path.join(tmp, "dump.png")], check=True,
+                   capture_output=True)
+    with open(far) as f:
+        scene = json.load(f)
+    scene["materials"].append({"type": "emissive", "radiance": [50, 50, 50]})
+    scene["spheres"].append({"center": [0, 30, 0], "radius": 0.5, "material": len(scene["materials"]) - 1})
+    with open(far, "w") as f:
+        json.dump(scene, f)
+    return far
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--octrace", default="build/app/octrace")
@@ -139,15 +156,7 @@ def main():
     # light is sampled: a gradient sky is no light, so NEE compiles out), and
     # the same field with one small emitter far above, which lights little.
     cost = []
-    far = os.path.join(tmp, "rtiow_far_light.json")
-    run([args.octrace, "render", "--quiet", "--device", args.device, "--size", "8x8", "--spp", "1",
-         "--dump-scene", far, "--out", os.path.join(tmp, "dump.png")])
-    with open(far) as f:
-        scene = json.load(f)
-    scene["materials"].append({"type": "emissive", "radiance": [50, 50, 50]})
-    scene["spheres"].append({"center": [0, 30, 0], "radius": 0.5, "material": len(scene["materials"]) - 1})
-    with open(far, "w") as f:
-        json.dump(scene, f)
+    far = far_light_scene(args.octrace, args.device, tmp)
     for name, flags in (("rtiow, gradient sky (no light to sample: the same pipeline)", []),
                         ("rtiow + one emitter far above", ["--scene", far])):
         # Interleaved, so that a change in the machine's load hits both alike.
