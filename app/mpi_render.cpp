@@ -166,6 +166,52 @@ void free_shared(SharedWindow& w) {
   w.ok = false;
 }
 
+// One slice's work shared by the calling thread and one worker per further
+// core, workers that stay for the whole loop: each round runs between two
+// barriers, `start` (the workers take slice s) and `finish` (every share of
+// it is done); the caller does share 0 in between (`share_here`). The destructor ends the
+// workers. Used by the sender's copy into the window and rank 0's merge.
+class SliceWorkers {
+ public:
+  // share(t, s): thread t's part (0 = the caller) of slice s.
+  explicit SliceWorkers(std::function<void(size_t, size_t)> share)
+      : threads_(std::max(1u, std::thread::hardware_concurrency())), share_(std::move(share)),
+        start_(ptrdiff_t(threads_)), done_(ptrdiff_t(threads_)) {
+    for (size_t t = 1; t < threads_; ++t)
+      pool_.emplace_back([this, t] {
+        for (;;) {
+          start_.arrive_and_wait();
+          if (slice_ == kNone) return;
+          share_(t, slice_);
+          done_.arrive_and_wait();
+        }
+      });
+  }
+  ~SliceWorkers() {
+    slice_ = kNone;
+    start_.arrive_and_wait();
+    for (std::thread& t : pool_) t.join();
+  }
+  SliceWorkers(const SliceWorkers&) = delete;
+  SliceWorkers& operator=(const SliceWorkers&) = delete;
+
+  size_t threads() const { return threads_; }
+  void start(size_t slice) {
+    slice_ = slice;
+    start_.arrive_and_wait();
+  }
+  void share_here() { share_(0, slice_); }  // the caller's share of the slice started
+  void finish() { done_.arrive_and_wait(); }
+
+ private:
+  static constexpr size_t kNone = SIZE_MAX;
+  size_t threads_;
+  std::function<void(size_t, size_t)> share_;
+  std::barrier<> start_, done_;
+  size_t slice_ = kNone;
+  std::vector<std::thread> pool_;
+};
+
 // A rank of rank 0's host: its state through its ring in the window. The
 // copy of a slice is shared by this thread and workers that stay for the
 // whole reduce (one per further core, as rank 0's merge), between two
@@ -183,39 +229,23 @@ void write_shared(const Accumulation& acc, const SharedWindow& w, void* segment)
     }
   };
   const size_t threads = std::max(1u, std::thread::hardware_concurrency());
-  std::barrier<> start{ptrdiff_t(threads)}, done{ptrdiff_t(threads)};
-  size_t copying = SIZE_MAX;  // the slice being copied; SIZE_MAX: none left, the workers end
-  const auto copy_share = [&](size_t t) {
-    const size_t s = copying, begin = s * kSlice, count = std::min(kSlice, pixels - begin);
+  SliceWorkers workers([&](size_t t, size_t s) {
+    const size_t begin = s * kSlice, count = std::min(kSlice, pixels - begin);
     const size_t at = count * t / threads, n = count * (t + 1) / threads - at;
     glm::vec4* slot = ring + (s % kSharedRing) * kSharedSlotPixels;
     int array = 0;
     for (const std::vector<glm::vec4>* v : {&acc.sum, &acc.comp, &acc.sq})
       std::memcpy(slot + size_t(array++) * kSlice + at, v->data() + begin + at, n * sizeof(glm::vec4));
-  };
-  std::vector<std::thread> pool;
-  for (size_t t = 1; t < threads; ++t)
-    pool.emplace_back([&, t] {
-      for (;;) {
-        start.arrive_and_wait();
-        if (copying == SIZE_MAX) return;
-        copy_share(t);
-        done.arrive_and_wait();
-      }
-    });
+  });
   for (size_t s = 0; s < slices; ++s) {
     if (s >= kSharedRing) wait_merged(int64_t(s - kSharedRing + 1));  // slot s % kSharedRing is free
-    copying = s;
-    start.arrive_and_wait();
-    copy_share(0);
-    done.arrive_and_wait();
+    workers.start(s);
+    workers.share_here();
+    workers.finish();
     MPI_Win_sync(w.win);
     const int64_t written = int64_t(s + 1);
     MPI_Send(&written, 1, MPI_INT64_T, 0, kTagShared, MPI_COMM_WORLD);
   }
-  copying = SIZE_MAX;
-  start.arrive_and_wait();
-  for (std::thread& t : pool) t.join();
   wait_merged(int64_t(slices));  // every message of rank 0's received
 }
 
@@ -933,12 +963,10 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
   // done). This thread merges its share, then waits for the next slice's
   // data (OpenMPI copies it in that wait) while the workers finish theirs.
   const size_t threads = std::max(1u, std::thread::hardware_concurrency());
-  std::barrier<> start{ptrdiff_t(threads)}, done{ptrdiff_t(threads)};
-  size_t merging = SIZE_MAX;  // the slice being merged; SIZE_MAX: none left, the workers end
   std::vector<double> merge_ms(threads, 0.0);
-  const auto merge_share = [&](size_t w) {
+  SliceWorkers workers([&](size_t w, size_t s) {
     const auto merge_start = Clock::now();
-    const size_t s = merging, begin = s * kSlice, count = std::min(kSlice, pixels - begin);
+    const size_t begin = s * kSlice, count = std::min(kSlice, pixels - begin);
     const size_t at = begin + count * w / threads, n = begin + count * (w + 1) / threads - at;
     const size_t in_slot = at - begin;
     std::vector<AccumulationPixels> parts = {{merged.sum.data() + at, merged.comp.data() + at, merged.sq.data() + at}};
@@ -946,17 +974,7 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
       parts.push_back({slot(s, r, 0) + in_slot, slot(s, r, 1) + in_slot, slot(s, r, 2) + in_slot});
     merge_accumulation_pixels(parts, merged.sum.data() + at, merged.comp.data() + at, merged.sq.data() + at, n);
     merge_ms[w] += ms_since(merge_start);
-  };
-  std::vector<std::thread> pool;
-  for (size_t w = 1; w < threads; ++w)
-    pool.emplace_back([&, w] {
-      for (;;) {
-        start.arrive_and_wait();
-        if (merging == SIZE_MAX) return;
-        merge_share(w);
-        done.arrive_and_wait();
-      }
-    });
+  });
   times.alloc_ms = ms_since(reduce_start);
   // The ranks of the window may reuse the slots of the slices merged.
   const auto tell_merged = [&](int64_t n) {
@@ -965,7 +983,7 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
   };
   const auto wait_for_merge = [&] {
     const auto wait_start = Clock::now();
-    done.arrive_and_wait();
+    workers.finish();
     times.merge_wait_ms += ms_since(wait_start);
   };
   for (size_t s = 0; s < std::min(slices, kRing - 1); ++s) post(s);
@@ -980,17 +998,13 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
       tell_merged(int64_t(s));
     }
     if (s + kRing - 1 < slices) post(s + kRing - 1);
-    merging = s;
     const auto start_wait = Clock::now();
-    start.arrive_and_wait();
+    workers.start(s);
     times.merge_wait_ms += ms_since(start_wait);
-    merge_share(0);
+    workers.share_here();
   }
   if (slices > 0) wait_for_merge();
   tell_merged(int64_t(slices));
-  merging = SIZE_MAX;
-  start.arrive_and_wait();
-  for (std::thread& t : pool) t.join();
   times.merge_ms = *std::max_element(merge_ms.begin(), merge_ms.end());
   times.shared = shared;
   times.total_ms = ms_since(reduce_start);
