@@ -159,7 +159,7 @@ Image decode_png(const std::string& path, const Bytes& bytes) {
   int width = 0, height = 0, channels = 0;
   std::uint16_t* data = stbi_load_16_from_memory(bytes.data(), int(bytes.size()), &width,
                                                  &height, &channels, 3);
-  if (!data) throw InputError(path + ": not a valid PNG file: " + stbi_failure_reason());
+  if (!data) throw InputError(path + ": not a valid PNG file: " + stb_failure_reason());
   Image image{width, height, std::vector<float>(size_t(width) * height * 3)};
   for (size_t i = 0; i < image.rgb.size(); ++i)
     image.rgb[i] = srgb_decode(float(data[i]) / 65535.0f);
@@ -442,7 +442,7 @@ Image decode_hdr(const std::string& path, const Bytes& bytes) {
     throw InputError(path + ": not a valid Radiance HDR file: " + why);
   int w = 0, h = 0, channels = 0;
   float* data = stbi_loadf_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels, 3);
-  if (!data) throw InputError(path + ": not a valid Radiance HDR file: " + stbi_failure_reason());
+  if (!data) throw InputError(path + ": not a valid Radiance HDR file: " + stb_failure_reason());
   Image image{w, h, std::vector<float>(data, data + size_t(w) * h * 3)};
   stbi_image_free(data);
   return image;
@@ -602,6 +602,11 @@ ErrorMetrics compare_images(const Image& test, const Image& reference) {
   metrics.psnr = mse == 0 ? std::numeric_limits<double>::infinity() : 10 * std::log10(1 / mse);
   metrics.ssim = ssim(test, reference);
   return metrics;
+}
+
+std::string stb_failure_reason() {
+  const char* reason = stbi_failure_reason();
+  return reason ? reason : "corrupt or unsupported image data";
 }
 
 std::string png_chunk_error(const unsigned char* bytes, size_t size) {

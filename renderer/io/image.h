@@ -41,6 +41,12 @@ Image decode_image(const std::string& bytes, const std::string& path);
 // 100-byte file claimed 2 GiB (found by tests/fuzz/fuzz_image.cpp).
 std::string png_chunk_error(const unsigned char* bytes, size_t size);
 
+// stb_image's reason for its last failure, or "corrupt or unsupported image
+// data" where it gave none: some of its paths fail without one, and adding
+// that null pointer to a std::string crashed (found by
+// tests/fuzz/fuzz_gltf.cpp).
+std::string stb_failure_reason();
+
 float srgb_encode(float linear);
 float srgb_decode(float encoded);
 

@@ -344,7 +344,7 @@ std::string decode_rgba8(tinygltf::Image& image, size_t index, const unsigned ch
   if (std::string why = png_chunk_error(bytes, size); !why.empty()) return at + ": cannot be decoded (" + why + ")";
   int width = 0, height = 0, channels = 0;
   stbi_uc* pixels = stbi_load_from_memory(bytes, int(size), &width, &height, &channels, 4);
-  if (!pixels) return at + ": cannot be decoded (" + stbi_failure_reason() + ")";
+  if (!pixels) return at + ": cannot be decoded (" + stb_failure_reason() + ")";
   image.width = width;
   image.height = height;
   image.component = 4;

@@ -190,6 +190,16 @@ TEST(ImageIo, APngChunkPastTheEndIsAnInputError) {
             path + ": not a valid PNG file: chunk 2 claims 1862271002 bytes, past the end of the file (115 bytes)");
 }
 
+// A PNG whose compressed data is corrupt, on which stb_image fails without
+// giving a reason: the message says so instead of crashing on the null
+// reason (found by tests/fuzz/fuzz_gltf.cpp as a texture of a .glb).
+TEST(ImageIo, APngStbImageRejectsWithoutAReasonIsAnInputError) {
+  const std::string path =
+      std::string(OCTRACE_SOURCE_DIR) + "/tests/fuzz/corpus/image/regression_png_without_failure_reason.png";
+  EXPECT_EQ(message_of<InputError>([&] { read_image(path); }),
+            path + ": not a valid PNG file: corrupt or unsupported image data");
+}
+
 // An EXR compressed by a method tinyexr does not read (DWAA and DWAB: Debian's
 // blender-data HDRIs are DWAB) is named, with what to do about it. The file
 // is one of ours (ZIP) with its compression attribute set to DWAB.
