@@ -11,6 +11,7 @@
 #include <cstring>
 #include <deque>
 #include <map>
+#include <set>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -117,11 +118,17 @@ void wait_briefly(MPI_Request& request) {
 // ring, not a window of the whole state: fresh pages of a shared-memory file
 // cost a fault and a zeroed page each (4 KiB; tmpfs gives no huge pages by
 // default), which for a 398 MB window took ~0.5 s on the 2-core VM, while
-// the ring's 12 MiB stay mapped and in cache. OCTRACE_MPI_REDUCE (rank 0's
-// environment): "shared" this, "messages" every state through OpenMPI's
-// transport, as ranks on other hosts always do.
-constexpr size_t kSharedRing = 4;
-constexpr size_t kSharedSlotPixels = 3 * kSlice;  // sum, comp, sq of one slice
+// the ring stays mapped (its pages are touched while the ranks render:
+// prefault_window). When every rank is on rank 0's host, a slice is
+// kSharedGroup message slices (2^19 pixels): each slice costs a hand-over
+// (two barriers on each side and two messages), and the 4K reduce's 127
+// small slices spent more in them than in copying (optimisation log 28).
+// OCTRACE_MPI_REDUCE (rank 0's environment): "shared" this, "messages"
+// every state through OpenMPI's transport, as ranks on other hosts always
+// do.
+constexpr size_t kSharedRing = 3;
+constexpr size_t kSharedGroup = 8;
+constexpr size_t kSharedSlotPixels = 3 * kSlice * kSharedGroup;  // sum, comp, sq of the largest slice
 
 struct SharedWindow {
   MPI_Win win = MPI_WIN_NULL;
@@ -173,9 +180,9 @@ void free_shared(SharedWindow& w) {
 // workers. Used by the sender's copy into the window and rank 0's merge.
 class SliceWorkers {
  public:
-  // share(t, s): thread t's part (0 = the caller) of slice s.
-  explicit SliceWorkers(std::function<void(size_t, size_t)> share)
-      : threads_(std::max(1u, std::thread::hardware_concurrency())), share_(std::move(share)),
+  // share(t, s): thread t's part (0 = the caller) of slice s, for `threads` threads.
+  SliceWorkers(size_t threads, std::function<void(size_t, size_t)> share)
+      : threads_(std::max<size_t>(1, threads)), share_(std::move(share)),
         start_(ptrdiff_t(threads_)), done_(ptrdiff_t(threads_)) {
     for (size_t t = 1; t < threads_; ++t)
       pool_.emplace_back([this, t] {
@@ -212,13 +219,13 @@ class SliceWorkers {
   std::vector<std::thread> pool_;
 };
 
-// A rank of rank 0's host: its state through its ring in the window. The
-// copy of a slice is shared by this thread and workers that stay for the
-// whole reduce (one per further core, as rank 0's merge), between two
-// barriers: one thread copies 398 MB at ~10 GB/s, longer than rank 0's merge
-// of it on 16 cores.
-void write_shared(const Accumulation& acc, const SharedWindow& w, void* segment) {
-  const size_t pixels = acc.sum.size(), slices = (pixels + kSlice - 1) / kSlice;
+// A rank of rank 0's host: its state through its ring in the window, in
+// slices of `slice` pixels. The copy of a slice is shared by this thread and
+// `threads` - 1 workers that stay for the whole reduce (as rank 0's merge),
+// between two barriers: one thread copies 398 MB at ~10 GB/s, longer than
+// rank 0's merge of it on 16 cores.
+void write_shared(const Accumulation& acc, const SharedWindow& w, void* segment, size_t slice, size_t threads) {
+  const size_t pixels = acc.sum.size(), slices = (pixels + slice - 1) / slice;
   glm::vec4* ring = static_cast<glm::vec4*>(segment);
   int64_t merged = 0;  // slices rank 0 has merged, as its messages say
   const auto wait_merged = [&](int64_t n) {
@@ -228,14 +235,13 @@ void write_shared(const Accumulation& acc, const SharedWindow& w, void* segment)
       wait_briefly(request);
     }
   };
-  const size_t threads = std::max(1u, std::thread::hardware_concurrency());
-  SliceWorkers workers([&](size_t t, size_t s) {
-    const size_t begin = s * kSlice, count = std::min(kSlice, pixels - begin);
+  SliceWorkers workers(threads, [&](size_t t, size_t s) {
+    const size_t begin = s * slice, count = std::min(slice, pixels - begin);
     const size_t at = count * t / threads, n = count * (t + 1) / threads - at;
     glm::vec4* slot = ring + (s % kSharedRing) * kSharedSlotPixels;
     int array = 0;
     for (const std::vector<glm::vec4>* v : {&acc.sum, &acc.comp, &acc.sq})
-      std::memcpy(slot + size_t(array++) * kSlice + at, v->data() + begin + at, n * sizeof(glm::vec4));
+      std::memcpy(slot + size_t(array++) * slice + at, v->data() + begin + at, n * sizeof(glm::vec4));
   });
   for (size_t s = 0; s < slices; ++s) {
     if (s >= kSharedRing) wait_merged(int64_t(s - kSharedRing + 1));  // slot s % kSharedRing is free
@@ -257,6 +263,7 @@ struct Job {
   MPI_Comm node = MPI_COMM_NULL;
   std::vector<int> node_ranks;
   SharedWindow window;  // the reduce's rings, on rank 0's host (allocate_shared)
+  std::thread prefault;  // a rank of the window touching its ring's pages while it renders
   std::string host;
   Phase phase = Phase::Render;
   bool released = false;  // rank > 0: the server answered "no more" (or was told of a failure)
@@ -342,9 +349,13 @@ struct Job {
       return {kCheckpoint, 0};
     }
     // As the multi-device render: batches shrink near the end so that no
-    // rank is left with much more than the others.
+    // worker is left with much more than the others. One worker alone
+    // needs no shrinking, and each shrunk batch of ranks taking turns is a
+    // hand-over of the device (~2.5 ms on the H100: optimisation log 27).
     const uint32_t remaining = work - next;
-    const uint32_t n = std::clamp(std::min(want, remaining / uint32_t(2 * size) + 1), 1u, remaining);
+    const uint32_t workers = workers_locked();
+    const uint32_t share = workers > 1 ? remaining / (2 * workers) + 1 : remaining;
+    const uint32_t n = std::clamp(std::min(want, share), 1u, remaining);
     const uint32_t first = already + next;
     next += n;
     return {first, n};
@@ -387,6 +398,20 @@ struct Job {
     queued_at.assign(size_t(size), Clock::time_point{});
     turns_waited.assign(size_t(size), 0);
     turn_wait_ms.assign(size_t(size), 0.0);
+  }
+  // Under `mutex`: how many render at once, which the batch sizes balance:
+  // one per device whose ranks take turns (only one of them renders at a
+  // time; how the device's work splits among them does not matter), one
+  // per other rank.
+  uint32_t workers_locked() {
+    init_turns_locked();
+    std::set<std::string> shared;
+    uint32_t others = 0;
+    for (const std::string& key : device_of) {
+      if (takes_turns(key)) shared.insert(key);
+      else ++others;
+    }
+    return std::max(1u, uint32_t(shared.size()) + others);
   }
   const std::string& device_key_locked(int r) {
     init_turns_locked();
@@ -664,6 +689,16 @@ void init(int* argc, char*** argv) {
   if (job.node_ranks.front() == 0 && node_size > 1)
     job.window = allocate_shared(job.node, job.node_ranks,
                                  job.rank == 0 ? 0 : kSharedRing * kSharedSlotPixels * sizeof(glm::vec4), job.size);
+  // The ring's fresh pages each cost a fault and a zeroed page on first
+  // touch (72 MiB: 18,432 of them); they are touched beside the render, not
+  // in the reduce.
+  if (job.window.ok && job.rank != 0) {
+    MPI_Aint bytes = 0;
+    int unit = 0;
+    void* mine = nullptr;
+    MPI_Win_shared_query(job.window.win, job.local_rank, &bytes, &unit, &mine);
+    job.prefault = std::thread([mine, bytes] { std::memset(mine, 0, size_t(bytes)); });
+  }
   if (provided < MPI_THREAD_SERIALIZED) {
     // Rank 0's batch server is a second thread that calls MPI.
     if (job.rank == 0) std::fprintf(stderr, "octrace: error: this MPI library offers no MPI_THREAD_SERIALIZED\n");
@@ -904,6 +939,14 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
   wait_gently(mode_request);
   const SharedWindow& window = job.window;
   const bool shared = shared_mode && window.ok;
+  // The host's ranks copy and merge at once: each takes its share of the
+  // cores (with all of them each, 2 ranks' 32 threads on 16 cores waited at
+  // their barriers for threads the scheduler had left off: log 28).
+  const size_t host_ranks = std::max<size_t>(1, job.node_ranks.size());
+  const size_t threads = std::max<size_t>(1, std::thread::hardware_concurrency() / host_ranks);
+  // Large slices when every state comes through the window (see kSharedGroup).
+  const size_t slice = shared && host_ranks == size_t(job.size) ? kSlice * kSharedGroup : kSlice;
+  if (job.prefault.joinable()) job.prefault.join();
   if (job.rank != 0) {
     const auto send_start = Clock::now();
     if (shared) {
@@ -911,7 +954,7 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
       int unit = 0;
       void* mine = nullptr;
       MPI_Win_shared_query(window.win, job.local_rank, &segment, &unit, &mine);
-      write_shared(acc, window, mine);
+      write_shared(acc, window, mine, slice, threads);
     } else {
       send_state(acc, kTagState);
     }
@@ -923,7 +966,7 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
   out.merged = std::move(acc);
   Accumulation& merged = out.merged;
   const int others = job.size - 1;
-  const size_t slices = (pixels + kSlice - 1) / kSlice;
+  const size_t slices = (pixels + slice - 1) / slice;
   const auto in_window = [&](int r) { return shared && window.base[size_t(r)] != nullptr; };
   // How far each rank of the window has written (pixels), as its messages say.
   std::vector<int64_t> written(size_t(job.size), 0);
@@ -939,18 +982,18 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
   // s % kRing while the workers merge slice s - 1 and slice s + 1 is on its
   // way (its receives are posted).
   constexpr size_t kRing = 3;
-  const size_t slot_pixels = std::min(kSlice, pixels);
+  const size_t slot_pixels = std::min(slice, pixels);
   std::vector<std::vector<glm::vec4>> slots(kRing * size_t(others) * 3);
   for (size_t k = 0; k < slots.size(); ++k)
     if (!in_window(int(k / 3 % size_t(others)) + 1)) slots[k].resize(slot_pixels);
   // Where slice s of rank r's `array` (0 sum, 1 comp, 2 sq) is.
   const auto slot = [&](size_t s, int r, int array) -> const glm::vec4* {
-    if (in_window(r)) return window.base[size_t(r)] + (s % kSharedRing) * kSharedSlotPixels + size_t(array) * kSlice;
+    if (in_window(r)) return window.base[size_t(r)] + (s % kSharedRing) * kSharedSlotPixels + size_t(array) * slice;
     return slots[((s % kRing) * size_t(others) + size_t(r - 1)) * 3 + size_t(array)].data();
   };
   std::vector<std::vector<MPI_Request>> requests(kRing);
   const auto post = [&](size_t s) {
-    const size_t begin = s * kSlice, count = std::min(kSlice, pixels - begin);
+    const size_t begin = s * slice, count = std::min(slice, pixels - begin);
     std::vector<MPI_Request>& slice_requests = requests[s % kRing];
     slice_requests.assign(size_t(others) * 3, MPI_REQUEST_NULL);
     for (int r = 1; r < job.size; ++r)
@@ -959,14 +1002,13 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
                   MPI_COMM_WORLD, &slice_requests[size_t(r - 1) * 3 + size_t(array)]);
   };
   // The merge of a slice is shared by this thread and workers that stay for
-  // the whole reduce (one per further core), between two barriers (start,
+  // the whole reduce (`threads` in all), between two barriers (start,
   // done). This thread merges its share, then waits for the next slice's
   // data (OpenMPI copies it in that wait) while the workers finish theirs.
-  const size_t threads = std::max(1u, std::thread::hardware_concurrency());
   std::vector<double> merge_ms(threads, 0.0);
-  SliceWorkers workers([&](size_t w, size_t s) {
+  SliceWorkers workers(threads, [&](size_t w, size_t s) {
     const auto merge_start = Clock::now();
-    const size_t begin = s * kSlice, count = std::min(kSlice, pixels - begin);
+    const size_t begin = s * slice, count = std::min(slice, pixels - begin);
     const size_t at = begin + count * w / threads, n = begin + count * (w + 1) / threads - at;
     const size_t in_slot = at - begin;
     std::vector<AccumulationPixels> parts = {{merged.sum.data() + at, merged.comp.data() + at, merged.sq.data() + at}};
@@ -1040,6 +1082,7 @@ int final_code(int code) {
   MPI_Ibcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
   wait_gently(request);
   job.phase = Phase::Done;
+  if (job.prefault.joinable()) job.prefault.join();
   free_shared(job.window);
   MPI_Finalize();
   return code;

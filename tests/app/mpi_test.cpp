@@ -153,6 +153,48 @@ TEST(Mpi, TwoAndThreeRanksRenderTheSamplesOfOneProcess) {
   }
 }
 
+// A state of several slices through the window: 1300x1300 is 1.69 Mpixels,
+// 4 slices of 2^19 (the last one partial) in a ring of 3 slots, so the
+// sender reuses a slot that rank 0 has merged. Each of the 2 ranks renders
+// one of the 2 samples (every rank's first batch is one sample); the merge
+// equals one process's render to float rounding.
+TEST(Mpi, AStateOfManySlicesReducesThroughTheWindow) {
+  const std::string args = "render --size 1300x1300 --spheres 60 --spp 2 --depth 4 ";
+  const std::string one = tmp("slices_one.pfm"), two = tmp("slices_two.pfm");
+  ASSERT_EQ(run_octrace(args + "--quiet --device 0 --out " + one).code, 0);
+  RunResult r = run_shell(mpirun_prefix() + "-np 2 " + OCTRACE_BIN + " " + args + "--json --out " + two);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const nlohmann::json j = json_of(r.output);
+  EXPECT_TRUE(j.at("reduce_shared").get<bool>()) << r.output;
+  for (const nlohmann::json& rank : j.at("ranks")) EXPECT_EQ(rank.at("samples").get<uint32_t>(), 1u) << rank;
+  expect_same_render(two, one);
+}
+
+// Ranks that take turns on one device are one worker for the batch sizes:
+// only one of them renders at a time, so shrinking the batches near the end
+// to balance them would only add hand-overs of the device. With batches as
+// large as the ranks ask for (--batch-ms of 1000 s: 1024 samples) the 2
+// ranks' 12 samples go as each rank's first batch of one sample and then
+// one batch of the 10 left; without turns the 2 ranks are 2 workers and the
+// 10 are split in shrinking batches (3, 2, 2, 1, 1, 1).
+TEST(Mpi, RanksTakingTurnsAreOneWorkerForTheBatches) {
+  for (const std::string turns : {"on", "off"}) {
+    const std::string out = tmp("turns_" + turns + ".pfm");
+    RunResult r = run_shell(mpirun_prefix() + "-np 2 " + OCTRACE_BIN + " " + kArgs +
+                            "--batch-ms 1000000 --device-turns " + turns + " --json --out " + out);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const nlohmann::json j = json_of(r.output);
+    ASSERT_TRUE(j.contains("ranks")) << r.output;
+    uint32_t batches = 0, samples = 0;
+    for (const nlohmann::json& rank : j["ranks"]) {
+      batches += rank.at("batches").get<uint32_t>();
+      samples += rank.at("samples").get<uint32_t>();
+    }
+    EXPECT_EQ(samples, 12u);
+    EXPECT_EQ(batches, turns == "on" ? 3u : 8u) << r.output;
+  }
+}
+
 // `mpirun -np 1 octrace A : -np 1 octrace B`: rank 1 gets its own bad
 // --device, bad scene, or other settings. The job fails: exit non-zero, one
 // line from octrace naming rank 1 and its host, no output file.
