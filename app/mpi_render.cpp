@@ -119,15 +119,16 @@ void wait_briefly(MPI_Request& request) {
 // cost a fault and a zeroed page each (4 KiB; tmpfs gives no huge pages by
 // default), which for a 398 MB window took ~0.5 s on the 2-core VM, while
 // the ring stays mapped (its pages are touched while the ranks render:
-// prefault_window). When every rank is on rank 0's host, a slice is
-// kSharedGroup message slices (2^19 pixels): each slice costs a hand-over
+// Job::prefault). When every rank is on rank 0's host, a slice is
+// kSharedGroup message slices (2^18 pixels): each slice costs a hand-over
 // (two barriers on each side and two messages), and the 4K reduce's 127
-// small slices spent more in them than in copying (optimisation log 28).
+// small slices of 2^16 took 60 ms where 32 of 2^18 took 47 ms on the H100
+// host (optimisation log 28).
 // OCTRACE_MPI_REDUCE (rank 0's environment): "shared" this, "messages"
 // every state through OpenMPI's transport, as ranks on other hosts always
 // do.
 constexpr size_t kSharedRing = 3;
-constexpr size_t kSharedGroup = 8;
+constexpr size_t kSharedGroup = 4;
 constexpr size_t kSharedSlotPixels = 3 * kSlice * kSharedGroup;  // sum, comp, sq of the largest slice
 
 struct SharedWindow {
@@ -690,7 +691,7 @@ void init(int* argc, char*** argv) {
     job.window = allocate_shared(job.node, job.node_ranks,
                                  job.rank == 0 ? 0 : kSharedRing * kSharedSlotPixels * sizeof(glm::vec4), job.size);
   // The ring's fresh pages each cost a fault and a zeroed page on first
-  // touch (72 MiB: 18,432 of them); they are touched beside the render, not
+  // touch (36 MiB: 9,216 of them); they are touched beside the render, not
   // in the reduce.
   if (job.window.ok && job.rank != 0) {
     MPI_Aint bytes = 0;
@@ -939,13 +940,12 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
   wait_gently(mode_request);
   const SharedWindow& window = job.window;
   const bool shared = shared_mode && window.ok;
-  // The host's ranks copy and merge at once: each takes its share of the
-  // cores (with all of them each, 2 ranks' 32 threads on 16 cores waited at
-  // their barriers for threads the scheduler had left off: log 28).
-  const size_t host_ranks = std::max<size_t>(1, job.node_ranks.size());
-  const size_t threads = std::max<size_t>(1, std::thread::hardware_concurrency() / host_ranks);
+  // Every rank copies or merges on all of the host's cores: sharing them out
+  // among the host's ranks made the merge 2x slower and the reduce no
+  // faster (optimisation log 28).
+  const size_t threads = std::max(1u, std::thread::hardware_concurrency());
   // Large slices when every state comes through the window (see kSharedGroup).
-  const size_t slice = shared && host_ranks == size_t(job.size) ? kSlice * kSharedGroup : kSlice;
+  const size_t slice = shared && job.node_ranks.size() == size_t(job.size) ? kSlice * kSharedGroup : kSlice;
   if (job.prefault.joinable()) job.prefault.join();
   if (job.rank != 0) {
     const auto send_start = Clock::now();

@@ -154,8 +154,8 @@ TEST(Mpi, TwoAndThreeRanksRenderTheSamplesOfOneProcess) {
 }
 
 // A state of several slices through the window: 1300x1300 is 1.69 Mpixels,
-// 4 slices of 2^19 (the last one partial) in a ring of 3 slots, so the
-// sender reuses a slot that rank 0 has merged. Each of the 2 ranks renders
+// 7 slices of 2^18 (the last one partial) in a ring of 3 slots, so the
+// sender reuses the slots that rank 0 has merged. Each of the 2 ranks renders
 // one of the 2 samples (every rank's first batch is one sample); the merge
 // equals one process's render to float rounding.
 TEST(Mpi, AStateOfManySlicesReducesThroughTheWindow) {
