@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "accel/octree.h"
@@ -54,6 +55,12 @@ struct RenderSettings {
   // auto (8 with triangles, else 4; render/path_tracer.cpp). The image is the
   // same whatever the value (shaders/path_trace.comp).
   uint32_t sample_lanes = 0;
+  // Octant culling in the octree walk (shaders/accel/octree_walk.glsl): a
+  // node's children in octants the ray cannot reach before its nearest hit
+  // are skipped. The image is the same either way; only the time changes:
+  // faster on GPUs, slower on lavapipe (optimisation log 29). Unset: auto
+  // (on for GPUs, off for software devices).
+  std::optional<bool> octant_culling;
 };
 
 // Checks sizes and counts; throws SettingError naming the setting

@@ -12,6 +12,9 @@
 // the ray meets the box before t_max, and where it enters (>= 0).
 // The same widening applies to comparisons of an entry distance with the
 // nearest hit: the computed entry may lie a few ulps past the true one.
+// Octant culling in the walk (accel/octree_walk.glsl; SPEC_OCTANT_CULLING).
+layout(constant_id = SPEC_OCTANT_CULLING) const bool OCTANT_CULLING = true;
+
 const float WIDEN = 1.0 + 2.0 * (3.0 * 5.96046448e-8) / (1.0 - 3.0 * 5.96046448e-8);
 
 bool hit_box(vec3 lo, vec3 hi, vec3 origin, vec3 inv_dir, float t_max, out float t_entry) {

@@ -34,7 +34,40 @@ void OCTREE_WALK_NAME(uint root_index, Ray ray, RayShear sh, uint from_prim, boo
         OCTREE_LEAF(ref_at(k));
       continue;
     }
-    uint mask = node.count_or_mask & 0xffu;
+    uint present = node.count_or_mask & 0xffu;  // children's octants; child index = rank in it
+    uint mask = present;
+    // Octant culling: the build split this node at the middle of its own box
+    // (renderer/accel/octree.cpp, plan_split: lo + 0.5 (hi - lo), the same
+    // float operations), and each child's box lies in its octant (a
+    // primitive that reaches the plane goes to the upper side). Along the
+    // ray, between where it enters the node and the nearest hit so far, it
+    // is below the middle on axis a before (or after, going down) t_a, the
+    // plane's crossing, and above it after (before). A child whose octant
+    // takes a side the ray never reaches there cannot hold a nearer hit and
+    // is not tested. Per axis, not per octant sequence: the set kept is a
+    // superset of the octants pierced. An axis that was not split (the
+    // build's middle is +inf there: every child is on the lower side) is
+    // skipped: its children lie anywhere along it. t_a's sign is exact (a
+    // rounded difference keeps its sign); its size and the entry are
+    // widened as in hit_box. A ray in the plane (t_a = 0) keeps both sides.
+    // Off on software devices by default (OCTANT_CULLING: slower there).
+    if (OCTANT_CULLING) {
+      vec3 mid = node.lo + 0.5 * (node.hi - node.lo);
+      vec3 t_mid = (mid - ray.origin) * inv_dir;
+      float t_in = stack_entry[sp] / WIDEN;
+      float t_out = hit.t * WIDEN;
+      for (uint a = 0u; a < 3u; ++a) {
+        uint lower = a == 0u ? 0x55u : (a == 1u ? 0x33u : 0x0fu);  // octants below the middle on a
+        if ((present & ~lower) == 0u) continue;                     // not split on a
+        float ta = t_mid[a];
+        bool down = ((sign_mask >> a) & 1u) != 0u;
+        bool before = t_in <= ta * WIDEN || ta == 0.0;  // some of [t_in, t_out] is before t_a
+        bool after = t_out >= ta / WIDEN || ta == 0.0;  // some of it is after t_a
+        bool below = down ? after : before;
+        bool above = down ? before : after;
+        mask &= (below ? lower : 0u) | (above ? ~lower & 0xffu : 0u);
+      }
+    }
     // Visit order j = octant XOR sign_mask. Permute the child mask into that
     // order (XOR of the index by the sign bits swaps bits, pairs and nibbles),
     // then walk only the present children, farthest first so the nearest is
@@ -47,7 +80,7 @@ void OCTREE_WALK_NAME(uint root_index, Ray ray, RayShear sh, uint from_prim, boo
       uint j = uint(findMSB(ordered));
       ordered ^= 1u << j;
       uint octant = j ^ sign_mask;
-      uint child = node.first + bitCount(mask & ((1u << octant) - 1u));
+      uint child = node.first + bitCount(present & ((1u << octant) - 1u));
       GpuOctreeNode c = node_at(child);
       if (hit_box(c.lo, c.hi, ray.origin, inv_dir, hit.t, t_entry)) {
         stack_node[sp] = child;

@@ -202,6 +202,9 @@ OCT_CONST(uint, SPEC_SKY_LIGHT, 22u);
 // triangle is a light of the list): off, triangle-light sampling and its
 // MIS weight compile out.
 OCT_CONST(uint, SPEC_TRIANGLE_LIGHTS, 23u);
+// Octant culling in the octree walk (RenderSettings::octant_culling; the
+// image is the same either way).
+OCT_CONST(uint, SPEC_OCTANT_CULLING, 25u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 255u);
 

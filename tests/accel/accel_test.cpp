@@ -159,7 +159,9 @@ std::pair<double, double> agreement(const RenderResult& a, const RenderResult& b
   return {double(same) / double(a.mean.rgb.size()), std::abs(sum_a - sum_b) / std::max(sum_b, 1e-30)};
 }
 
-// Each tree against one brute-force render per depth.
+// Each tree against one brute-force render per depth; the octree with and
+// without octant culling (on by default on GPUs only, so forced here for
+// lavapipe too).
 TEST_P(AccelTest, TreeImagesMatchBruteForce) {
   Scene scene = GetParam().make();
   for (uint32_t depth : {8u, 50u}) {
@@ -171,13 +173,19 @@ TEST_P(AccelTest, TreeImagesMatchBruteForce) {
     s.accel = Accel::Brute;
     RenderResult brute = render(test::shared_context(), scene, s);
     ASSERT_EQ(brute.nonfinite_samples, 0u);
-    for (Accel accel : {Accel::Octree, Accel::Bvh}) {
-      s.accel = accel;
+    struct Variant {
+      Accel accel;
+      bool culling;
+    };
+    for (Variant v : {Variant{Accel::Octree, true}, Variant{Accel::Octree, false}, Variant{Accel::Bvh, false}}) {
+      s.accel = v.accel;
+      s.octant_culling = v.culling;
       s.octree.leaf_size = 2;  // octree: a deep tree, many cells, many straddling spheres
       RenderResult tree = render(test::shared_context(), scene, s);
       ASSERT_EQ(tree.nonfinite_samples, 0u);
       auto [identical, mean_diff] = agreement(tree, brute);
-      const std::string what = std::string(accel_name(accel)) + ", depth " + std::to_string(depth);
+      const std::string what = std::string(accel_name(v.accel)) + (v.culling ? " (octant culling)" : "") +
+                               ", depth " + std::to_string(depth);
       if (depth <= 8) {
         EXPECT_EQ(identical, 1.0) << what << ": only " << identical * 100 << "% bit-identical";
       } else {
