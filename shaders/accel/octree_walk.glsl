@@ -51,35 +51,20 @@ void OCTREE_WALK_NAME(uint root_index, Ray ray, RayShear sh, uint from_prim, boo
     // rounded difference keeps its sign); its size and the entry are
     // widened as in hit_box. A ray in the plane (t_a = 0) keeps both sides.
     // Off on software devices by default (OCTANT_CULLING: slower there).
-    // Per axis, the part of [t_in, t_out] on each side of the middle:
-    // below in [lo_below, hi_below], above in [lo_above, hi_above] (empty
-    // when lo > hi). Octant k is reached where the parts of its three sides
-    // overlap: max of their lo <= min of their hi.
-    vec3 lo_below = vec3(0.0), hi_below = vec3(0.0), lo_above = vec3(0.0), hi_above = vec3(0.0);
     if (OCTANT_CULLING) {
       vec3 mid = node.lo + 0.5 * (node.hi - node.lo);
       vec3 t_mid = (mid - ray.origin) * inv_dir;
       float t_in = stack_entry[sp] / WIDEN;
       float t_out = hit.t * WIDEN;
-      lo_below = vec3(t_in);
-      lo_above = vec3(t_in);
-      hi_below = vec3(t_out);
-      hi_above = vec3(t_out);
       for (uint a = 0u; a < 3u; ++a) {
         uint lower = a == 0u ? 0x55u : (a == 1u ? 0x33u : 0x0fu);  // octants below the middle on a
+        if ((present & ~lower) == 0u) continue;                     // not split on a
         float ta = t_mid[a];
-        if ((present & ~lower) == 0u || ta == 0.0) continue;  // not split on a, or the ray in the plane
         bool down = ((sign_mask >> a) & 1u) != 0u;
-        float before_end = ta * WIDEN, after_start = ta / WIDEN;  // before t_a, after t_a
-        if (down) {
-          lo_below[a] = max(t_in, after_start);
-          hi_above[a] = min(t_out, before_end);
-        } else {
-          hi_below[a] = min(t_out, before_end);
-          lo_above[a] = max(t_in, after_start);
-        }
-        bool below = lo_below[a] <= hi_below[a];
-        bool above = lo_above[a] <= hi_above[a];
+        bool before = t_in <= ta * WIDEN || ta == 0.0;  // some of [t_in, t_out] is before t_a
+        bool after = t_out >= ta / WIDEN || ta == 0.0;  // some of it is after t_a
+        bool below = down ? after : before;
+        bool above = down ? before : after;
         mask &= (below ? lower : 0u) | (above ? ~lower & 0xffu : 0u);
       }
     }
@@ -95,11 +80,6 @@ void OCTREE_WALK_NAME(uint root_index, Ray ray, RayShear sh, uint from_prim, boo
       uint j = uint(findMSB(ordered));
       ordered ^= 1u << j;
       uint octant = j ^ sign_mask;
-      if (OCTANT_CULLING) {
-        bvec3 up = bvec3((octant & 1u) != 0u, (octant & 2u) != 0u, (octant & 4u) != 0u);
-        vec3 lo = mix(lo_below, lo_above, up), hi = mix(hi_below, hi_above, up);
-        if (max(max(lo.x, lo.y), lo.z) > min(min(hi.x, hi.y), hi.z)) continue;
-      }
       uint child = node.first + bitCount(present & ((1u << octant) - 1u));
       GpuOctreeNode c = node_at(child);
       if (hit_box(c.lo, c.hi, ray.origin, inv_dir, hit.t, t_entry)) {
