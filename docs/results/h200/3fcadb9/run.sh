@@ -18,7 +18,7 @@ timeout 120 python3 tools/peer/compare.py --peer .peers/karim --octrace $B --out
 rm -f $R/peer/*.ppm $R/peer/*.pfm $R/peer/*.png; tar czf $OUT/bench.tgz -C /tmp res
 export OCTRACE_TEST_DEVICE=gpu
 for t in accel_test effects_test; do
-  timeout 60 build-gpu/tests/$t > $R/gpu_$t.txt 2>&1; echo "$t rc=$? $(grep -E '^\[  (PASSED|FAILED)' $R/gpu_$t.txt | tr '\n' ' ')"; grep "^\[  FAILED" $R/gpu_$t.txt | head -5
+  timeout 80 build-gpu/tests/$t > $R/gpu_$t.txt 2>&1; echo "$t rc=$? $(grep -E '^\[  (PASSED|FAILED)' $R/gpu_$t.txt | tr '\n' ' ')"; grep "^\[  FAILED" $R/gpu_$t.txt | head -5
 done
 OCTRACE_HARDCASES_TABLE=$R/hardcases_gpu.tsv timeout 220 build-gpu/tests/hardcases_test > $R/gpu_hardcases_test.txt 2>&1; echo "hardcases rc=$? $(grep -E '^\[  (PASSED|FAILED)' $R/gpu_hardcases_test.txt | tr '\n' ' ')"; grep "^\[  FAILED" $R/gpu_hardcases_test.txt | head -5
 tar czf $OUT/tests.tgz -C /tmp res
