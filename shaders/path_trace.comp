@@ -11,24 +11,24 @@
 // pixel (main() says how).
 layout(local_size_x = WORKGROUP_SIZE * WORKGROUP_SIZE) in;
 
-layout(std430, binding = BINDING_SCENE) restrict readonly buffer SceneBuf { SceneParams scene; };
+layout(std430, binding = BINDING_SCENE) readonly buffer SceneBuf { SceneParams scene; };
 #include "shared/scene_buffers.glsl"
-layout(std430, binding = BINDING_ACCUM_SUM) restrict buffer AccumSumBuf { vec4 accum_sum[]; };
-layout(std430, binding = BINDING_ACCUM_COMP) restrict buffer AccumCompBuf { vec4 accum_comp[]; };
-layout(std430, binding = BINDING_ACCUM_SQ) restrict buffer AccumSqBuf { vec4 accum_sq[]; };
+layout(std430, binding = BINDING_ACCUM_SUM) buffer AccumSumBuf { vec4 accum_sum[]; };
+layout(std430, binding = BINDING_ACCUM_COMP) buffer AccumCompBuf { vec4 accum_comp[]; };
+layout(std430, binding = BINDING_ACCUM_SQ) buffer AccumSqBuf { vec4 accum_sq[]; };
 layout(std430, binding = BINDING_STATS) buffer StatsBuf { RenderStats stats; };
-layout(std430, binding = BINDING_INSTANCES) restrict readonly buffer InstanceBuf { GpuInstance instances[]; };
-layout(std430, binding = BINDING_MESHES) restrict readonly buffer MeshBuf { GpuMesh meshes[]; };
-layout(std430, binding = BINDING_TEXTURES) restrict readonly buffer TextureBuf { GpuTexture textures[]; };
-layout(std430, binding = BINDING_TEXELS) restrict readonly buffer TexelBuf { uint texels[]; };
-layout(std430, binding = BINDING_TEXTURE_TRANSFORMS) restrict readonly buffer TextureTransformBuf { GpuUvTransform texture_transforms[]; };
-layout(std430, binding = BINDING_TRANSMISSION) restrict readonly buffer TransmissionBuf { GpuTransmission material_transmission[]; };
-layout(std430, binding = BINDING_ENVMAP_TEXELS) restrict readonly buffer EnvmapTexelBuf { float envmap_texels[]; };
-layout(std430, binding = BINDING_ENVMAP_MARGINAL) restrict readonly buffer EnvmapMarginalBuf { float envmap_marginal[]; };
-layout(std430, binding = BINDING_ENVMAP_CONDITIONAL) restrict readonly buffer EnvmapConditionalBuf { float envmap_conditional[]; };
-layout(std430, binding = BINDING_LIGHTS) restrict readonly buffer LightBuf { GpuLight lights[]; };
-layout(std430, binding = BINDING_SPHERE_LIGHTS) restrict readonly buffer SphereLightBuf { uint sphere_lights[]; };
-layout(std430, binding = BINDING_TRIANGLE_LIGHTS) restrict readonly buffer TriangleLightBuf { uint triangle_lights[]; };
+layout(std430, binding = BINDING_INSTANCES) readonly buffer InstanceBuf { GpuInstance instances[]; };
+layout(std430, binding = BINDING_MESHES) readonly buffer MeshBuf { GpuMesh meshes[]; };
+layout(std430, binding = BINDING_TEXTURES) readonly buffer TextureBuf { GpuTexture textures[]; };
+layout(std430, binding = BINDING_TEXELS) readonly buffer TexelBuf { uint texels[]; };
+layout(std430, binding = BINDING_TEXTURE_TRANSFORMS) readonly buffer TextureTransformBuf { GpuUvTransform texture_transforms[]; };
+layout(std430, binding = BINDING_TRANSMISSION) readonly buffer TransmissionBuf { GpuTransmission material_transmission[]; };
+layout(std430, binding = BINDING_ENVMAP_TEXELS) readonly buffer EnvmapTexelBuf { float envmap_texels[]; };
+layout(std430, binding = BINDING_ENVMAP_MARGINAL) readonly buffer EnvmapMarginalBuf { float envmap_marginal[]; };
+layout(std430, binding = BINDING_ENVMAP_CONDITIONAL) readonly buffer EnvmapConditionalBuf { float envmap_conditional[]; };
+layout(std430, binding = BINDING_LIGHTS) readonly buffer LightBuf { GpuLight lights[]; };
+layout(std430, binding = BINDING_SPHERE_LIGHTS) readonly buffer SphereLightBuf { uint sphere_lights[]; };
+layout(std430, binding = BINDING_TRIANGLE_LIGHTS) readonly buffer TriangleLightBuf { uint triangle_lights[]; };
 
 layout(push_constant) uniform Push { PassParams pass; };
 

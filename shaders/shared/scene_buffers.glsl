@@ -32,7 +32,7 @@
 #extension GL_EXT_buffer_reference_uvec2 : require
 
 layout(constant_id = SPEC_PART_LOG2) const uint PART_LOG2 = 27u;
-layout(std430, binding = BINDING_BUFFER_PARTS) restrict readonly buffer PartBuf { uvec2 part_address[]; };
+layout(std430, binding = BINDING_BUFFER_PARTS) readonly buffer PartBuf { uvec2 part_address[]; };
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SpherePart { GpuSphere v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer UintPart { uint v[]; };
@@ -71,14 +71,14 @@ OCTRACE_MATERIAL material_at(uint i) {
 #endif
 
 #else
-layout(std430, binding = BINDING_SPHERES) restrict readonly buffer SphereBuf { GpuSphere spheres[]; };
-layout(std430, binding = BINDING_SPHERE_MATERIALS) restrict readonly buffer SphereMatBuf { uint sphere_materials[]; };
-layout(std430, binding = BINDING_OCTREE_NODES) restrict readonly buffer NodeBuf { GpuOctreeNode octree_nodes[]; };
-layout(std430, binding = BINDING_OCTREE_REFS) restrict readonly buffer RefBuf { uint octree_refs[]; };
-layout(std430, binding = BINDING_TRIANGLES) restrict readonly buffer TriangleBuf { GpuTriangle triangles[]; };
-layout(std430, binding = BINDING_TRIANGLE_NORMALS) restrict readonly buffer TriangleNormalBuf { GpuTriangleNormals triangle_normals[]; };
-layout(std430, binding = BINDING_TRIANGLE_UVS) restrict readonly buffer TriangleUvBuf { GpuTriangleUvs triangle_uvs[]; };
-layout(std430, binding = BINDING_MATERIALS) restrict readonly buffer MaterialBuf { OCTRACE_MATERIAL materials[]; };
+layout(std430, binding = BINDING_SPHERES) readonly buffer SphereBuf { GpuSphere spheres[]; };
+layout(std430, binding = BINDING_SPHERE_MATERIALS) readonly buffer SphereMatBuf { uint sphere_materials[]; };
+layout(std430, binding = BINDING_OCTREE_NODES) readonly buffer NodeBuf { GpuOctreeNode octree_nodes[]; };
+layout(std430, binding = BINDING_OCTREE_REFS) readonly buffer RefBuf { uint octree_refs[]; };
+layout(std430, binding = BINDING_TRIANGLES) readonly buffer TriangleBuf { GpuTriangle triangles[]; };
+layout(std430, binding = BINDING_TRIANGLE_NORMALS) readonly buffer TriangleNormalBuf { GpuTriangleNormals triangle_normals[]; };
+layout(std430, binding = BINDING_TRIANGLE_UVS) readonly buffer TriangleUvBuf { GpuTriangleUvs triangle_uvs[]; };
+layout(std430, binding = BINDING_MATERIALS) readonly buffer MaterialBuf { OCTRACE_MATERIAL materials[]; };
 
 GpuSphere sphere_at(uint i) { return spheres[i]; }
 uint sphere_material_at(uint i) { return sphere_materials[i]; }
