@@ -128,7 +128,7 @@ struct RenderOptions {
   std::string precision = "fp32";
   std::string effects = "auto";
   std::string nee = "on";
-  std::string octant_culling = "auto";
+  std::string octant_culling = "on";
   RenderSettings settings;
   std::string device = "auto";
   bool validation = false;
@@ -167,8 +167,7 @@ struct RenderOptions {
                    "Invocations sharing a pixel's samples in a dispatch: 1, 2, 4, 8 (0: auto); same image")
         ->capture_default_str();
     cmd.add_option("--octant-culling", octant_culling,
-                   "Octree walk: skip children in octants the ray cannot reach: auto (on for GPUs) | on | off; "
-                   "same image, other speed")
+                   "Octree walk: skip children in octants the ray cannot reach: on | off; same image, other speed")
         ->capture_default_str();
     cmd.add_option("--device", device, "auto | cpu | gpu | INDEX (see `octrace devices`)")->capture_default_str();
     cmd.add_flag("--validation", validation, "Enable the Khronos validation layer (also OCTRACE_VALIDATION=1)");
@@ -186,9 +185,9 @@ struct RenderOptions {
     s.all_effects = effects == "all";
     if (nee != "on" && nee != "off") throw SettingError("nee", ": expected on or off, got \"" + nee + "\"");
     s.nee = nee == "on";
-    if (octant_culling != "auto" && octant_culling != "on" && octant_culling != "off")
-      throw SettingError("octant_culling", ": expected auto, on or off, got \"" + octant_culling + "\"");
-    if (octant_culling != "auto") s.octant_culling = octant_culling == "on";
+    if (octant_culling != "on" && octant_culling != "off")
+      throw SettingError("octant_culling", ": expected on or off, got \"" + octant_culling + "\"");
+    s.octant_culling = octant_culling == "on";
     parse_size(size, s);
     validate_settings(s);
     return s;
@@ -591,7 +590,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
               {"nee", settings.nee ? "on" : "off"},
               {"samples_per_dispatch", settings.samples_per_dispatch},
               {"sample_lanes", settings.sample_lanes},
-              {"octant_culling", settings.octant_culling ? (*settings.octant_culling ? "on" : "off") : "auto"},
+              {"octant_culling", settings.octant_culling ? "on" : "off"},
               {"features", feature_names(result.features)},
               {"times_ms", {{"scene", scene_ms},
                             {"device_init", device_ms},

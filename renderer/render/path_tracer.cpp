@@ -38,7 +38,6 @@ struct PathTracer::State {
   // of the pipeline with the barrier when paths were long (brute force over
   // 8000 spheres, depth >= 10), and a CPU device has no tail to hide anyway.
   bool sample_lanes_enabled() const { return !ctx.info.software || settings.sample_lanes > 1; }
-  bool octant_culling() const { return settings.octant_culling.value_or(!ctx.info.software); }
   GpuScene scene;
   Buffer accum_sum, accum_comp, accum_sq, stats;
   ComputePipeline pipeline;
@@ -117,7 +116,7 @@ void PathTracer::State::create_pipeline() {
                            {gpu::SPEC_PBR, f.pbr},
                            {gpu::SPEC_DEFOCUS, f.defocus},
                            {gpu::SPEC_SAMPLE_LANES, s.sample_lanes_enabled()},
-                           {gpu::SPEC_OCTANT_CULLING, s.octant_culling()},
+                           {gpu::SPEC_OCTANT_CULLING, s.settings.octant_culling},
                            {gpu::SPEC_SKY, sky},
                            {gpu::SPEC_ANY_LIGHT, f.any_light},
                            {gpu::SPEC_SPHERES, f.spheres},
@@ -134,7 +133,10 @@ void PathTracer::State::create_pipeline() {
                            {gpu::SPEC_PUNCTUAL, f.punctual},
                            {gpu::SPEC_SKY_LIGHT, f.sky_light},
                            {gpu::SPEC_TRIANGLE_LIGHTS, f.triangle_lights},
-                           {gpu::SPEC_PART_LOG2, g.part_log2}});
+                           {gpu::SPEC_PART_LOG2, g.part_log2}},
+                          // Brute force reaches llvmpipe's loop limit first; the
+                          // optimizer would change where it cuts (vk/specialize.h).
+                          settings.accel != Accel::Brute);
   bind_buffers(p, {{gpu::BINDING_SCENE, &g.params},
                    {gpu::BINDING_SPHERES, &g.spheres},
                    {gpu::BINDING_TRIANGLES, &g.triangles},

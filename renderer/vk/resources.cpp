@@ -148,7 +148,7 @@ std::vector<std::pair<std::string, std::string>> pipeline_statistics(const Vulka
 
 void create_compute_pipeline(ComputePipeline& p, const VulkanContext& ctx, const uint32_t* spirv,
                              size_t spirv_bytes, uint32_t binding_count, uint32_t push_bytes,
-                             const std::vector<SpecConstant>& spec) {
+                             const std::vector<SpecConstant>& spec, bool optimize) {
   destroy_compute_pipeline(p);
   p.ctx = &ctx;
   std::vector<VkDescriptorSetLayoutBinding> bindings(binding_count);
@@ -179,9 +179,13 @@ void create_compute_pipeline(ComputePipeline& p, const VulkanContext& ctx, const
   // On software devices the constants are applied before the driver sees the
   // module (vk/specialize.h): lavapipe then translates only the code the
   // pipeline runs. The driver gets no specialisation info for such a module.
+  // The optimized module is kept on disk for the next run (spirv_cache_dir);
+  // the light one costs less to make than to read.
   std::vector<uint32_t> specialized;
   if (!spec.empty() && specialize_spirv_enabled(ctx.info.software))
-    specialized = specialize_spirv(exact.data(), exact.size() * sizeof(uint32_t), spec);
+    specialized = optimize ? specialize_spirv_cached(exact.data(), exact.size() * sizeof(uint32_t), spec,
+                                                     spirv_cache_dir())
+                           : specialize_spirv(exact.data(), exact.size() * sizeof(uint32_t), spec, false);
   const std::vector<uint32_t>& code = specialized.empty() ? exact : specialized;
   VkShaderModuleCreateInfo module_info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
   module_info.codeSize = code.size() * sizeof(uint32_t);

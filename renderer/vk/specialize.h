@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace octrace {
@@ -14,14 +15,24 @@ struct SpecConstant;
 
 // The module `spirv` with each constant of `spec` (SpecId -> value, as
 // VkSpecializationInfo would give it: 32 bits, 0 or 1 for a bool) set and
-// frozen, then the branches,
-// blocks and functions that became dead removed. Only passes that delete or
-// fold constant control flow run: no arithmetic is rewritten, so the driver
-// compiles the same instructions for the code that is kept (the images are
-// bit-identical; effects_test checks it). Empty when the optimizer fails (the
-// caller then passes the constants to the driver as usual).
+// frozen, the branches, blocks and functions that became dead removed, and
+// then SPIRV-Tools' performance recipe (the passes of `spirv-opt -O`) run
+// over what is left, which shrinks the module another 6x (the driver's
+// translation with it). No floating-point instruction is rewritten: the
+// optimizer folds or reassociates float arithmetic only where it lacks
+// NoContraction, and every float instruction of our modules carries it
+// (vk/spirv_contraction.h), so the driver compiles the same operations for
+// the code that is kept and the images are bit-identical (effects_test
+// checks it). Empty when the optimizer fails (the caller then passes the
+// constants to the driver as usual).
+// `optimize` false runs only the constant and dead-code passes: llvmpipe 22.3
+// counts every loop iteration of an invocation against one limit of 65535
+// and ends the loop there, and the performance recipe changes how a loop
+// that reaches it is cut (brute force over 8,000 spheres at depth 50: 98%
+// of pixels as the octree's with the light passes, 89% with the recipe;
+// below the limit the images are identical; optimisation log 34).
 std::vector<uint32_t> specialize_spirv(const uint32_t* spirv, size_t spirv_bytes,
-                                       const std::vector<SpecConstant>& spec);
+                                       const std::vector<SpecConstant>& spec, bool optimize = true);
 
 // Whether pipelines on a device are created from specialize_spirv's module
 // (ahead-of-driver specialisation). On by default on software devices, where
@@ -29,5 +40,22 @@ std::vector<uint32_t> specialize_spirv(const uint32_t* spirv, size_t spirv_bytes
 // constants: docs/optimisation-log.md); off on GPUs. OCTRACE_SPECIALIZE=0 / 1
 // forces it off / on for every device.
 bool specialize_spirv_enabled(bool software_device);
+
+// The optimizer costs more than the driver's translation it saves (0.8 s
+// against 0.6 s on the 2-core machine for the default scene's pipeline), so
+// its result is kept on disk: specialize_spirv's (optimize = true) module for these inputs,
+// read from `cache_dir` when an earlier run made it, else made and stored
+// there. The key hashes the module, the constants and the SPIRV-Tools
+// version; a file that does not hold a complete module of that key (torn,
+// truncated, of another version) is ignored and replaced. A folder that
+// cannot be created, read or written only costs the optimizer's time: it is
+// never an error. An empty `cache_dir` means no cache.
+std::vector<uint32_t> specialize_spirv_cached(const uint32_t* spirv, size_t spirv_bytes,
+                                              const std::vector<SpecConstant>& spec, const std::string& cache_dir);
+
+// Where the specialised modules are kept: OCTRACE_CACHE_DIR if it is set
+// ("none": no cache), else $XDG_CACHE_HOME/octrace/spirv, else
+// $HOME/.cache/octrace/spirv; empty when none of them is set.
+std::string spirv_cache_dir();
 
 }  // namespace octrace

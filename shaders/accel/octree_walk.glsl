@@ -50,7 +50,7 @@ void OCTREE_WALK_NAME(uint root_index, Ray ray, RayShear sh, uint from_prim, boo
     // skipped: its children lie anywhere along it. t_a's sign is exact (a
     // rounded difference keeps its sign); its size and the entry are
     // widened as in hit_box. A ray in the plane (t_a = 0) keeps both sides.
-    // Off on software devices by default (OCTANT_CULLING: slower there).
+    // On by default (OCTANT_CULLING; `--octant-culling off`: the same image).
     if (OCTANT_CULLING) {
       vec3 mid = node.lo + 0.5 * (node.hi - node.lo);
       vec3 t_mid = (mid - ray.origin) * inv_dir;

@@ -210,7 +210,7 @@ def main():
         f"{when}, {platform.node()}: {os.cpu_count()} CPU threads; octrace on {d['name']} ({d['driver']}), "
         f"commit {commit}{' (with local changes)' if dirty else ''}; Mitsuba {mts_version} scalar_rgb; "
         f"{w}x{h}, {SPP} spp, depth {DEPTH}, no roulette; one warm-up, {args.rounds} alternating rounds" +
-        "".join(f"; {k}={os.environ[k]}" for k in ("OCTRACE_SPECIALIZE", "LP_NUM_THREADS") if k in os.environ) + ".",
+        "".join(f"; {k}={os.environ[k]}" for k in ("OCTRACE_SPECIALIZE", "OCTRACE_CACHE_DIR", "LP_NUM_THREADS") if k in os.environ) + ".",
         "",
         f"Load average (1 min) {load_before:.1f} before, {load_after:.1f} after, on {os.cpu_count()} CPU threads.",
         "",
