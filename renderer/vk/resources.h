@@ -46,10 +46,7 @@ struct SpecConstant {
 };
 
 // A compute pipeline whose set 0 has `binding_count` storage buffers at
-// bindings 0..n-1, with `push_bytes` of push constants. `optimize`: where the
-// constants are applied ahead of the driver (vk/specialize.h), also run the
-// optimizer's performance passes (cached on disk); false for a pipeline
-// whose loops may reach llvmpipe's iteration limit (specialize_spirv).
+// bindings 0..n-1, with `push_bytes` of push constants.
 struct ComputePipeline {
   const VulkanContext* ctx = nullptr;
   VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
@@ -67,7 +64,10 @@ struct ComputePipeline {
   ~ComputePipeline();
 };
 
-// (Re)creates `p` (what it held before is destroyed first).
+// (Re)creates `p` (what it held before is destroyed first). `optimize`: where
+// the constants are applied ahead of the driver (vk/specialize.h), also run
+// the optimizer's performance passes (cached on disk); false for a pipeline
+// whose loops may reach llvmpipe's iteration limit (specialize_spirv).
 void create_compute_pipeline(ComputePipeline& p, const VulkanContext& ctx, const uint32_t* spirv,
                              size_t spirv_bytes, uint32_t binding_count, uint32_t push_bytes,
                              const std::vector<SpecConstant>& spec = {}, bool optimize = true);

@@ -27,7 +27,7 @@ std::vector<uint32_t> specialize_spirv(const uint32_t* spirv, size_t spirv_bytes
   // reaches. Merging blocks lets the second dead-code pass see through the
   // straight lines the first left. The performance recipe then inlines,
   // turns variables into SSA values and removes what became redundant
-  // (147 KB -> 30 KB for the default scene; optimisation log 34).
+  // (190 KB -> 31 KB for the default scene; optimisation log 34).
   opt.RegisterPass(spvtools::CreateSetSpecConstantDefaultValuePass(values))
       .RegisterPass(spvtools::CreateFreezeSpecConstantValuePass())
       .RegisterPass(spvtools::CreateFoldSpecConstantOpAndCompositePass())
@@ -103,9 +103,8 @@ void write_cached(const std::string& dir, const std::string& path, uint64_t key,
   std::memcpy(bytes.data(), &h, sizeof h);
   std::memcpy(bytes.data() + sizeof h, m.data(), m.size() * sizeof(uint32_t));
   try {
-    std::error_code ec;
+    std::error_code ec;  // a folder that cannot be made fails the write below
     std::filesystem::create_directories(dir, ec);
-    if (ec) return;
     write_file_atomically(path, bytes.data(), bytes.size(), "cannot write SPIR-V cache");
   } catch (const std::exception&) {
     // A cache that cannot be written costs the optimizer's time next run, nothing else.

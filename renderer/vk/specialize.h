@@ -43,9 +43,9 @@ bool specialize_spirv_enabled(bool software_device);
 
 // The optimizer costs more than the driver's translation it saves (0.8 s
 // against 0.6 s on the 2-core machine for the default scene's pipeline), so
-// its result is kept on disk: specialize_spirv's (optimize = true) module for these inputs,
-// read from `cache_dir` when an earlier run made it, else made and stored
-// there. The key hashes the module, the constants and the SPIRV-Tools
+// its result is kept on disk: specialize_spirv's module (optimize = true)
+// for these inputs, read from `cache_dir` when an earlier run made it, else
+// made and stored there. The key hashes the module, the constants and the SPIRV-Tools
 // version; a file that does not hold a complete module of that key (torn,
 // truncated, of another version) is ignored and replaced. A folder that
 // cannot be created, read or written only costs the optimizer's time: it is

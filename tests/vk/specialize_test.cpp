@@ -6,7 +6,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <unistd.h>
 
@@ -92,18 +91,12 @@ TEST(Specialize, OnForSoftwareDevicesUnlessTheEnvironmentSays) {
   if (saved) setenv("OCTRACE_SPECIALIZE", keep.c_str(), 1); else unsetenv("OCTRACE_SPECIALIZE");
 }
 
-
 // The one file a cache folder holds after one module was made.
 std::filesystem::path only_file(const std::filesystem::path& dir) {
   std::vector<std::filesystem::path> files;
   for (const auto& e : std::filesystem::directory_iterator(dir)) files.push_back(e.path());
   EXPECT_EQ(files.size(), 1u);
   return files.empty() ? std::filesystem::path() : files[0];
-}
-
-std::string file_bytes(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
 }
 
 TEST(Specialize, CacheHoldsTheOptimizersModuleAndReplacesADamagedOne) {
@@ -113,7 +106,7 @@ TEST(Specialize, CacheHoldsTheOptimizersModuleAndReplacesADamagedOne) {
   ASSERT_FALSE(fresh.empty());
   EXPECT_EQ(specialize_spirv_cached(path_trace_fp32_spv, sizeof(path_trace_fp32_spv), RTIOW, dir.string()), fresh);
   const std::filesystem::path entry = only_file(dir);
-  const std::string stored = file_bytes(entry);
+  const std::string stored = read_file(entry.string());
   ASSERT_EQ(stored.size(), 32 + fresh.size() * 4);
 
   // The next call takes the module from the file: one word changed there,
@@ -133,7 +126,7 @@ TEST(Specialize, CacheHoldsTheOptimizersModuleAndReplacesADamagedOne) {
     if (damaged.size() == stored.size()) damaged[40] ^= 1;
     write_file_atomically(entry.string(), damaged.data(), damaged.size());
     EXPECT_EQ(specialize_spirv_cached(path_trace_fp32_spv, sizeof(path_trace_fp32_spv), RTIOW, dir.string()), fresh);
-    EXPECT_EQ(file_bytes(entry), stored);
+    EXPECT_EQ(read_file(entry.string()), stored);
   }
 
   // Other constants are another entry.
