@@ -11,7 +11,8 @@ render flags, e.g. `--variant "base="`, `--variant "fast=OCTRACE_X=1"`,
 for that variant (a before/after of a code change: `--variant "new=BIN=b2"`). After one warm-up process per variant,
 ROUNDS rounds run every variant once, in turn. The figure is `render --json`
 times_ms.render: the sum of the passes' timestamp queries (device time; no
-set-up, read-back or resolve). Prints, per variant, the median, min and max
+set-up, read-back or resolve); with `--metric wall`, the whole process's wall
+time instead (start to exit: device and pipeline creation, the write included). Prints, per variant, the median, min and max
 over rounds, rays/s, and the ratio of the median to the first variant's;
 with --out, also writes that table as markdown (date and device included).
 """
@@ -22,6 +23,7 @@ import os
 import statistics
 import subprocess
 import sys
+import time
 
 
 def parse_variant(text):
@@ -43,11 +45,15 @@ def render(binary, args, variant):
     env = dict(env)
     binary = env.pop("BIN", binary)
     cmd = [binary, "render"] + args + flags + ["--json", "-q"]
+    start = time.perf_counter()
     p = subprocess.run(cmd, capture_output=True, text=True, env={**os.environ, **env})
+    wall_ms = (time.perf_counter() - start) * 1e3
     if p.returncode != 0:
         sys.exit(f"ab_render.py: variant {label}: {' '.join(cmd)} failed with exit {p.returncode}: "
                  f"{p.stderr.strip()[-500:]}")
-    return json.loads(p.stdout)
+    j = json.loads(p.stdout)
+    j["wall_ms"] = wall_ms
+    return j
 
 
 def main():
@@ -57,6 +63,8 @@ def main():
     ap.add_argument("--variant", action="append", required=True, help="LABEL=[ENV=VALUE ...] [-- flags]")
     ap.add_argument("--rounds", type=int, default=5)
     ap.add_argument("--out", help="markdown file to write the table to")
+    ap.add_argument("--metric", choices=["render", "wall"], default="render",
+                    help="render: device time of the passes; wall: the whole process")
     a = ap.parse_args()
     if a.rounds < 1:
         sys.exit("ab_render.py: --rounds must be at least 1")
@@ -69,14 +77,15 @@ def main():
     for r in range(a.rounds):
         for v in variants:
             j = render(a.octrace, args, v)
-            times[v[0]].append(j["times_ms"]["render"])
+            times[v[0]].append(j["times_ms"]["render"] if a.metric == "render" else j["wall_ms"])
             info[v[0]] = j
         print(f"round {r + 1}/{a.rounds}: " + ", ".join(f"{k} {t[-1]:.3f} ms" for k, t in times.items()),
               file=sys.stderr)
     first = statistics.median(times[variants[0][0]])
     dev = info[variants[0][0]]["device"]
     date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
-    lines = [f"{date}, {dev['name']} ({dev['driver']}); `octrace render {a.render} --json`, times_ms.render, "
+    what = "times_ms.render" if a.metric == "render" else "whole-process wall time"
+    lines = [f"{date}, {dev['name']} ({dev['driver']}); `octrace render {a.render} --json`, {what}, "
              f"median of {a.rounds} rounds after a warm-up, variants alternating", "",
              "| variant | env | flags | median ms | min | max | rays/s | against first |",
              "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: |"]
@@ -84,7 +93,7 @@ def main():
         t = times[label]
         med = statistics.median(t)
         rays = info[label].get("rays", 0)
-        rps = f"{rays / med * 1e3:.3g}" if rays else ""
+        rps = f"{rays / med * 1e3:.3g}" if rays and a.metric == "render" else ""
         envs = " ".join(f"{k}={v}" for k, v in env.items())
         lines.append(f"| {label} | {envs} | {' '.join(flags)} | {med:.3f} | {min(t):.3f} | {max(t):.3f} | {rps} | "
                      f"{med / first:.3f}x |")
