@@ -66,8 +66,9 @@ struct ComputePipeline {
 
 // (Re)creates `p` (what it held before is destroyed first). `optimize`: where
 // the constants are applied ahead of the driver (vk/specialize.h), also run
-// the optimizer's performance passes (cached on disk); false for a pipeline
-// whose loops may reach llvmpipe's iteration limit (specialize_spirv).
+// the optimizer's performance passes (cached on disk), on software devices
+// only; false for a pipeline whose loops may reach llvmpipe's iteration
+// limit (specialize_spirv).
 void create_compute_pipeline(ComputePipeline& p, const VulkanContext& ctx, const uint32_t* spirv,
                              size_t spirv_bytes, uint32_t binding_count, uint32_t push_bytes,
                              const std::vector<SpecConstant>& spec = {}, bool optimize = true);
