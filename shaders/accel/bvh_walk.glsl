@@ -11,13 +11,13 @@
 // skipped (the early exit), with the same widening as the octree's.
 // Stack bound: each level leaves at most one entry behind (the farther
 // child), so a tree of depth BVH_MAX_DEPTH (shared.h) needs BVH_MAX_DEPTH + 1.
-vec3 bvh_inv_dir = safe_inverse(ray.dir);
+OCTREE_SLAB bvh_ray = OCTREE_SLAB_MAKE(ray);
 uint bvh_node[BVH_STACK_SIZE];
 float bvh_entry[BVH_STACK_SIZE];  // where the ray enters the node's box
 uint bvh_sp = 0;
 float bvh_t;
 GpuOctreeNode bvh_root = node_at(root_index);
-if (hit_box(bvh_root.lo, bvh_root.hi, ray.origin, bvh_inv_dir, hit.t, bvh_t)) {
+if (hit_box(bvh_root.lo, bvh_root.hi, bvh_ray, hit.t, bvh_t)) {
   bvh_node[0] = root_index;
   bvh_entry[0] = bvh_t;
   bvh_sp = 1;
@@ -34,8 +34,8 @@ while (bvh_sp > 0) {
   GpuOctreeNode left = node_at(node.first);
   GpuOctreeNode right = node_at(node.first + 1u);
   float t_left, t_right;
-  bool hit_left = hit_box(left.lo, left.hi, ray.origin, bvh_inv_dir, hit.t, t_left);
-  bool hit_right = hit_box(right.lo, right.hi, ray.origin, bvh_inv_dir, hit.t, t_right);
+  bool hit_left = hit_box(left.lo, left.hi, bvh_ray, hit.t, t_left);
+  bool hit_right = hit_box(right.lo, right.hi, bvh_ray, hit.t, t_right);
   if (hit_left && hit_right) {
     // Farther first; equal entries keep the left child nearer.
     bool right_first = t_right < t_left;

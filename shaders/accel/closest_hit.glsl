@@ -123,9 +123,13 @@ void test_instance_triangle(Ray oray, RayShear osh, InstanceRef ir, uint local, 
 #include "accel/octree.glsl"
 
 #define OCTREE_WALK_NAME traverse_mesh
+#define OCTREE_SLAB FusedSlabRay
+#define OCTREE_SLAB_MAKE fused_slab_ray
 #define OCTREE_LEAF(ref) test_instance_triangle(ray, sh, ir, ref, from_prim, hit)
 #include "accel/octree_walk.glsl"
 #undef OCTREE_WALK_NAME
+#undef OCTREE_SLAB
+#undef OCTREE_SLAB_MAKE
 #undef OCTREE_LEAF
 
 // The ray in instance g's object space: the same t, the direction not renormalised.
@@ -158,9 +162,13 @@ void test_primitive(Ray ray, uint i, uint from_prim, bool into_from, inout Hit h
 }
 
 #define OCTREE_WALK_NAME traverse_top
+#define OCTREE_SLAB SlabRay
+#define OCTREE_SLAB_MAKE slab_ray
 #define OCTREE_LEAF(ref) test_primitive(ray, ref, from_prim, into_from, hit)
 #include "accel/octree_walk.glsl"
 #undef OCTREE_WALK_NAME
+#undef OCTREE_SLAB
+#undef OCTREE_SLAB_MAKE
 #undef OCTREE_LEAF
 
 // The nearest hit before t_max (INF: anywhere). Alpha cut-outs and
@@ -206,9 +214,13 @@ void test_primitive_any(Ray ray, uint i, uint from_prim, bool into_from, inout H
 }
 
 #define OCTREE_WALK_NAME traverse_top_any
+#define OCTREE_SLAB SlabRay
+#define OCTREE_SLAB_MAKE slab_ray
 #define OCTREE_LEAF(ref) test_primitive_any(ray, ref, from_prim, into_from, hit)
 #include "accel/octree_walk.glsl"
 #undef OCTREE_WALK_NAME
+#undef OCTREE_SLAB
+#undef OCTREE_SLAB_MAKE
 #undef OCTREE_LEAF
 
 bool occluded(Ray ray, uint from_prim, bool into_from, float t_max, uint skip) {

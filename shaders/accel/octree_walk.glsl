@@ -1,7 +1,9 @@
 // One octree walk, included once per level (no include guard): the includer
-// defines OCTREE_WALK_NAME (the function's name) and OCTREE_LEAF(ref) (what a
-// leaf's reference is tested with; it may use the walk's parameters), then
-// undefines them. The walk is the same at both levels; only the leaf differs.
+// defines OCTREE_WALK_NAME (the function's name), OCTREE_LEAF(ref) (what a
+// leaf's reference is tested with; it may use the walk's parameters) and
+// OCTREE_SLAB / OCTREE_SLAB_MAKE (the slab test's per-ray type and what
+// makes it: accel/octree.glsl), then undefines them. The walk is the same
+// at both levels; only the leaf and the slab test's form differ.
 // With ACCEL == ACCEL_BVH the arrays hold a BVH and accel/bvh_walk.glsl walks it.
 void OCTREE_WALK_NAME(uint root_index, Ray ray, RayShear sh, uint from_prim, bool into_from, InstanceRef ir,
                       inout Hit hit) {
@@ -9,7 +11,8 @@ void OCTREE_WALK_NAME(uint root_index, Ray ray, RayShear sh, uint from_prim, boo
 #include "accel/bvh_walk.glsl"
     return;
   }
-  vec3 inv_dir = safe_inverse(ray.dir);
+  OCTREE_SLAB sr = OCTREE_SLAB_MAKE(ray);
+  vec3 inv_dir = sr.inv;
   uint sign_mask = (floatBitsToUint(ray.dir.x) >> 31) | ((floatBitsToUint(ray.dir.y) >> 31) << 1) |
                    ((floatBitsToUint(ray.dir.z) >> 31) << 2);
   uint stack_node[STACK_SIZE];
@@ -17,7 +20,7 @@ void OCTREE_WALK_NAME(uint root_index, Ray ray, RayShear sh, uint from_prim, boo
   uint sp = 0;
   float t_entry;
   GpuOctreeNode root = node_at(root_index);
-  if (hit_box(root.lo, root.hi, ray.origin, inv_dir, hit.t, t_entry)) {
+  if (hit_box(root.lo, root.hi, sr, hit.t, t_entry)) {
     stack_node[0] = root_index;
     stack_entry[0] = t_entry;
     sp = 1;
@@ -82,7 +85,7 @@ void OCTREE_WALK_NAME(uint root_index, Ray ray, RayShear sh, uint from_prim, boo
       uint octant = j ^ sign_mask;
       uint child = node.first + bitCount(present & ((1u << octant) - 1u));
       GpuOctreeNode c = node_at(child);
-      if (hit_box(c.lo, c.hi, ray.origin, inv_dir, hit.t, t_entry)) {
+      if (hit_box(c.lo, c.hi, sr, hit.t, t_entry)) {
         stack_node[sp] = child;
         stack_entry[sp] = t_entry;
         ++sp;

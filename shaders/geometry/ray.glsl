@@ -39,12 +39,14 @@ vec3 safe_normalize(vec3 v, vec3 fallback) {
   return len2 > 1e-30 ? v * inversesqrt(len2) : fallback;
 }
 
-// 1/dir without infinities: a component of +0 or -0 becomes +-FLT_MAX, so a
-// slab distance (plane - origin) * inv is never 0 * inf = NaN; it is +-inf
-// (overflow) or 0 when the origin lies on the plane, and both keep the slab
-// test right (the ray runs parallel inside or outside the slab).
+// 1/dir without infinities: a component of +0 or -0 becomes +-2^64, so a
+// slab distance (plane - origin) * inv is never 0 * inf = NaN; it is huge
+// with the sign of (plane - origin), or 0 when the origin lies on the plane,
+// and both keep the slab test right (the ray runs parallel inside or outside
+// the slab). A power of two, so that origin * inv is exact (the fused slab
+// test, accel/octree.glsl).
 vec3 safe_inverse(vec3 d) {
-  const float BIG = 3.402823466e38;
+  const float BIG = 18446744073709551616.0;  // 2^64
   return vec3(d.x == 0.0 ? (floatBitsToUint(d.x) != 0u ? -BIG : BIG) : 1.0 / d.x,
               d.y == 0.0 ? (floatBitsToUint(d.y) != 0u ? -BIG : BIG) : 1.0 / d.y,
               d.z == 0.0 ? (floatBitsToUint(d.z) != 0u ? -BIG : BIG) : 1.0 / d.z);
