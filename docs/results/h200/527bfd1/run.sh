@@ -1,0 +1,23 @@
+# The GPU suites, the identity check against 5cfde10, the CUDA peer side by
+# side and the sphere-count series at 527bfd1 (optimisation log 38) on the
+# H200. Carried: .gl, .gpub (bin.tgz: app/octrace, the three GPU test
+# binaries of a Release build, and octrace-base of 5cfde10), .assets, .peers.
+set -u; rm -rf build-gpu; mkdir build-gpu; tar xzf .gpub/bin.tgz -C build-gpu
+for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig; export XDG_RUNTIME_DIR=/tmp
+B=build-gpu/app/octrace
+$B devices >/dev/null 2>&1 || export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+mkdir -p /work; [ -e /work/main ] || ln -s "$PWD" /work/main
+R=/tmp/res3; rm -rf $R; mkdir -p $R; date -u > $R/date.txt; cat build-gpu/COMMIT >> $R/date.txt
+nvidia-smi --query-gpu=name,driver_version,clocks.max.sm --format=csv,noheader >> $R/date.txt
+(cd .peers/karim && ./build.sh > $R/peer_build.txt 2>&1) &
+( export OCTRACE_TEST_DEVICE=gpu
+for t in accel_test effects_test; do
+  timeout 80 build-gpu/tests/$t > $R/gpu_$t.txt 2>&1; echo "$t rc=$? $(grep -E '^\[  (PASSED|FAILED)' $R/gpu_$t.txt | tr '\n' ' ')"; grep "^\[  FAILED" $R/gpu_$t.txt | head -5
+done
+OCTRACE_HARDCASES_TABLE=$R/hardcases_gpu.tsv timeout 230 build-gpu/tests/hardcases_test > $R/gpu_hardcases_test.txt 2>&1; echo "hardcases rc=$? $(grep -E '^\[  (PASSED|FAILED)' $R/gpu_hardcases_test.txt | tr '\n' ' ')"; grep "^\[  FAILED" $R/gpu_hardcases_test.txt | head -5
+) | tee $R/summary.txt
+wait
+DEVICE=gpu timeout 90 tools/identity_check.sh build-gpu/octrace-base $B /tmp/id > $R/identity_gpu.txt 2>&1; echo "identity rc=$? $(tail -1 $R/identity_gpu.txt)" | tee -a $R/summary.txt
+timeout 130 python3 tools/peer/compare.py --peer .peers/karim --octrace $B --out $R/peer --rounds 5 > $R/peer.log 2>&1; echo "peer rc=$?" | tee -a $R/summary.txt; tail -4 $R/peer/peer_compare.md | tee -a $R/summary.txt
+timeout 90 $B bench --device gpu --accel octree --spheres 488,8000,1000000,10000000 --radius 0.1 --csv $R/spheres.csv > $R/spheres.log 2>&1; echo "bench rc=$?" | tee -a $R/summary.txt; tail -8 $R/spheres.log | tee -a $R/summary.txt
+rm -f $R/peer/*.ppm $R/peer/*.pfm $R/peer/*.png; cp $R/summary.txt $OUT/; tar czf $OUT/results.tgz -C /tmp res3; ls -la $OUT
