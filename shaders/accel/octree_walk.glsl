@@ -5,8 +5,11 @@
 // makes it: accel/octree.glsl), then undefines them. The walk is the same
 // at both levels; only the leaf and the slab test's form differ.
 // With ACCEL == ACCEL_BVH the arrays hold a BVH and accel/bvh_walk.glsl walks it.
-void OCTREE_WALK_NAME(uint root_index, Ray ray, RayShear sh, uint from_prim, bool into_from, InstanceRef ir,
-                      inout Hit hit) {
+// refs[big_first, big_end) are the primitives too large for the octree's
+// cells (the tree's big list): the walk tests them as its first leaf. A BVH
+// has no big list (accel/bvh.h: big_count = 0), so its walk takes none.
+void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, RayShear sh, uint from_prim,
+                      bool into_from, InstanceRef ir, inout Hit hit) {
   if (ACCEL == ACCEL_BVH) {
 #include "accel/bvh_walk.glsl"
     return;
@@ -34,9 +37,15 @@ void OCTREE_WALK_NAME(uint root_index, Ray ray, RayShear sh, uint from_prim, boo
   // for others. The same nodes in the same order as one loop would visit.
   // Kept for the octree walks only (optimisation log 38): in the BVH walk,
   // whose leaves hold one or two primitives, it was slower on the sphere
-  // field and the engine.
-  while (sp > 0) {
-    uint leaf_first = 0u, leaf_end = 0u;
+  // field and the engine. The big list is the first leaf, so that the leaf's
+  // test (at the top level, a mesh instance's whole walk) is compiled once
+  // per walk, not once more for a loop of its own (log 39).
+  uint leaf_first = big_first, leaf_end = big_end;
+  while (true) {
+    for (uint k = leaf_first; k < leaf_end; ++k) OCTREE_LEAF(ref_at(k));
+    if (sp == 0u) break;
+    leaf_first = 0u;
+    leaf_end = 0u;
     while (sp > 0) {
       --sp;
       // The node was pushed when its box was met before the nearest hit of that
@@ -103,7 +112,6 @@ void OCTREE_WALK_NAME(uint root_index, Ray ray, RayShear sh, uint from_prim, boo
         }
       }
     }
-    for (uint k = leaf_first; k < leaf_end; ++k) OCTREE_LEAF(ref_at(k));
   }
 }
 
