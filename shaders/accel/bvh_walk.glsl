@@ -12,20 +12,19 @@
 // Stack bound: each level leaves at most one entry behind (the farther
 // child), so a tree of depth BVH_MAX_DEPTH (shared.h) needs BVH_MAX_DEPTH + 1.
 OCTREE_SLAB bvh_ray = OCTREE_SLAB_MAKE(ray);
-uint bvh_node[BVH_STACK_SIZE];
-float bvh_entry[BVH_STACK_SIZE];  // where the ray enters the node's box
+uvec2 bvh_stack[BVH_STACK_SIZE];  // (node, bits of its entry distance), as the octree walk's stack
 uint bvh_sp = 0;
 float bvh_t;
 GpuOctreeNode bvh_root = node_at(root_index);
 if (hit_box(bvh_root.lo, bvh_root.hi, bvh_ray, hit.t, bvh_t)) {
-  bvh_node[0] = root_index;
-  bvh_entry[0] = bvh_t;
+  bvh_stack[0] = uvec2(root_index, floatBitsToUint(bvh_t));
   bvh_sp = 1;
 }
 while (bvh_sp > 0) {
   --bvh_sp;
-  if (bvh_entry[bvh_sp] > hit.t * WIDEN) continue;
-  GpuOctreeNode node = node_at(bvh_node[bvh_sp]);
+  uvec2 bvh_top = bvh_stack[bvh_sp];
+  if (uintBitsToFloat(bvh_top.y) > hit.t * WIDEN) continue;
+  GpuOctreeNode node = node_at(bvh_top.x);
   if (node.count_or_mask < OCTREE_INTERNAL) {
     for (uint k = node.first; k < node.first + node.count_or_mask; ++k)
       OCTREE_LEAF(ref_at(k));
@@ -39,14 +38,14 @@ while (bvh_sp > 0) {
   if (hit_left && hit_right) {
     // Farther first; equal entries keep the left child nearer.
     bool right_first = t_right < t_left;
-    bvh_node[bvh_sp] = right_first ? node.first : node.first + 1u;
-    bvh_entry[bvh_sp] = right_first ? t_left : t_right;
-    bvh_node[bvh_sp + 1u] = right_first ? node.first + 1u : node.first;
-    bvh_entry[bvh_sp + 1u] = right_first ? t_right : t_left;
+    bvh_stack[bvh_sp] =
+        uvec2(right_first ? node.first : node.first + 1u, floatBitsToUint(right_first ? t_left : t_right));
+    bvh_stack[bvh_sp + 1u] =
+        uvec2(right_first ? node.first + 1u : node.first, floatBitsToUint(right_first ? t_right : t_left));
     bvh_sp += 2u;
   } else if (hit_left || hit_right) {
-    bvh_node[bvh_sp] = hit_left ? node.first : node.first + 1u;
-    bvh_entry[bvh_sp] = hit_left ? t_left : t_right;
+    bvh_stack[bvh_sp] =
+        uvec2(hit_left ? node.first : node.first + 1u, floatBitsToUint(hit_left ? t_left : t_right));
     ++bvh_sp;
   }
 }

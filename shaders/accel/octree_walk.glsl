@@ -18,14 +18,15 @@ void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, Ra
   vec3 inv_dir = sr.inv;
   uint sign_mask = (floatBitsToUint(ray.dir.x) >> 31) | ((floatBitsToUint(ray.dir.y) >> 31) << 1) |
                    ((floatBitsToUint(ray.dir.z) >> 31) << 2);
-  uint stack_node[STACK_SIZE];
-  float stack_entry[STACK_SIZE];  // where the ray enters the node's box
+  // (node, bits of where the ray enters the node's box): one array of pairs,
+  // so a push or pop is one 8-byte access to local memory, not two of 4
+  // (optimisation log 40: 1-2% faster on the H200 than two arrays).
+  uvec2 stack[STACK_SIZE];
   uint sp = 0;
   float t_entry;
   GpuOctreeNode root = node_at(root_index);
   if (hit_box(root.lo, root.hi, sr, hit.t, t_entry)) {
-    stack_node[0] = root_index;
-    stack_entry[0] = t_entry;
+    stack[0] = uvec2(root_index, floatBitsToUint(t_entry));
     sp = 1;
   }
 
@@ -50,8 +51,10 @@ void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, Ra
       --sp;
       // The node was pushed when its box was met before the nearest hit of that
       // moment; a nearer hit found since rules it out (the early exit).
-      if (stack_entry[sp] > hit.t * WIDEN) continue;
-      GpuOctreeNode node = node_at(stack_node[sp]);
+      uvec2 top = stack[sp];
+      float top_entry = uintBitsToFloat(top.y);
+      if (top_entry > hit.t * WIDEN) continue;
+      GpuOctreeNode node = node_at(top.x);
       if (node.count_or_mask < OCTREE_INTERNAL) {
         leaf_first = node.first;
         leaf_end = node.first + node.count_or_mask;
@@ -77,7 +80,7 @@ void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, Ra
       if (OCTANT_CULLING) {
         vec3 mid = node.lo + 0.5 * (node.hi - node.lo);
         vec3 t_mid = (mid - ray.origin) * inv_dir;
-        float t_in = stack_entry[sp] / WIDEN;
+        float t_in = top_entry / WIDEN;
         float t_out = hit.t * WIDEN;
         for (uint a = 0u; a < 3u; ++a) {
           uint lower = a == 0u ? 0x55u : (a == 1u ? 0x33u : 0x0fu);  // octants below the middle on a
@@ -106,8 +109,7 @@ void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, Ra
         uint child = node.first + bitCount(present & ((1u << octant) - 1u));
         GpuOctreeNode c = node_at(child);
         if (hit_box(c.lo, c.hi, sr, hit.t, t_entry)) {
-          stack_node[sp] = child;
-          stack_entry[sp] = t_entry;
+          stack[sp] = uvec2(child, floatBitsToUint(t_entry));
           ++sp;
         }
       }
