@@ -38,6 +38,11 @@ struct PathTracer::State {
   // of the pipeline with the barrier when paths were long (brute force over
   // 8000 spheres, depth >= 10), and a CPU device has no tail to hide anyway.
   bool sample_lanes_enabled() const { return !ctx.info.software || settings.sample_lanes > 1; }
+  // RenderSettings::big_list for the pipeline specialised to `f`.
+  bool big_leaf(const SceneFeatures& f) const {
+    if (settings.big_list != BigList::Auto) return settings.big_list == BigList::FirstLeaf;
+    return ctx.info.software || !f.triangles;
+  }
   GpuScene scene;
   Buffer accum_sum, accum_comp, accum_sq, stats;
   ComputePipeline pipeline;
@@ -117,6 +122,7 @@ void PathTracer::State::create_pipeline() {
                            {gpu::SPEC_DEFOCUS, f.defocus},
                            {gpu::SPEC_SAMPLE_LANES, s.sample_lanes_enabled()},
                            {gpu::SPEC_OCTANT_CULLING, s.settings.octant_culling},
+                           {gpu::SPEC_BIG_LEAF, s.big_leaf(f)},
                            {gpu::SPEC_SKY, sky},
                            {gpu::SPEC_ANY_LIGHT, f.any_light},
                            {gpu::SPEC_SPHERES, f.spheres},

@@ -21,6 +21,9 @@ const char* precision_name(Precision p);
 // "fp32" | "fp16" | "fp16-all"; throws SettingError("precision").
 Precision parse_precision(const std::string& name);
 
+// Where the octree walks test the big list (RenderSettings::big_list).
+enum class BigList { Auto, FirstLeaf, OwnLoop };
+
 struct RenderSettings {
   Accel accel = Accel::Octree;
   Precision precision = Precision::FP32;
@@ -60,6 +63,14 @@ struct RenderSettings {
   // 1.5-8.6% faster on the H100 (optimisation log 29), 10-11% faster on
   // lavapipe on the 2-core machine of log 34 (3.5% slower on the one of 29).
   bool octant_culling = true;
+  // Where the octree walks test a tree's big list (primitives too large for
+  // its cells; shaders/accel/octree_walk.glsl): as the walk's first leaf, or
+  // in a loop of the caller's. The image is the same either way. Auto: its
+  // own loop on GPUs for scenes with triangles (the NVIDIA compiler gives the
+  // mesh pipelines fewer registers: 6% faster on the engine, optimisation
+  // log 41); the first leaf otherwise (llvmpipe compiles the leaf's test,
+  // a mesh's whole walk, once instead of twice: log 39).
+  BigList big_list = BigList::Auto;
 };
 
 // Checks sizes and counts; throws SettingError naming the setting

@@ -140,7 +140,7 @@ Ray to_object(GpuInstance g, Ray ray) {
 }
 
 // Tests instance `inst`: its mesh's triangles (all of them for brute force,
-// else its octree, big list included), in object space.
+// else its big list and its octree), in object space.
 void test_instance(Ray ray, uint inst, uint from_prim, inout Hit hit) {
   GpuInstance g = instances[inst];
   GpuMesh m = meshes[g.mesh];
@@ -151,6 +151,9 @@ void test_instance(Ray ray, uint inst, uint from_prim, inout Hit hit) {
     for (uint k = 0; k < m.triangle_count; ++k) test_instance_triangle(oray, osh, ir, k, from_prim, hit);
     return;
   }
+  if (!BIG_LEAF)
+    for (uint j = 0; j < m.big_count; ++j)
+      test_instance_triangle(oray, osh, ir, ref_at(m.first_ref + j), from_prim, hit);
   traverse_mesh(m.root, m.first_ref, m.first_ref + m.big_count, oray, osh, from_prim, false, ir, hit);
 }
 
@@ -185,7 +188,10 @@ bool closest_hit_within(Ray ray, uint from_prim, bool into_from, float t_max, ou
     return hit.prim != NO_PRIM;
   }
 
-  // Primitives too large for the octree's cells (refs[0, big_count)) are tested first.
+  // Primitives too large for the octree's cells (refs[0, big_count)) are
+  // tested first: here, or as the walk's first leaf (BIG_LEAF).
+  if (!BIG_LEAF)
+    for (uint i = 0; i < scene.big_count; ++i) test_primitive(ray, ref_at(i), from_prim, into_from, hit);
   RayShear no_shear;
   traverse_top(0u, 0u, scene.big_count, ray, no_shear, from_prim, into_from, InstanceRef(0u, 0u, 0u), hit);
   return hit.prim != NO_PRIM;
@@ -235,6 +241,11 @@ bool occluded(Ray ray, uint from_prim, bool into_from, float t_max, uint skip) {
     if (HAS_TRIANGLES)
       for (uint i = 0; i < scene.instance_count && hit.prim == NO_PRIM; ++i) test_instance(ray, i, from_prim, hit);
     return hit.prim != NO_PRIM;
+  }
+  if (!BIG_LEAF) {
+    for (uint i = 0; i < scene.big_count && hit.prim == NO_PRIM; ++i)
+      test_primitive_any(ray, ref_at(i), from_prim, into_from, hit);
+    if (hit.prim != NO_PRIM) return true;
   }
   RayShear no_shear;
   traverse_top_any(0u, 0u, scene.big_count, ray, no_shear, from_prim, into_from, InstanceRef(0u, 0u, 0u), hit);

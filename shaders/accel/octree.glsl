@@ -17,6 +17,10 @@
 // computed entry may lie a few ulps past the true one.
 // Octant culling in the walk (accel/octree_walk.glsl; SPEC_OCTANT_CULLING).
 layout(constant_id = SPEC_OCTANT_CULLING) const bool OCTANT_CULLING = true;
+// Where the walks test a tree's big list (accel/octree_walk.glsl): as the
+// walk's first leaf, or (false) in a loop of the caller's. The host chooses
+// (render/path_tracer.cpp, BigList): the image is the same either way.
+layout(constant_id = SPEC_BIG_LEAF) const bool BIG_LEAF = true;
 
 const float WIDEN = 1.0 + 2.0 * (3.0 * 5.96046448e-8) / (1.0 - 3.0 * 5.96046448e-8);
 

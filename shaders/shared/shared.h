@@ -205,6 +205,10 @@ OCT_CONST(uint, SPEC_TRIANGLE_LIGHTS, 23u);
 // Octant culling in the octree walk (RenderSettings::octant_culling; the
 // image is the same either way).
 OCT_CONST(uint, SPEC_OCTANT_CULLING, 25u);
+// Whether the octree walks test the big list as their first leaf, or their
+// callers in a loop of their own (RenderSettings::big_list; the image is the
+// same either way).
+OCT_CONST(uint, SPEC_BIG_LEAF, 26u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 255u);
 

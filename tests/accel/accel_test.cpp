@@ -175,8 +175,9 @@ std::pair<double, double> agreement(const RenderResult& a, const RenderResult& b
 }
 
 // Each tree against one brute-force render per depth; the octree with and
-// without octant culling (on by default on GPUs only, so forced here for
-// lavapipe too).
+// without octant culling, and with the big list tested by the walks' callers
+// for scenes with triangles (the form GPUs take for them; lavapipe's is the
+// first leaf: RenderSettings::big_list).
 TEST_P(AccelTest, TreeImagesMatchBruteForce) {
   Scene scene = GetParam().make();
   for (uint32_t depth : {8u, 50u}) {
@@ -191,16 +192,21 @@ TEST_P(AccelTest, TreeImagesMatchBruteForce) {
     struct Variant {
       Accel accel;
       bool culling;
+      BigList big_list;
     };
-    for (Variant v : {Variant{Accel::Octree, true}, Variant{Accel::Octree, false}, Variant{Accel::Bvh, false}}) {
+    for (Variant v : {Variant{Accel::Octree, true, BigList::FirstLeaf}, Variant{Accel::Octree, false, BigList::FirstLeaf},
+                      Variant{Accel::Octree, true, BigList::OwnLoop}, Variant{Accel::Bvh, false, BigList::Auto}}) {
+      if (v.big_list == BigList::OwnLoop && scene.instances.empty()) continue;
       s.accel = v.accel;
       s.octant_culling = v.culling;
+      s.big_list = v.big_list;
       s.octree.leaf_size = 2;  // octree: a deep tree, many cells, many straddling spheres
       RenderResult tree = render(test::shared_context(), scene, s);
       ASSERT_EQ(tree.nonfinite_samples, 0u);
       auto [identical, mean_diff] = agreement(tree, brute);
       const std::string what = std::string(accel_name(v.accel)) + (v.culling ? " (octant culling)" : "") +
-                               ", depth " + std::to_string(depth);
+                               (v.big_list == BigList::OwnLoop ? " (big list in its own loop)" : "") + ", depth " +
+                               std::to_string(depth);
       if (depth <= 8) {
         EXPECT_EQ(identical, 1.0) << what << ": only " << identical * 100 << "% bit-identical";
       } else {
