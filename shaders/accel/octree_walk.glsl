@@ -7,8 +7,9 @@
 // With ACCEL == ACCEL_BVH the arrays hold a BVH and accel/bvh_walk.glsl walks it.
 // refs[big_first, big_end) are the primitives too large for the octree's
 // cells (the tree's big list): with BIG_LEAF the walk tests them as its
-// first leaf; without, the caller has (below). A BVH has no big list
-// (accel/bvh.h: big_count = 0), so its walk takes none.
+// first leaf; without, its caller tests them before the walk
+// (accel/closest_hit.glsl). A BVH has no big list (accel/bvh.h:
+// big_count = 0), so its walk takes none.
 void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, RayShear sh, uint from_prim,
                       bool into_from, InstanceRef ir, inout Hit hit) {
   if (ACCEL == ACCEL_BVH) {
