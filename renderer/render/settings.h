@@ -66,10 +66,11 @@ struct RenderSettings {
   // Where the octree walks test a tree's big list (primitives too large for
   // its cells; shaders/accel/octree_walk.glsl): as the walk's first leaf, or
   // in a loop of the caller's. The image is the same either way. Auto: its
-  // own loop on GPUs for scenes with triangles (the NVIDIA compiler gives the
-  // mesh pipelines fewer registers: 6% faster on the engine, optimisation
-  // log 41); the first leaf otherwise (llvmpipe compiles the leaf's test,
-  // a mesh's whole walk, once instead of twice: log 39).
+  // own loop on GPUs for pipelines with triangles (a scene with meshes, or
+  // `--effects all`: the NVIDIA compiler gives them fewer registers, 6%
+  // faster on the engine, optimisation log 41); the first leaf otherwise
+  // (llvmpipe compiles the leaf's test, a mesh's whole walk, once instead
+  // of twice: log 39).
   BigList big_list = BigList::Auto;
 };
 
