@@ -140,7 +140,37 @@ Scene far_meshes() {
   return s;
 }
 
+// Big lists at both levels, and shadow rays that only a big primitive
+// blocks: a mesh whose one large triangle is on its own octree's big list
+// (it is more than half the size of the rest, a small grid), the rtiow
+// ground sphere on the top level's, a point light above the field and a
+// directional light shining up from below the ground (only the ground
+// sphere lies between it and every point the camera sees). Every loop over
+// a big list is reached: the walks' first leaf, and the callers' loops of
+// the other form (RenderSettings::big_list) in closest_hit, test_instance
+// and occluded.
+Scene big_lists_and_lights() {
+  Scene s = rtiow(120, 0.2f, 7);
+  Mesh m = test::grid(4, 0);
+  for (glm::vec3& p : m.positions) p = 0.25f * p;
+  const uint32_t first = uint32_t(m.positions.size());
+  m.positions.insert(m.positions.end(), {{-1.5f, -0.2f, -0.1f}, {1.5f, -0.2f, -0.1f}, {0.0f, 2.2f, -0.1f}});
+  m.indices.insert(m.indices.end(), {first, first + 1, first + 2});
+  m.materials.push_back(0);
+  test::place(s, m, glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0.3f, 0.0f)), 1.5708f, glm::vec3(0, 1, 0)));
+  Light point;
+  point.position = {0.0f, 6.0f, 2.0f};
+  point.intensity = 40.0f;
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.direction = {0.0f, 1.0f, 0.0f};
+  sun.intensity = 3.0f;
+  s.lights = {point, sun};
+  return s;
+}
+
 const AccelCase CASES[] = {
+    {"big_lists_and_lights", big_lists_and_lights},
     {"meshes_and_spheres", meshes_and_spheres},
     {"instanced", instanced},
     {"only_triangles", only_triangles},
