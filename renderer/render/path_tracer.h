@@ -92,6 +92,9 @@ class PathTracer {
   // Adds passes [first_sample, first_sample + count) in one submission and
   // waits; returns their device time in milliseconds.
   double run_passes(const PassSettings& pass, uint32_t first_sample, uint32_t count);
+  // How many invocations share a pixel when a batch has enough samples for
+  // them (1 where lanes are compiled out): the smallest batch that uses them.
+  uint32_t full_lanes() const;
   // Records the same passes into `cmd` without submitting, for a caller that
   // adds its own work to the submission (the preview's resolve pass).
   void record_passes(VkCommandBuffer cmd, const PassSettings& pass, uint32_t first_sample, uint32_t count) const;
