@@ -763,7 +763,10 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
   Job& job = g_job;
   share.rank = job.rank;
   share.host = job.host;
-  uint32_t completed = 0, batch = 1;
+  // The first batch (and every later one) in whole rounds of a pixel's
+  // lanes, as render()'s.
+  const uint32_t lanes = tracer.full_lanes();
+  uint32_t completed = 0, batch = lanes;
   const auto ready = Clock::now();
   // The device this rank renders on, for turns (empty: no UUID, no turns).
   const std::string device_key =
@@ -842,6 +845,7 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
     // As render(): batches of about a quarter second (or --batch-ms), at
     // most 1024 samples.
     batch = uint32_t(std::clamp((batch_ms > 0 ? batch_ms : kBatchMs) / std::max(per_pass, 1e-3), 1.0, 1024.0));
+    batch = std::max(lanes, batch - batch % lanes);
     share.samples += got.second;
     completed = got.second;
   }

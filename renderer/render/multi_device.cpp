@@ -106,7 +106,10 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
       }
       // Batches grow until one takes about a quarter second, and shrink near
       // the end so that no device is left with much more than the others.
-      uint32_t batch = 1;
+      // The first batch (and every later one) in whole rounds of a pixel's
+      // lanes, as render()'s.
+      const uint32_t lanes = tracer.full_lanes();
+      uint32_t batch = lanes;
       for (;;) {
         if (failed || (control.stop && control.stop->load())) break;
         const uint32_t remaining = settings.spp - std::min(settings.spp, next.load());
@@ -119,6 +122,7 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
         const double per_pass = ms_since(batch_start) / n;
         shares[d].samples += n;
         batch = uint32_t(std::clamp(250.0 / std::max(per_pass, 1e-3), 1.0, 1024.0));
+        batch = std::max(lanes, batch - batch % lanes);
         const uint32_t total = done += n;
         if (control.progress) {
           std::lock_guard<std::mutex> lock(progress_mutex);
