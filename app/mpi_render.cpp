@@ -843,9 +843,8 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
     ++share.batches;
     const double per_pass = passes_ms / got.second;
     // As render(): batches of about a quarter second (or --batch-ms), at
-    // most 1024 samples.
-    batch = uint32_t(std::clamp((batch_ms > 0 ? batch_ms : kBatchMs) / std::max(per_pass, 1e-3), 1.0, 1024.0));
-    batch = std::max(lanes, batch - batch % lanes);
+    // most 1024 samples, in whole rounds of lanes (next_batch).
+    batch = next_batch(per_pass, lanes, batch_ms > 0 ? batch_ms : kBatchMs);
     share.samples += got.second;
     completed = got.second;
   }

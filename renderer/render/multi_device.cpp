@@ -121,8 +121,7 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
         shares[d].device_ms += tracer.run_passes(pass, settings.first_sample + first, n);
         const double per_pass = ms_since(batch_start) / n;
         shares[d].samples += n;
-        batch = uint32_t(std::clamp(250.0 / std::max(per_pass, 1e-3), 1.0, 1024.0));
-        batch = std::max(lanes, batch - batch % lanes);
+        batch = next_batch(per_pass, lanes);
         const uint32_t total = done += n;
         if (control.progress) {
           std::lock_guard<std::mutex> lock(progress_mutex);

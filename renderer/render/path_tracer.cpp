@@ -426,6 +426,14 @@ std::string punctual_without_nee_warning(const Scene& scene, const RenderSetting
          " nothing (no ray can hit a point, spot or directional light)";
 }
 
+uint32_t next_batch(double per_pass_ms, uint32_t lanes, double target_ms) {
+  const double per_pass = std::max(per_pass_ms, 1e-3);
+  uint32_t batch = uint32_t(std::clamp(target_ms / per_pass, 1.0, 1024.0));
+  lanes = std::max(lanes, 1u);
+  if (batch >= lanes) return batch - batch % lanes;
+  return per_pass * lanes <= 1000.0 ? lanes : batch;
+}
+
 RenderResult render(const VulkanContext& ctx, const Scene& scene, const RenderSettings& settings,
                     const RenderControl& control) {
   PathTracer tracer(ctx, scene, settings);
@@ -463,8 +471,7 @@ RenderResult render(const VulkanContext& ctx, const Scene& scene, const RenderSe
     done += n;
     if (control.progress) control.progress(done, settings.spp);
     double per_pass = batch_ms / n;
-    batch = uint32_t(std::clamp(250.0 / std::max(per_pass, 1e-3), 1.0, 1024.0));
-    batch = std::max(lanes, batch - batch % lanes);  // whole rounds of every lane
+    batch = next_batch(per_pass, lanes);
     if (control.checkpoint && done < settings.spp && ms_since(last_checkpoint) >= 1000.0 * control.checkpoint_seconds) {
       control.checkpoint(tracer.read_accumulation(), done, tracer.scene_hash());
       last_checkpoint = Clock::now();

@@ -144,6 +144,14 @@ std::string punctual_without_nee_warning(const Scene& scene, const RenderSetting
 // of `r` are left as they are).
 void resolve_accumulation(const Accumulation& acc, RenderResult& r);
 
+// The next batch's samples, after one whose passes took `per_pass_ms` each:
+// as many as take about `target_ms` (at least 1, at most 1024), in whole
+// rounds of a pixel's `lanes` (PathTracer::full_lanes), so that no dispatch
+// ends with lanes idle (optimisation log 42); a batch too small for one
+// round grows to one while that takes at most a second, so that a stop
+// still waits no longer than that.
+uint32_t next_batch(double per_pass_ms, uint32_t lanes, double target_ms = 250.0);
+
 // What a caller may do to a render while it runs.
 struct RenderControl {
   ProgressFn progress;                      // after each batch of passes

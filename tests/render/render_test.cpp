@@ -118,6 +118,21 @@ TEST_F(RenderTest, BatchingAndSampleLanesDoNotChangeTheResult) {
   }
 }
 
+// Batches of about a quarter second, in whole rounds of a pixel's lanes;
+// one round at least while it takes at most a second (a prompt stop).
+TEST(NextBatch, TakesWholeRoundsOfLanesAndKeepsAStopPrompt) {
+  EXPECT_EQ(next_batch(1.0, 1), 250u);
+  EXPECT_EQ(next_batch(1.0, 8), 248u);   // 250 to whole rounds of 8
+  EXPECT_EQ(next_batch(1.0, 4), 248u);
+  EXPECT_EQ(next_batch(0.0, 8), 1024u);  // at most 1024
+  EXPECT_EQ(next_batch(50.0, 8), 8u);    // 5 samples: one round of 8 takes 400 ms
+  EXPECT_EQ(next_batch(125.0, 8), 8u);   // 2: one round takes exactly a second
+  EXPECT_EQ(next_batch(200.0, 8), 1u);   // 1: a round would take 1.6 s
+  EXPECT_EQ(next_batch(300.0, 1), 1u);
+  EXPECT_EQ(next_batch(10.0, 4, 1000.0), 100u);  // another target (mpirun --batch-ms)
+  EXPECT_EQ(next_batch(1.0, 0), 250u);   // no lanes counts as one
+}
+
 // The seam of the preview window: a tracer made once renders another camera,
 // bounce limit and seed per pass, and gives exactly the image of a tracer
 // made for them from the start. A move rebuilds nothing.
