@@ -125,6 +125,23 @@ inline Material emitter(glm::vec3 radiance) {
   return m;
 }
 
+// Punctual lights built in tests (white; the other fields as Light's defaults).
+inline Light point_light(glm::vec3 position, float intensity = 1.0f) {
+  Light l;
+  l.type = LightType::Point;
+  l.position = position;
+  l.intensity = intensity;
+  return l;
+}
+// `direction`: where the light travels (unit).
+inline Light directional_light(glm::vec3 direction, float intensity = 1.0f) {
+  Light l;
+  l.type = LightType::Directional;
+  l.direction = direction;
+  l.intensity = intensity;
+  return l;
+}
+
 // Meshes built in tests (object space, counter-clockwise = front).
 
 // A closed icosphere of radius 1 about the origin: the icosahedron (its

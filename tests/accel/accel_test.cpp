@@ -158,14 +158,7 @@ Scene big_lists_and_lights() {
   m.indices.insert(m.indices.end(), {first, first + 1, first + 2});
   m.materials.push_back(0);
   test::place(s, m, glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0.3f, 0.0f)), 1.5708f, glm::vec3(0, 1, 0)));
-  Light point;
-  point.position = {0.0f, 6.0f, 2.0f};
-  point.intensity = 40.0f;
-  Light sun;
-  sun.type = LightType::Directional;
-  sun.direction = {0.0f, 1.0f, 0.0f};
-  sun.intensity = 3.0f;
-  s.lights = {point, sun};
+  s.lights = {test::point_light({0.0f, 6.0f, 2.0f}, 40.0f), test::directional_light({0.0f, 1.0f, 0.0f}, 3.0f)};
   return s;
 }
 

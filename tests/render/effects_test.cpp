@@ -57,15 +57,10 @@ const EffectsCase CASES[] = {
      [] {
        Scene s = family(test::pbr(0.8f, 0.0f, 0.5f));
        s.sky.type = SkyType::None;
-       Light point;
-       point.position = {1, 2, 1};
        Light spot;
        spot.type = LightType::Spot;
        spot.position = {0, 3, 0};
-       Light sun;
-       sun.type = LightType::Directional;
-       sun.direction = glm::normalize(glm::vec3(1, -1, 0));
-       s.lights = {point, spot, sun};
+       s.lights = {test::point_light({1, 2, 1}), spot, test::directional_light(glm::normalize(glm::vec3(1, -1, 0)))};
        return s;
      },
      {"pbr", "punctual", "sky_none", "sky_black"}},
@@ -78,9 +73,7 @@ const EffectsCase CASES[] = {
        s.materials.push_back(emitter({40, 30, 20}));
        s.spheres[2].material = 1;
        s.spheres.push_back({{0, 2, 0}, 0.1f, 2});
-       Light point;
-       point.position = {1, 2, 1};
-       s.lights = {point};
+       s.lights = {test::point_light({1, 2, 1})};
        return s;
      },
      {"lambertian", "emissive", "surface_emission", "sphere_lights", "punctual", "sky_gradient"}},

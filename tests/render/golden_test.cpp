@@ -105,9 +105,6 @@ Scene lights() {
   s.materials.push_back(glowing);
   s.spheres.push_back({{-0.6f, 1.6f, 0.8f}, 0.1f, 2});
   s.spheres.push_back({{-1.4f, 0.3f, 0.4f}, 0.3f, 3});
-  Light point;
-  point.position = {1.0f, 1.5f, 1.5f};
-  point.intensity = 2;
   Light spot;
   spot.type = LightType::Spot;
   spot.position = {0.5f, 3, 0};
@@ -116,11 +113,8 @@ Scene lights() {
   spot.intensity = 10;
   spot.inner_cone = 10;
   spot.outer_cone = 20;
-  Light sun;
-  sun.type = LightType::Directional;
-  sun.direction = glm::normalize(glm::vec3(1, -2, -1));
-  sun.intensity = 0.3f;
-  s.lights = {point, spot, sun};
+  s.lights = {test::point_light({1.0f, 1.5f, 1.5f}, 2), spot,
+              test::directional_light(glm::normalize(glm::vec3(1, -2, -1)), 0.3f)};
   return s;
 }
 
