@@ -141,6 +141,7 @@ using test::emitter;
 using test::glass;
 using test::lambertian;
 using test::metal;
+using test::point_light;
 
 Scene black_sky(Scene s) {
   s.sky.type = SkyType::None;
@@ -1392,13 +1393,6 @@ Scene punctual_scene(const Light& light) {
   return s;
 }
 
-Light point_light(glm::vec3 position, float intensity) {
-  Light l;
-  l.position = position;
-  l.intensity = intensity;
-  return l;
-}
-
 // What the camera ray through image point (x, y) sees of the ground lit by
 // `l` alone (in double): albedo / pi x the irradiance, E = I cos(theta) / r^2
 // for a point light (times KHR_lights_punctual's spot falloff), E cos(theta)
@@ -1760,11 +1754,7 @@ const HardCase CASES[] = {
        punctual_analytic(r, l);
      }},
     {"directional_light_analytic", [](CaseRun& r) {
-       Light l;
-       l.type = LightType::Directional;
-       l.direction = glm::normalize(glm::vec3(1, -2, 0.5f));
-       l.intensity = 2;
-       punctual_analytic(r, l);
+       punctual_analytic(r, test::directional_light(glm::normalize(glm::vec3(1, -2, 0.5f)), 2));
      }},
     {"point_light_behind_surface", punctual_behind},
     {"sphere_light_r0.05_nee_on_off", [](CaseRun& r) { nee_on_off(r, small_sphere_light(), 512, 4, 0.5); }},
