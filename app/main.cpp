@@ -379,6 +379,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
   // Under mpirun only rank 0 reports and writes; the others render their share.
   const bool under_mpi = mpi::active();
   if (under_mpi) {
+    if (settings.walk_stats) throw InputError("--walk-stats counts the walks of one process: run it without MPI");
     if (outputs.empty() && state.empty() && !scene_opts.dump_scene.empty())
       throw InputError("--dump-scene: under MPI give --out or --state too (there is nothing to render)");
     if (mpi::rank() != 0) {
@@ -650,11 +651,13 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
     }
     if (render_opts.pipeline_stats) {
       json stats = json::object();
-      for (size_t d = 0; d < shares.size(); ++d)
-      std::printf("device %zu  %s: %u spp, %.1f ms of passes, %.1f ms set-up\n", d, shares[d].name.c_str(),
-                  shares[d].samples, shares[d].device_ms, shares[d].setup_ms);
-    for (const auto& [name, value] : result.pipeline_statistics) stats[name] = value;
+      for (const auto& [name, value] : result.pipeline_statistics) stats[name] = value;
       j["pipeline_statistics"] = stats;
+    }
+    if (result.walk.counted) {
+      const WalkStats& w = result.walk;
+      j["walk"] = {{"queries", w.queries}, {"nodes", w.nodes},           {"leaves", w.leaves},
+                   {"boxes", w.boxes},     {"primitives", w.primitives}, {"instances", w.instances}};
     }
     std::cout << j.dump(2) << "\n";
   } else if (!quiet) {
@@ -690,6 +693,14 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
                   gathered.reduce.merge_wait_ms, gathered.reduce.merge_ms, gathered.reduce.send_ms);
     for (const auto& [name, value] : result.pipeline_statistics)
       std::printf("pipeline  %s: %s\n", name.c_str(), value.c_str());
+    if (result.walk.counted) {
+      const WalkStats& w = result.walk;
+      const double q = w.queries ? double(w.queries) : 1.0;
+      std::printf("walk      %llu queries; per query %.2f nodes, %.2f leaves, %.2f box tests, %.2f primitive "
+                  "tests, %.2f mesh instances (--walk-stats: the passes' times include the counting)\n",
+                  (unsigned long long)w.queries, double(w.nodes) / q, double(w.leaves) / q, double(w.boxes) / q,
+                  double(w.primitives) / q, double(w.instances) / q);
+    }
     if (result.nonfinite_samples)
       std::printf("warning   %llu NaN/Inf samples were rejected\n", (unsigned long long)result.nonfinite_samples);
     for (const auto& o : outputs) std::printf("wrote     %s\n", o.c_str());
@@ -833,6 +844,9 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--resume", resume_prefix,
                          "Continue the render saved as PREFIX (--state) up to --spp, with the same sample indices");
   render_cmd->add_flag("--quiet,-q", quiet, "No progress or summary");
+  render_cmd->add_flag("--walk-stats", render_opts.settings.walk_stats,
+                       "Count what the walks do: queries, nodes expanded, leaves, box and primitive tests (the "
+                       "summary's \"walk\" line, or \"walk\" in --json); the same image, slower passes");
   double batch_ms = 0;
   render_cmd->add_option("--batch-ms", batch_ms,
                          "Under MPI: each rank asks rank 0 for the samples that take about MS milliseconds at its "

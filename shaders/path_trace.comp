@@ -292,6 +292,27 @@ void add_sample(vec3 value, uint segments, inout vec4 acc, inout vec3 comp, inou
 // Samples that lanes traced, for their pixel's first lane to add in order.
 shared vec4 lane_sample[WORKGROUP_SIZE * WORKGROUP_SIZE];
 
+// --walk-stats: adds n to 64-bit count k of RenderStats.walk (shared.h), kept
+// as two words: the low word's atomic add returns what it held before, so
+// the one add that wraps it knows, and carries one into the high word.
+void add_walk_count(uint k, uint n) {
+  if (n == 0u) return;
+  uint before = atomicAdd(stats.walk[2u * k], n);
+  if (before + n < before) atomicAdd(stats.walk[2u * k + 1u], 1u);
+}
+
+// Adds this invocation's walk counts (accel/closest_hit.glsl) to the stats
+// buffer and starts them again from 0.
+void flush_walk_counts() {
+  add_walk_count(WALK_QUERIES, walk_queries);
+  add_walk_count(WALK_NODES, walk_nodes);
+  add_walk_count(WALK_LEAVES, walk_leaves);
+  add_walk_count(WALK_BOXES, walk_boxes);
+  add_walk_count(WALK_PRIMITIVES, walk_primitives);
+  add_walk_count(WALK_INSTANCES, walk_instances);
+  walk_queries = walk_nodes = walk_leaves = walk_boxes = walk_primitives = walk_instances = 0u;
+}
+
 // A dispatch adds samples sample_index .. + sample_count - 1 to every pixel.
 // Each pixel's state is read once, takes the samples in sample-index order
 // and is written once: the same arithmetic in the same order however the
@@ -325,6 +346,11 @@ void main() {
     if (in_image && s < pass.sample_count && ANY_LIGHT) {
       const uint sample_index = pass.sample_index + s;
       value = trace_path(camera_ray(pixel, index, sample_index), index, sample_index, segments);
+      // Each count stays below 2^32 in the invocation's own word: added to
+      // the buffer once one passes 2^31 (a path adds fewer than 2^31 to each).
+      if (WALK_STATS && max(max(max(walk_queries, walk_nodes), max(walk_leaves, walk_boxes)),
+                            max(walk_primitives, walk_instances)) >= 0x80000000u)
+        flush_walk_counts();
     }
     if (!SAMPLE_LANES || lanes == 1u) {
       if (in_image) add_sample(value, segments, acc, comp, sq);
@@ -340,6 +366,7 @@ void main() {
     }
     barrier();
   }
+  if (WALK_STATS) flush_walk_counts();
   if (in_image && lane == 0u) {
     accum_comp[index].rgb = comp;
     accum_sum[index] = acc;

@@ -123,6 +123,7 @@ void PathTracer::State::create_pipeline() {
                            {gpu::SPEC_SAMPLE_LANES, s.sample_lanes_enabled()},
                            {gpu::SPEC_OCTANT_CULLING, s.settings.octant_culling},
                            {gpu::SPEC_BIG_LEAF, s.big_leaf(f)},
+                           {gpu::SPEC_WALK_STATS, settings.walk_stats},
                            {gpu::SPEC_SKY, sky},
                            {gpu::SPEC_ANY_LIGHT, f.any_light},
                            {gpu::SPEC_SPHERES, f.spheres},
@@ -383,6 +384,34 @@ uint64_t PathTracer::nonfinite_samples() {
   return stats.nonfinite_samples;
 }
 
+WalkStats& WalkStats::operator+=(const WalkStats& o) {
+  counted = counted || o.counted;
+  queries += o.queries;
+  nodes += o.nodes;
+  leaves += o.leaves;
+  boxes += o.boxes;
+  primitives += o.primitives;
+  instances += o.instances;
+  return *this;
+}
+
+WalkStats PathTracer::walk_stats() {
+  State& s = *state_;
+  WalkStats w;
+  if (!s.settings.walk_stats) return w;
+  gpu::RenderStats stats{};
+  download_buffer(s.ctx, s.stats, &stats, sizeof(stats));
+  const auto count = [&](uint32_t k) { return uint64_t(stats.walk[2 * k]) | uint64_t(stats.walk[2 * k + 1]) << 32; };
+  w.counted = true;
+  w.queries = count(gpu::WALK_QUERIES);
+  w.nodes = count(gpu::WALK_NODES);
+  w.leaves = count(gpu::WALK_LEAVES);
+  w.boxes = count(gpu::WALK_BOXES);
+  w.primitives = count(gpu::WALK_PRIMITIVES);
+  w.instances = count(gpu::WALK_INSTANCES);
+  return w;
+}
+
 RenderResult PathTracer::read_result() {
   auto start = Clock::now();
   const Accumulation acc = read_accumulation();
@@ -398,6 +427,7 @@ RenderResult PathTracer::read_result(const Accumulation& acc) {
   RenderResult r;
   resolve_accumulation(acc, r);
   r.nonfinite_samples = nonfinite_samples();
+  r.walk = walk_stats();
   s.timings.readback_ms = ms_since(start);
   r.timings = s.timings;
   r.octree = s.scene.octree;

@@ -42,6 +42,20 @@ struct RenderTimings {
 };
 
 // The accumulation state: what a render *is*.
+// What the walks did over a render's passes (RenderSettings::walk_stats;
+// shaders/shared/shared.h WALK_*): all zeros when not counted. Every walk
+// counts: camera rays, bounces, shadow rays, the meshes' own trees.
+struct WalkStats {
+  bool counted = false;
+  uint64_t queries = 0;     // closest-hit and shadow-ray queries of the scene
+  uint64_t nodes = 0;       // internal nodes expanded (their children's boxes tested)
+  uint64_t leaves = 0;      // leaves (and big lists) whose primitives were tested
+  uint64_t boxes = 0;       // ray/box tests
+  uint64_t primitives = 0;  // ray/primitive tests (spheres and triangles)
+  uint64_t instances = 0;   // mesh instances entered (their trees walked)
+  WalkStats& operator+=(const WalkStats& o);
+};
+
 struct RenderResult {
   Image mean;              // linear mean radiance per pixel
   Image variance_of_mean;  // per pixel and channel: sample variance / count
@@ -49,6 +63,7 @@ struct RenderResult {
   uint32_t min_samples = 0;       // smallest per-pixel sample count
   uint64_t nonfinite_samples = 0; // NaN/Inf samples rejected (0 for a clean render)
   uint64_t rays = 0;              // ray segments traced (camera rays and bounces)
+  WalkStats walk;                 // with RenderSettings::walk_stats
   RenderTimings timings;
   OctreeStats octree;             // of the octree or the BVH; zeros for Accel::Brute
   SceneFeatures features;         // what the pipeline was specialised to
@@ -110,6 +125,9 @@ class PathTracer {
   RenderResult read_result(const Accumulation& acc);
   // NaN/Inf samples rejected since the last reset.
   uint64_t nonfinite_samples();
+  // What the walks counted since the last reset (zeros and counted = false
+  // without RenderSettings::walk_stats).
+  WalkStats walk_stats();
   // The raw accumulation buffers, and a state to continue from (a
   // checkpoint; InputError if its size is not the tracer's).
   Accumulation read_accumulation();

@@ -72,6 +72,11 @@ struct RenderSettings {
   // (llvmpipe compiles the leaf's test, a mesh's whole walk, once instead
   // of twice: log 39).
   BigList big_list = BigList::Auto;
+  // Count what the walks do (RenderResult::walk): queries, nodes expanded,
+  // leaves, box and primitive tests, mesh instances entered. The image is the
+  // same; the counting (atomics) costs time, so timings with it on are not
+  // the renderer's. Off, it compiles out of the pipeline.
+  bool walk_stats = false;
 };
 
 // Checks sizes and counts; throws SettingError naming the setting

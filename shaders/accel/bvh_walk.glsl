@@ -16,6 +16,7 @@ uvec2 bvh_stack[BVH_STACK_SIZE];  // (node, bits of its entry distance), as the 
 uint bvh_sp = 0;
 float bvh_t;
 GpuOctreeNode bvh_root = node_at(root_index);
+if (WALK_STATS) ++walk_boxes;
 if (hit_box(bvh_root.lo, bvh_root.hi, bvh_ray, hit.t, bvh_t)) {
   bvh_stack[0] = uvec2(root_index, floatBitsToUint(bvh_t));
   bvh_sp = 1;
@@ -26,9 +27,14 @@ while (bvh_sp > 0) {
   if (uintBitsToFloat(bvh_top.y) > hit.t * WIDEN) continue;
   GpuOctreeNode node = node_at(bvh_top.x);
   if (node.count_or_mask < OCTREE_INTERNAL) {
+    if (WALK_STATS && node.count_or_mask > 0u) ++walk_leaves;
     for (uint k = node.first; k < node.first + node.count_or_mask; ++k)
       OCTREE_LEAF(ref_at(k));
     continue;
+  }
+  if (WALK_STATS) {
+    ++walk_nodes;
+    walk_boxes += 2u;
   }
   GpuOctreeNode left = node_at(node.first);
   GpuOctreeNode right = node_at(node.first + 1u);

@@ -33,6 +33,13 @@ struct Hit {
 
 const uint NO_PRIM = 0xffffffffu;
 
+// --walk-stats (RenderStats.walk, shared.h WALK_*): this invocation's counts
+// of what the walks did since path_trace.comp last added them to the stats
+// buffer; with WALK_STATS off (the default) the counting compiles out.
+layout(constant_id = SPEC_WALK_STATS) const bool WALK_STATS = false;
+uint walk_queries = 0u, walk_nodes = 0u, walk_leaves = 0u, walk_boxes = 0u, walk_primitives = 0u,
+     walk_instances = 0u;
+
 // Which instance a mesh walk is in: its index, the global id of its mesh's
 // triangle 0, and where the mesh's triangles start.
 struct InstanceRef {
@@ -53,6 +60,7 @@ float widened(float t) { return uintBitsToFloat(floatBitsToUint(t) + 1u); }
 // `from_prim`: the primitive the ray was spawned on (NO_PRIM for camera
 // rays); `into_from`: whether the ray enters it (see intersect_sphere).
 void test_sphere(Ray ray, uint i, uint from_prim, bool into_from, inout Hit hit) {
+  if (WALK_STATS) ++walk_primitives;
   bool self = i == from_prim;
   GpuSphere s = sphere_at(i);
   float t = intersect_sphere(ray, s.center, s.radius, widened(hit.t), self && into_from, self && !into_from);
@@ -101,6 +109,7 @@ bool alpha_cut(GpuTriangle tri, uint i, uint id, vec3 b) {
 void test_instance_triangle(Ray oray, RayShear osh, InstanceRef ir, uint local, uint from_prim, inout Hit hit) {
   uint id = ir.first_id + local;
   uint i = ir.first_triangle + local;
+  if (WALK_STATS) ++walk_primitives;
   GpuTriangle tri = triangle_at(i);
   vec3 b;
   float t = intersect_triangle(oray.origin, osh, tri, widened(hit.t), id == from_prim, b);
@@ -147,10 +156,12 @@ void test_instance(Ray ray, uint inst, uint from_prim, inout Hit hit) {
   Ray oray = to_object(g, ray);
   RayShear osh = ray_shear(oray.dir);
   InstanceRef ir = InstanceRef(inst, g.first_id, m.first_triangle);
+  if (WALK_STATS) ++walk_instances;
   if (ACCEL == ACCEL_BRUTE) {
     for (uint k = 0; k < m.triangle_count; ++k) test_instance_triangle(oray, osh, ir, k, from_prim, hit);
     return;
   }
+  if (WALK_STATS && !BIG_LEAF && m.big_count > 0u) ++walk_leaves;
   if (!BIG_LEAF)
     for (uint j = 0; j < m.big_count; ++j)
       test_instance_triangle(oray, osh, ir, ref_at(m.first_ref + j), from_prim, hit);
@@ -180,6 +191,7 @@ bool closest_hit_within(Ray ray, uint from_prim, bool into_from, float t_max, ou
   hit.prim = NO_PRIM;
   hit.kind = PRIM_SPHERE;
   hit.inst = 0u;
+  if (WALK_STATS) ++walk_queries;
   if (ACCEL == ACCEL_BRUTE) {
     if (HAS_SPHERES)
       for (uint i = 0; i < scene.sphere_count; ++i) test_sphere(ray, i, from_prim, into_from, hit);
@@ -190,6 +202,7 @@ bool closest_hit_within(Ray ray, uint from_prim, bool into_from, float t_max, ou
 
   // Primitives too large for the octree's cells (refs[0, big_count)) are
   // tested first: here, or as the walk's first leaf (BIG_LEAF).
+  if (WALK_STATS && !BIG_LEAF && scene.big_count > 0u) ++walk_leaves;
   if (!BIG_LEAF)
     for (uint i = 0; i < scene.big_count; ++i) test_primitive(ray, ref_at(i), from_prim, into_from, hit);
   RayShear no_shear;
@@ -234,6 +247,7 @@ bool occluded(Ray ray, uint from_prim, bool into_from, float t_max, uint skip) {
   hit.kind = PRIM_SPHERE;
   hit.inst = 0u;
   shadow_skip = skip;
+  if (WALK_STATS) ++walk_queries;
   if (ACCEL == ACCEL_BRUTE) {
     if (HAS_SPHERES)
       for (uint i = 0; i < scene.sphere_count && hit.prim == NO_PRIM; ++i)
@@ -243,6 +257,7 @@ bool occluded(Ray ray, uint from_prim, bool into_from, float t_max, uint skip) {
     return hit.prim != NO_PRIM;
   }
   if (!BIG_LEAF) {
+    if (WALK_STATS && scene.big_count > 0u) ++walk_leaves;
     for (uint i = 0; i < scene.big_count && hit.prim == NO_PRIM; ++i)
       test_primitive_any(ray, ref_at(i), from_prim, into_from, hit);
     if (hit.prim != NO_PRIM) return true;

@@ -16,6 +16,7 @@ while (sp > 0) {
     leaf_end = node.first + node.count_or_mask;
     break;
   }
+  if (WALK_STATS) ++walk_nodes;
   uint present = node.count_or_mask & 0xffu;  // children's octants; child index = rank in it
   uint mask = present;
   // Octant culling: the build split this node at the middle of its own box
@@ -64,6 +65,7 @@ while (sp > 0) {
     uint octant = j ^ sign_mask;
     uint child = node.first + bitCount(present & ((1u << octant) - 1u));
     GpuOctreeNode c = node_at(child);
+    if (WALK_STATS) ++walk_boxes;
     if (hit_box(c.lo, c.hi, sr, hit.t, t_entry)) {
       stack[sp] = uvec2(child, floatBitsToUint(t_entry));
       ++sp;

@@ -27,6 +27,7 @@ void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, Ra
   uint sp = 0;
   float t_entry;
   GpuOctreeNode root = node_at(root_index);
+  if (WALK_STATS) ++walk_boxes;
   if (hit_box(root.lo, root.hi, sr, hit.t, t_entry)) {
     stack[0] = uvec2(root_index, floatBitsToUint(t_entry));
     sp = 1;
@@ -50,6 +51,7 @@ void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, Ra
   if (BIG_LEAF) {
     uint leaf_first = big_first, leaf_end = big_end;
     while (true) {
+      if (WALK_STATS && leaf_end > leaf_first) ++walk_leaves;
       for (uint k = leaf_first; k < leaf_end; ++k) OCTREE_LEAF(ref_at(k));
       if (sp == 0u) break;
       leaf_first = 0u;
@@ -60,6 +62,7 @@ void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, Ra
     while (sp > 0) {
       uint leaf_first = 0u, leaf_end = 0u;
 #include "accel/octree_descend.glsl"
+      if (WALK_STATS && leaf_end > leaf_first) ++walk_leaves;
       for (uint k = leaf_first; k < leaf_end; ++k) OCTREE_LEAF(ref_at(k));
     }
   }

@@ -209,6 +209,9 @@ OCT_CONST(uint, SPEC_OCTANT_CULLING, 25u);
 // callers in a loop of their own (RenderSettings::big_list; the image is the
 // same either way).
 OCT_CONST(uint, SPEC_BIG_LEAF, 26u);
+// Whether the walks count what they do (RenderSettings::walk_stats,
+// RenderStats.walk); off, the counting compiles out.
+OCT_CONST(uint, SPEC_WALK_STATS, 28u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 255u);
 
@@ -482,12 +485,23 @@ struct GpuOctreeNode {
 };
 OCT_CONST(uint, OCTREE_INTERNAL, 0x80000000u);
 
-// 16 bytes. Counters the passes update with atomics.
+// What the walks counted with --walk-stats (SPEC_WALK_STATS), each a 64-bit
+// count in RenderStats.walk as words [2k] (low) and [2k + 1] (high):
+OCT_CONST(uint, WALK_QUERIES, 0u);    // walks of the scene: closest-hit and shadow-ray queries
+OCT_CONST(uint, WALK_NODES, 1u);      // internal nodes expanded (their children's boxes tested)
+OCT_CONST(uint, WALK_LEAVES, 2u);     // leaves (and big lists) whose primitives were tested
+OCT_CONST(uint, WALK_BOXES, 3u);      // ray/box tests
+OCT_CONST(uint, WALK_PRIMITIVES, 4u); // ray/primitive tests (spheres, triangles)
+OCT_CONST(uint, WALK_INSTANCES, 5u);  // mesh instances entered (their own trees walked)
+OCT_CONST(uint, WALK_COUNTERS, 6u);
+
+// 64 bytes. Counters the passes update with atomics.
 struct RenderStats {
   uint nonfinite_samples;  // samples that were NaN or Inf and were not added
   uint pad0;
   uint pad1;
   uint pad2;
+  uint walk[12];  // WALK_COUNTERS 64-bit counts (zeros without --walk-stats)
 };
 
 // 64 bytes. What the passes need of the scene besides its arrays; uploaded

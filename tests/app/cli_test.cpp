@@ -348,10 +348,18 @@ TEST(Cli, TwoDevicesRenderTheSamplesOfOne) {
   const std::string args = "render --size 40x24 --spheres 60 --spp 12 ";
   const std::string one = tmp("one_device.pfm"), two = tmp("two_devices.pfm");
   ASSERT_EQ(run_octrace(args + "--quiet --device 0 --out " + one).code, 0);
-  RunResult r = run_octrace(args + "--json --device 0,0 --out " + two);
+  RunResult r = run_octrace(args + "--json --pipeline-stats --walk-stats --device 0,0 --out " + two);
   ASSERT_EQ(r.code, 0) << r.output;
+  // stdout is the JSON alone (no per-device summary lines before it).
+  EXPECT_EQ(r.output.find("device 0 "), std::string::npos) << r.output;
   const nlohmann::json j = nlohmann::json::parse(r.output.substr(r.output.find('{')));
   ASSERT_EQ(j.at("devices").size(), 2u);
+  // The devices' walk counts add up to one device's (the same samples, walked the same way).
+  RunResult one_json = run_octrace(args + "--json --walk-stats --device 0 --out " + tmp("one_device_again.pfm"));
+  ASSERT_EQ(one_json.code, 0) << one_json.output;
+  const nlohmann::json k = nlohmann::json::parse(one_json.output.substr(one_json.output.find('{')));
+  EXPECT_EQ(j.at("walk"), k.at("walk"));
+  EXPECT_GT(k["walk"]["queries"].get<uint64_t>(), 0u);
   EXPECT_EQ(j["devices"][0]["samples"].get<uint32_t>() + j["devices"][1]["samples"].get<uint32_t>(), 12u);
   EXPECT_EQ(j["samples"].get<uint32_t>(), 12u);
   octrace::Image a = octrace::read_image(one), b = octrace::read_image(two);

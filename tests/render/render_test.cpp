@@ -233,6 +233,57 @@ TEST_F(RenderTest, RaysCountEverySegment) {
   EXPECT_EQ(render_small(inside, 3, 1).rays, paths);
 }
 
+// --walk-stats counts what the walks do and changes no pixel. Brute force at
+// depth 1 tests every sphere once per query, one query per camera ray; the
+// BVH tests the root's box and two children's boxes per internal node; the
+// octree tests the rtiow ground (its big list) as a leaf of every query; shadow
+// rays are queries too; without the setting nothing is counted.
+TEST_F(RenderTest, WalkStatsCountTheWalksAndChangeNoPixel) {
+  Scene scene = make_rtiow_scene({40, 0.2f, 3});
+  RenderSettings s;
+  s.width = 24;
+  s.height = 16;
+  s.spp = 2;
+  s.bounce_limit = 1;
+  s.accel = Accel::Brute;
+  s.walk_stats = true;
+  const uint64_t camera_rays = 24 * 16 * 2;
+  RenderResult r = render(test::shared_context(), scene, s);
+  ASSERT_TRUE(r.walk.counted);
+  EXPECT_EQ(r.walk.queries, camera_rays);
+  EXPECT_EQ(r.walk.primitives, camera_rays * scene.spheres.size());
+  EXPECT_EQ(r.walk.nodes + r.walk.leaves + r.walk.boxes + r.walk.instances, 0u);
+
+  s.bounce_limit = 8;
+  for (Accel accel : {Accel::Brute, Accel::Octree, Accel::Bvh}) {
+    SCOPED_TRACE(accel_name(accel));
+    s.accel = accel;
+    s.walk_stats = false;
+    const RenderResult plain = render(test::shared_context(), scene, s);
+    EXPECT_FALSE(plain.walk.counted);
+    EXPECT_EQ(plain.walk.queries, 0u);
+    s.walk_stats = true;
+    const RenderResult counted = render(test::shared_context(), scene, s);
+    EXPECT_EQ(std::memcmp(plain.mean.rgb.data(), counted.mean.rgb.data(), plain.mean.rgb.size() * sizeof(float)), 0);
+    const WalkStats& w = counted.walk;
+    EXPECT_EQ(w.queries, counted.rays);  // no lights: one query per segment
+    if (accel == Accel::Bvh) EXPECT_EQ(w.boxes, w.queries + 2 * w.nodes);
+    if (accel == Accel::Octree) {
+      EXPECT_GE(w.leaves, w.queries);  // the ground, in the big list
+      EXPECT_GE(w.boxes, w.queries + w.nodes);  // the root's, and one child's at least per node
+    }
+    if (accel != Accel::Brute) {
+      EXPECT_GT(w.nodes, 0u);
+      EXPECT_LT(w.primitives, w.queries * scene.spheres.size() / 4);  // the structures spare most tests
+    }
+  }
+
+  scene.lights = {test::point_light({0.0f, 4.0f, 0.0f}, 10.0f)};
+  s.accel = Accel::Octree;
+  const RenderResult lit = render(test::shared_context(), scene, s);
+  EXPECT_GT(lit.walk.queries, lit.rays);  // and shadow rays
+}
+
 // Instancing changes what is stored, not what is seen: one mesh placed nine
 // times renders as nine copies of it, each placed once. (The copies are
 // baked into world space and the shared ones tested in object space, so the

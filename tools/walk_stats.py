@@ -1,0 +1,83 @@
+#!/usr/bin/env python3
+"""What the walks do, per query, for scenes and acceleration structures side
+by side: `octrace render --walk-stats --json` for each scene and accel, as a
+table of nodes expanded, leaves, box tests and primitive tests per query
+(a closest-hit or shadow-ray query of the scene; every level of the walk
+counts, the meshes' own trees included).
+
+  tools/walk_stats.py --octrace BIN [--accel octree,bvh] [--render "ARGS"] \
+      --scene "LABEL=SCENE FLAGS" ... [--out FILE]
+
+--render holds the flags every render shares (size, spp, depth, device);
+each --scene a label and that scene's own flags, e.g.
+`--scene "488 spheres=--spheres 488 --radius 0.1"` (the label ends at the first
+`=`) or
+`--scene "balloon=--scene balloon/scene.gltf"`. The counts do not depend on
+the device (the same walk in the same order), only on the scene, the
+structure, the image and the samples. Prints the table; with --out also
+writes it as markdown, with the date, the device, the checkout's commit and
+the command. The passes' times are not reported: counting costs time.
+"""
+import argparse
+import datetime
+import json
+import os
+import shlex
+import subprocess
+import sys
+import tempfile
+
+
+def render(binary, args, out_dir):
+    cmd = [binary, "render"] + args + ["--walk-stats", "--json", "-q", "--out", os.path.join(out_dir, "walk.pfm")]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        sys.exit(f"walk_stats.py: {' '.join(shlex.quote(c) for c in cmd)} failed with exit {p.returncode}: "
+                 f"{p.stderr.strip()[-500:]}")
+    return json.loads(p.stdout)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--octrace", required=True, help="the octrace binary")
+    ap.add_argument("--accel", default="octree,bvh", help="comma-separated structures (default octree,bvh)")
+    ap.add_argument("--render", default="", help="flags every render shares")
+    ap.add_argument("--scene", action="append", required=True, help="LABEL=FLAGS of one scene (repeatable)")
+    ap.add_argument("--out", help="also write the table as markdown here")
+    a = ap.parse_args()
+
+    shared = shlex.split(a.render)
+    accels = [x for x in a.accel.split(",") if x]
+    header = ("| scene | accel | queries | nodes | leaves | box tests | primitive tests | primitives per leaf "
+              "| mesh instances |")
+    rows = [header, "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
+    device = ""
+    for spec in a.scene:
+        label, sep, flags = spec.partition("=")
+        if not sep or not label:
+            sys.exit(f"walk_stats.py: --scene '{spec}' is not LABEL=FLAGS")
+        for accel in accels:
+            with tempfile.TemporaryDirectory() as out_dir:
+                j = render(a.octrace, shared + shlex.split(flags) + ["--accel", accel], out_dir)
+            device = j["device"]["name"]
+            w = j["walk"]
+            q = w["queries"] or 1
+            per_leaf = w["primitives"] / w["leaves"] if w["leaves"] else float("nan")
+            rows.append(f"| {label} | {accel} | {w['queries']} | {w['nodes'] / q:.2f} | {w['leaves'] / q:.2f} "
+                        f"| {w['boxes'] / q:.2f} | {w['primitives'] / q:.2f} | {per_leaf:.2f} "
+                        f"| {w['instances'] / q:.2f} |")
+            print(rows[-1], flush=True)
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
+                            cwd=os.path.dirname(os.path.abspath(__file__))).stdout.strip() or "unknown commit"
+    if a.out:
+        now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+        with open(a.out, "w") as f:
+            f.write(f"# Walk statistics per query\n\n{now}, {device}, checkout at {commit}.\n\n")
+            f.write("Command: `tools/walk_stats.py " + " ".join(shlex.quote(x) for x in sys.argv[1:]) + "`\n\n")
+            f.write("Per query (closest-hit and shadow-ray queries of the scene): internal nodes expanded, "
+                    "leaves (and big lists) tested, ray/box tests, ray/primitive tests, mesh instances entered.\n\n")
+            f.write("\n".join(rows) + "\n")
+
+
+if __name__ == "__main__":
+    main()
