@@ -12,9 +12,11 @@ counts, the meshes' own trees included).
 each --scene a label and that scene's own flags, e.g.
 `--scene "488 spheres=--spheres 488 --radius 0.1"` (the label ends at the first
 `=`) or
-`--scene "balloon=--scene balloon/scene.gltf"`. The counts do not depend on
-the device (the same walk in the same order), only on the scene, the
-structure, the image and the samples. Prints the table; with --out also
+`--scene "balloon=--scene balloon/scene.gltf"`. The counts follow from the
+scene, the structure, the image and the samples, hardly from the device:
+the walk is the same, and only paths that the devices' float rounding sends
+elsewhere differ (the H200 against lavapipe: queries within 0.1%, the
+figures per query equal to two decimals; docs/results/h200/walk_stats/). Prints the table; with --out also
 writes it as markdown, with the date, the device, the checkout's commit and
 the command. The passes' times are not reported: counting costs time.
 """

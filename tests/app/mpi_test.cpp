@@ -231,6 +231,13 @@ TEST(Mpi, ARankThatFailsFailsTheJobWithoutOutput) {
   EXPECT_NE(r.output.find("(2 of 2 ranks failed)"), std::string::npos) << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   EXPECT_FALSE(fs::exists(out));
+  // --walk-stats counts one process's walks.
+  const RunResult w = mpirun(2, good + "--walk-stats --out " + out);
+  EXPECT_EQ(w.code, 2) << w.output;
+  EXPECT_NE(w.output.find("--walk-stats counts the walks of one process: run it without MPI"), std::string::npos)
+      << w.output;
+  EXPECT_EQ(std::count(w.output.begin(), w.output.end(), '\n'), 1) << w.output;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 // SIGTERM to mpirun while the ranks render: mpirun passes it on, the ranks
