@@ -121,10 +121,10 @@ void main() {
     instances[i].to_object0 = vec4(o + 57, o + 58, o + 59, o + 60);
     instances[i].to_object1 = vec4(o + 61, o + 62, o + 63, o + 64);
     instances[i].to_object2 = vec4(o + 65, o + 66, o + 67, o + 68);
+    instances[i].lo = vec3(o + 71, o + 72, o + 73);
     instances[i].mesh = u + 69;
+    instances[i].hi = vec3(o + 74, o + 75, o + 76);
     instances[i].first_id = u + 70;
-    instances[i].pad0 = u + 71;
-    instances[i].pad1 = u + 72;
     meshes[i].root = u + 73;
     meshes[i].first_ref = u + 74;
     meshes[i].big_count = u + 75;

@@ -115,13 +115,13 @@ static_assert(offsetof(GpuLight, triangle) == 72);
 static_assert(offsetof(GpuLight, pad0) == 76);
 static_assert(uint32_t(LightType::Point) + 1 == LIGHT_POINT && uint32_t(LightType::Spot) + 1 == LIGHT_SPOT &&
               uint32_t(LightType::Directional) + 1 == LIGHT_DIRECTIONAL);
-static_assert(sizeof(GpuInstance) == 64);
+static_assert(sizeof(GpuInstance) == 80);
 static_assert(offsetof(GpuInstance, to_object1) == 16);
 static_assert(offsetof(GpuInstance, to_object2) == 32);
-static_assert(offsetof(GpuInstance, mesh) == 48);
-static_assert(offsetof(GpuInstance, first_id) == 52);
-static_assert(offsetof(GpuInstance, pad0) == 56);
-static_assert(offsetof(GpuInstance, pad1) == 60);
+static_assert(offsetof(GpuInstance, lo) == 48);
+static_assert(offsetof(GpuInstance, mesh) == 60);
+static_assert(offsetof(GpuInstance, hi) == 64);
+static_assert(offsetof(GpuInstance, first_id) == 76);
 
 static_assert(sizeof(GpuMesh) == 32);
 static_assert(offsetof(GpuMesh, first_ref) == 4);

@@ -308,12 +308,16 @@ std::vector<Aabb> instance_boxes(const Scene& scene) {
 std::vector<gpu::GpuInstance> gpu_instances(const Scene& scene) {
   std::vector<gpu::GpuInstance> out;
   uint64_t next_id = scene.spheres.size() + scene.instances.size();
+  // The boxes the top level places the instances by (primitive_boxes).
+  const std::vector<Aabb> boxes = instance_boxes(scene);
   for (const Instance& inst : scene.instances) {
     const glm::dmat4 to_object = glm::inverse(glm::dmat4(inst.transform));
     gpu::GpuInstance g{};
     // glm is column-major: row r is (m[0][r], m[1][r], m[2][r], m[3][r]).
     glm::vec4* rows[3] = {&g.to_object0, &g.to_object1, &g.to_object2};
     for (int r = 0; r < 3; ++r) *rows[r] = glm::vec4(to_object[0][r], to_object[1][r], to_object[2][r], to_object[3][r]);
+    g.lo = boxes[out.size()].lo;
+    g.hi = boxes[out.size()].hi;
     g.mesh = inst.mesh;
     g.first_id = uint32_t(next_id);
     next_id += scene.meshes[inst.mesh].triangle_count();

@@ -1,7 +1,7 @@
 // The BVH walk (renderer/accel/bvh.h has the encoding): the body of the
 // walk for ACCEL == ACCEL_BVH, included at the top of accel/octree_walk.glsl
 // inside `if (ACCEL == ACCEL_BVH) { ... return; }`, so that both levels (top
-// and meshes) take it with the same parameters and OCTREE_LEAF(ref); a
+// and meshes) take it with the same parameters and OCTREE_LEAF(k); a
 // pipeline specialised to one structure compiles only its walk.
 //
 // Stack-based, front to back: of an internal node's two children, those
@@ -11,13 +11,13 @@
 // skipped (the early exit), with the same widening as the octree's.
 // Stack bound: each level leaves at most one entry behind (the farther
 // child), so a tree of depth BVH_MAX_DEPTH (shared.h) needs BVH_MAX_DEPTH + 1.
-OCTREE_SLAB bvh_ray = OCTREE_SLAB_MAKE(ray);
+OCTREE_SLAB sr = OCTREE_SLAB_MAKE(ray);  // named as the octree walk's: OCTREE_LEAF may use it
 uvec2 bvh_stack[BVH_STACK_SIZE];  // (node, bits of its entry distance), as the octree walk's stack
 uint bvh_sp = 0;
 float bvh_t;
 GpuOctreeNode bvh_root = node_at(root_index);
 if (WALK_STATS) ++walk_boxes;
-if (hit_box(bvh_root.lo, bvh_root.hi, bvh_ray, hit.t, bvh_t)) {
+if (hit_box(bvh_root.lo, bvh_root.hi, sr, hit.t, bvh_t)) {
   bvh_stack[0] = uvec2(root_index, floatBitsToUint(bvh_t));
   bvh_sp = 1;
 }
@@ -29,7 +29,7 @@ while (bvh_sp > 0) {
   if (node.count_or_mask < OCTREE_INTERNAL) {
     if (WALK_STATS && node.count_or_mask > 0u) ++walk_leaves;
     for (uint k = node.first; k < node.first + node.count_or_mask; ++k)
-      OCTREE_LEAF(ref_at(k));
+      OCTREE_LEAF(k);
     continue;
   }
   if (WALK_STATS) {
@@ -39,8 +39,8 @@ while (bvh_sp > 0) {
   GpuOctreeNode left = node_at(node.first);
   GpuOctreeNode right = node_at(node.first + 1u);
   float t_left, t_right;
-  bool hit_left = hit_box(left.lo, left.hi, bvh_ray, hit.t, t_left);
-  bool hit_right = hit_box(right.lo, right.hi, bvh_ray, hit.t, t_right);
+  bool hit_left = hit_box(left.lo, left.hi, sr, hit.t, t_left);
+  bool hit_right = hit_box(right.lo, right.hi, sr, hit.t, t_right);
   if (hit_left && hit_right) {
     // Farther first; equal entries keep the left child nearer.
     bool right_first = t_right < t_left;

@@ -134,7 +134,7 @@ void test_instance_triangle(Ray oray, RayShear osh, InstanceRef ir, uint local, 
 #define OCTREE_WALK_NAME traverse_mesh
 #define OCTREE_SLAB FusedSlabRay
 #define OCTREE_SLAB_MAKE fused_slab_ray
-#define OCTREE_LEAF(ref) test_instance_triangle(ray, sh, ir, ref, from_prim, hit)
+#define OCTREE_LEAF(k) test_instance_triangle(ray, sh, ir, ref_at(k), from_prim, hit)
 #include "accel/octree_walk.glsl"
 #undef OCTREE_WALK_NAME
 #undef OCTREE_SLAB
@@ -174,10 +174,34 @@ void test_primitive(Ray ray, uint i, uint from_prim, bool into_from, inout Hit h
   else test_instance(ray, i - scene.sphere_count, from_prim, hit);
 }
 
+// Whether the top-level walk's leaf may skip the primitive in slot k of
+// the refs array without testing it: an instance of a leaf (not of the big
+// list, refs[0, big_count)) whose world box the ray misses before the
+// nearest hit (`sr`: the walk's slab terms). The box is the one the tree
+// holds the instance by, so a ray that misses it could not hit the
+// instance; skipping spares the entry (instance and mesh read, the ray into
+// object space, its shear and slab terms) of rays that only pass through
+// the instance's cells. Not in the big list: there every query would pay
+// for the test, and the balloon, whose baked mesh is the one big primitive,
+// rendered 7.6% slower on the H200 with it; in leaves the engine gained 10%
+// (optimisation log 48).
+bool skip_instance(SlabRay sr, uint k, uint i, float t_max) {
+  if (is_sphere(i) || k < scene.big_count) return false;
+  if (WALK_STATS) ++walk_boxes;
+  float t_entry;
+  GpuInstance g = instances[i - scene.sphere_count];
+  return !hit_box(g.lo, g.hi, sr, t_max, t_entry);
+}
+
+void test_primitive_at(Ray ray, SlabRay sr, uint k, uint from_prim, bool into_from, inout Hit hit) {
+  uint i = ref_at(k);
+  if (!skip_instance(sr, k, i, hit.t)) test_primitive(ray, i, from_prim, into_from, hit);
+}
+
 #define OCTREE_WALK_NAME traverse_top
 #define OCTREE_SLAB SlabRay
 #define OCTREE_SLAB_MAKE slab_ray
-#define OCTREE_LEAF(ref) test_primitive(ray, ref, from_prim, into_from, hit)
+#define OCTREE_LEAF(k) test_primitive_at(ray, sr, k, from_prim, into_from, hit)
 #include "accel/octree_walk.glsl"
 #undef OCTREE_WALK_NAME
 #undef OCTREE_SLAB
@@ -230,10 +254,15 @@ void test_primitive_any(Ray ray, uint i, uint from_prim, bool into_from, inout H
   if (hit.prim != NO_PRIM) hit.t = -1.0;
 }
 
+void test_primitive_any_at(Ray ray, SlabRay sr, uint k, uint from_prim, bool into_from, inout Hit hit) {
+  uint i = ref_at(k);
+  if (!skip_instance(sr, k, i, hit.t)) test_primitive_any(ray, i, from_prim, into_from, hit);
+}
+
 #define OCTREE_WALK_NAME traverse_top_any
 #define OCTREE_SLAB SlabRay
 #define OCTREE_SLAB_MAKE slab_ray
-#define OCTREE_LEAF(ref) test_primitive_any(ray, ref, from_prim, into_from, hit)
+#define OCTREE_LEAF(k) test_primitive_any_at(ray, sr, k, from_prim, into_from, hit)
 #include "accel/octree_walk.glsl"
 #undef OCTREE_WALK_NAME
 #undef OCTREE_SLAB

@@ -1,6 +1,7 @@
 // One octree walk, included once per level (no include guard): the includer
-// defines OCTREE_WALK_NAME (the function's name), OCTREE_LEAF(ref) (what a
-// leaf's reference is tested with; it may use the walk's parameters) and
+// defines OCTREE_WALK_NAME (the function's name), OCTREE_LEAF(k) (how the
+// reference in slot k of the refs array is tested; it may use the walk's
+// parameters and its slab terms `sr`) and
 // OCTREE_SLAB / OCTREE_SLAB_MAKE (the slab test's per-ray type and what
 // makes it: accel/octree.glsl), then undefines them. The walk is the same
 // at both levels; only the leaf and the slab test's form differ.
@@ -52,7 +53,7 @@ void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, Ra
     uint leaf_first = big_first, leaf_end = big_end;
     while (true) {
       if (WALK_STATS && leaf_end > leaf_first) ++walk_leaves;
-      for (uint k = leaf_first; k < leaf_end; ++k) OCTREE_LEAF(ref_at(k));
+      for (uint k = leaf_first; k < leaf_end; ++k) OCTREE_LEAF(k);
       if (sp == 0u) break;
       leaf_first = 0u;
       leaf_end = 0u;
@@ -63,7 +64,7 @@ void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, Ra
       uint leaf_first = 0u, leaf_end = 0u;
 #include "accel/octree_descend.glsl"
       if (WALK_STATS && leaf_end > leaf_first) ++walk_leaves;
-      for (uint k = leaf_first; k < leaf_end; ++k) OCTREE_LEAF(ref_at(k));
+      for (uint k = leaf_first; k < leaf_end; ++k) OCTREE_LEAF(k);
     }
   }
 }

@@ -335,19 +335,21 @@ struct GpuUvTransform {
   vec2 offset;
 };
 
-// 64 bytes. One placement of a mesh. A ray enters the instance through
+// 80 bytes. One placement of a mesh. A ray enters the instance through
 // to_object (the rows of the 3x4 world-to-object matrix: the ray's t stays
 // the world t, its direction is not renormalised); normals leave it through
 // the transpose of the same 3x3 part (the inverse transpose of the
-// placement), which keeps a mirrored mesh's outside outside.
+// placement), which keeps a mirrored mesh's outside outside. lo, hi: the
+// world box of the placed mesh (the box the top level's tree places it by);
+// a ray that misses it does not enter (accel/closest_hit.glsl).
 struct GpuInstance {
   vec4 to_object0;
   vec4 to_object1;
   vec4 to_object2;
-  uint mesh;      // index into the mesh table
+  vec3 lo;
+  uint mesh;  // index into the mesh table
+  vec3 hi;
   uint first_id;  // global id of the mesh's triangle 0 in this instance
-  uint pad0;
-  uint pad1;
 };
 
 // 32 bytes. A mesh: its triangles triangles[first_triangle, + triangle_count)

@@ -185,8 +185,8 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(insts[i].to_object2, glm::vec4(o + 65, o + 66, o + 67, o + 68)) << "instance " << i;
     EXPECT_EQ(insts[i].mesh, u + 69) << "instance " << i;
     EXPECT_EQ(insts[i].first_id, u + 70) << "instance " << i;
-    EXPECT_EQ(insts[i].pad0, u + 71) << "instance " << i;
-    EXPECT_EQ(insts[i].pad1, u + 72) << "instance " << i;
+    EXPECT_EQ(insts[i].lo, glm::vec3(o + 71, o + 72, o + 73)) << "instance " << i;
+    EXPECT_EQ(insts[i].hi, glm::vec3(o + 74, o + 75, o + 76)) << "instance " << i;
     EXPECT_EQ(meshes[i].root, u + 73) << "mesh " << i;
     EXPECT_EQ(meshes[i].first_ref, u + 74) << "mesh " << i;
     EXPECT_EQ(meshes[i].big_count, u + 75) << "mesh " << i;

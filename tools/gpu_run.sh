@@ -1,0 +1,31 @@
+# Sourced by the GPU run scripts (docs/results/h200/*/run*.sh), on the GPU
+# machine, in the checkout's copy there, with the carried folders .gl (the
+# amd64 debs of the Vulkan loader and GL libraries: docs/reliability.md) and
+# .gpub (bin.tgz: build-gpu's binaries and a COMMIT file):
+#   - unpacks .gpub/bin.tgz into build-gpu and installs .gl's debs;
+#   - A=build-gpu/octrace-base, B=build-gpu/app/octrace; points the Vulkan
+#     loader at the NVIDIA ICD if B does not find a device without it;
+#   - links /work/main to the checkout (the tests' data paths);
+#   - R=/tmp/res for raw results, T=$OUT/summary.txt started with the date,
+#     build-gpu/COMMIT and the GPU; S = the goals' render settings;
+#   - ab NAME FLAGS...: tools/ab_render.py of the variants in the array V
+#     (set by the script: V=(--variant base=BIN=$A --variant new=)), 5
+#     rounds, into $R/ab_NAME.md, one line per variant in $T;
+#   - gpu_finish: $R tarred into $OUT/results.tgz, $T printed.
+set -u
+rm -rf build-gpu; mkdir build-gpu; tar xzf .gpub/bin.tgz -C build-gpu
+for f in .gl/*.deb; do dpkg -x "$f" /; done; ldconfig
+export XDG_RUNTIME_DIR=/tmp
+A=build-gpu/octrace-base; B=build-gpu/app/octrace
+"$B" devices >/dev/null 2>&1 || export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+mkdir -p /work; [ -e /work/main ] || ln -s "$PWD" /work/main
+R=/tmp/res; rm -rf "$R"; mkdir -p "$R"; T=$OUT/summary.txt
+{ date -u; cat build-gpu/COMMIT; nvidia-smi --query-gpu=name,driver_version,clocks.max.sm --format=csv,noheader; } > "$T"
+S="--size 1200x800 --spp 10 --depth 50 --device gpu"
+ab() {
+  local name=$1; shift
+  local labels; labels=$(printf '%s\n' "${V[@]}" | grep -v '^--variant$' | sed 's/=.*//' | paste -sd'|')
+  timeout 90 python3 tools/ab_render.py --octrace "$B" --rounds 5 --render "$*" "${V[@]}" --out "$R/ab_$name.md" > "$R/ab_$name.log" 2>&1
+  echo "$name rc=$?: $(grep -E "^\| ($labels) " "$R/ab_$name.md" | cut -d'|' -f2,5,6,7,9 | tr '\n' ' ')" >> "$T"
+}
+gpu_finish() { tar czf "$OUT/results.tgz" -C /tmp res; cat "$T"; }
