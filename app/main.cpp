@@ -129,6 +129,7 @@ struct RenderOptions {
   std::string effects = "auto";
   std::string nee = "on";
   std::string octant_culling = "on";
+  std::string tail_depth = "auto";
   RenderSettings settings;
   std::string device = "auto";
   bool validation = false;
@@ -169,6 +170,10 @@ struct RenderOptions {
     cmd.add_option("--octant-culling", octant_culling,
                    "Octree walk: skip children in octants the ray cannot reach: on | off; same image, other speed")
         ->capture_default_str();
+    cmd.add_option("--tail-depth", tail_depth,
+                   "Tail queue: paths still going at this bounce finish in a dispatch of their own: auto | off | "
+                   "BOUNCE (auto: " + std::to_string(kTailDepthDefault) + " on a GPU, off on a CPU device); same image")
+        ->capture_default_str();
     cmd.add_option("--device", device, "auto | cpu | gpu | INDEX (see `octrace devices`)")->capture_default_str();
     cmd.add_flag("--validation", validation, "Enable the Khronos validation layer (also OCTRACE_VALIDATION=1)");
     cmd.add_flag("--pipeline-stats", pipeline_stats,
@@ -188,6 +193,17 @@ struct RenderOptions {
     if (octant_culling != "on" && octant_culling != "off")
       throw SettingError("octant_culling", ": expected on or off, got \"" + octant_culling + "\"");
     s.octant_culling = octant_culling == "on";
+    if (tail_depth == "auto") {
+      s.tail_depth = RenderSettings::kTailAuto;
+    } else if (tail_depth == "off") {
+      s.tail_depth = 0;
+    } else {
+      char* end = nullptr;
+      const unsigned long v = std::strtoul(tail_depth.c_str(), &end, 10);
+      if (tail_depth.empty() || *end != '\0' || tail_depth[0] == '-' || v < 1 || v > 100000)
+        throw SettingError("tail_depth", ": expected auto, off or a bounce >= 1, got \"" + tail_depth + "\"");
+      s.tail_depth = uint32_t(v);
+    }
     parse_size(size, s);
     validate_settings(s);
     return s;
@@ -213,6 +229,7 @@ std::string message_for_cli(const SettingError& e) {
       {"effects", "--effects"},
       {"nee", "--nee"},
       {"octant_culling", "--octant-culling"},
+      {"tail_depth", "--tail-depth"},
       {"device", "--device"},
       {"rtiow.radius", "--radius"},
       {"rtiow.spheres", "--spheres"},
@@ -592,6 +609,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
               {"samples_per_dispatch", settings.samples_per_dispatch},
               {"sample_lanes", settings.sample_lanes},
               {"octant_culling", settings.octant_culling ? "on" : "off"},
+              {"tail_depth", result.tail_depth},
               {"features", feature_names(result.features)},
               {"times_ms", {{"scene", scene_ms},
                             {"device_init", device_ms},

@@ -26,6 +26,8 @@ layout(std430, binding = 13) buffer B13 { GpuTriangleUvs triangle_uvs[2]; };
 layout(std430, binding = 14) buffer B14 { GpuUvTransform uv_transforms[2]; };
 layout(std430, binding = 15) buffer B15 { GpuLight lights[2]; };
 layout(std430, binding = 16) buffer B16 { GpuTransmission transmissions[2]; };
+layout(std430, binding = 17) buffer B17 { GpuTailPath tail_paths[2]; };
+layout(std430, binding = 18) buffer B18 { TailControl tail_control; };
 
 void main() {
   scene.sky_a = vec3(1, 2, 3);
@@ -56,7 +58,15 @@ void main() {
   pass.rr_depth = 25;
   pass.sample_count = 26;
   pass.sample_lanes = 27;
-  pass.pad2 = 28;
+  pass.tail_depth = 28;
+  pass.tail_capacity = 29;
+  pass.pad2 = 30;
+  pass.pad3 = 31;
+  pass.pad4 = 32;
+  tail_control.count = 41;
+  tail_control.groups_x = 42;
+  tail_control.groups_y = 43;
+  tail_control.groups_z = 44;
 
   resolve.width = 1;
   resolve.height = 2;
@@ -159,5 +169,17 @@ void main() {
     lights[i].pad0 = u + 140;
     transmissions[i].absorption = vec3(o + 141, o + 142, o + 143);
     transmissions[i].transmission_texture = u + 144;
+    tail_paths[i].origin = vec3(o + 151, o + 152, o + 153);
+    tail_paths[i].pixel = u + 154;
+    tail_paths[i].dir = vec3(o + 155, o + 156, o + 157);
+    tail_paths[i].sample_offset = u + 158;
+    tail_paths[i].throughput = vec3(o + 159, o + 160, o + 161);
+    tail_paths[i].bounce_flags = u + 162;
+    tail_paths[i].radiance = vec3(o + 163, o + 164, o + 165);
+    tail_paths[i].segments = u + 166;
+    tail_paths[i].direct = vec3(o + 167, o + 168, o + 169);
+    tail_paths[i].from_prim = u + 170;
+    tail_paths[i].prev_p = vec3(o + 171, o + 172, o + 173);
+    tail_paths[i].prev_pdf = o + 174;
   }
 }

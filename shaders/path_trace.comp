@@ -109,21 +109,68 @@ vec3 next_event(Surface surf, Hit hit, vec3 g, vec3 n, bool pbr, real3 albedo, P
   return f_cos * ls.value * w;
 }
 
-// `segments`: how many rays the path traced (camera ray and bounces).
-vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments) {
-  segments = 0u;
-  real3 radiance = real3(0.0);
-  real3 throughput = real3(1.0);
-  uint from_prim = NO_PRIM;
-  bool into_from = false;
-  // Next-event estimation: what light samples add (fp32), and of the last
-  // vertex, whether it sampled a light (then an emitter this path hits is
-  // weighted by MIS), where it was and the pdf of the direction it chose.
-  vec3 direct = vec3(0.0);
-  bool prev_nee = false;
-  vec3 prev_p = vec3(0.0);
-  float prev_pdf = 0.0;
-  for (uint bounce = 0; bounce < pass.bounce_limit; ++bounce) {
+// A path between two of its segments: everything trace_path carries from
+// one bounce to the next, so that a path stopped after some bounce (the
+// tail queue, PassParams.tail_depth) goes on in another dispatch with the
+// same arithmetic in the same order: the same value, bit for bit.
+struct PathState {
+  Ray ray;          // the next segment's ray
+  real3 radiance;   // light picked up so far (throughput x emission)
+  real3 throughput;
+  vec3 direct;      // next-event estimation: what light samples added (fp32)
+  vec3 prev_p;      // NEE: the last vertex, and the pdf of the direction it chose
+  float prev_pdf;
+  uint from_prim;   // the primitive the ray leaves (NO_PRIM for a camera ray)
+  bool into_from;   // whether it enters it
+  bool prev_nee;    // whether the last vertex sampled a light (MIS)
+  uint bounce;      // the next segment's bounce index
+  uint segments;    // rays traced so far
+};
+
+PathState path_start(Ray ray) {
+  PathState p;
+  p.ray = ray;
+  p.radiance = real3(0.0);
+  p.throughput = real3(1.0);
+  p.direct = vec3(0.0);
+  p.prev_p = vec3(0.0);
+  p.prev_pdf = 0.0;
+  p.from_prim = NO_PRIM;
+  p.into_from = false;
+  p.prev_nee = false;
+  p.bounce = 0u;
+  p.segments = 0u;
+  return p;
+}
+
+// What a finished path adds to its pixel.
+vec3 path_value(PathState p) {
+  if (NEE) return vec3(p.radiance) + p.direct;
+  return vec3(p.radiance);
+}
+
+// Traces path `p` on from its next segment until it ends (true) or its next
+// bounce is `bounce_end` (false: it goes on later). A path that reaches the
+// bounce limit has ended.
+bool trace_path(inout PathState p, uint pixel_index, uint sample_index, uint bounce_end) {
+  // The loop's state in locals, as the one loop of the whole path had it.
+  Ray ray = p.ray;
+  real3 radiance = p.radiance;
+  real3 throughput = p.throughput;
+  uint from_prim = p.from_prim;
+  bool into_from = p.into_from;
+  vec3 direct = p.direct;
+  bool prev_nee = p.prev_nee;
+  vec3 prev_p = p.prev_p;
+  float prev_pdf = p.prev_pdf;
+  uint segments = p.segments;
+  uint bounce = p.bounce;
+  bool ended = true;
+  for (;; ++bounce) {
+    if (bounce >= bounce_end) {
+      ended = bounce >= pass.bounce_limit;
+      break;
+    }
     Hit hit;
     ++segments;
     // BLEND's cut-out key for this ray (accel/closest_hit.glsl: alpha_cut).
@@ -260,8 +307,18 @@ vec3 trace_path(Ray ray, uint pixel_index, uint sample_index, out uint segments)
       if (m.type == MAT_LAMBERTIAN) prev_pdf = max(dot(n, dir), 0.0) / PI;
     }
   }
-  if (NEE) return vec3(radiance) + direct;
-  return vec3(radiance);
+  p.ray = ray;
+  p.radiance = radiance;
+  p.throughput = throughput;
+  p.from_prim = from_prim;
+  p.into_from = into_from;
+  p.direct = direct;
+  p.prev_nee = prev_nee;
+  p.prev_p = prev_p;
+  p.prev_pdf = prev_pdf;
+  p.segments = segments;
+  p.bounce = bounce;
+  return ended;
 }
 
 // Adds one sample to a pixel's accumulation state. Kahan summation keeps the
@@ -322,7 +379,7 @@ void flush_walk_counts() {
 // One pixel whose paths are long (light trapped inside a closed mesh runs to
 // the bounce limit) then costs the dispatch a path per round, not a path per
 // sample.
-void main() {
+void whole_pass() {
   const uint lanes = SAMPLE_LANES ? pass.sample_lanes : 1u;
   const uint lane = gl_LocalInvocationIndex % lanes;
   const uint local_pixel = gl_LocalInvocationIndex / lanes;
@@ -345,7 +402,10 @@ void main() {
     // A scene with no emitter under a black sky is black: nothing to trace.
     if (in_image && s < pass.sample_count && ANY_LIGHT) {
       const uint sample_index = pass.sample_index + s;
-      value = trace_path(camera_ray(pixel, index, sample_index), index, sample_index, segments);
+      PathState p = path_start(camera_ray(pixel, index, sample_index));
+      trace_path(p, index, sample_index, pass.bounce_limit);
+      value = path_value(p);
+      segments = p.segments;
       // Each count stays below 2^32 in the invocation's own word: added to
       // the buffer once one passes 2^31 (a path adds fewer than 2^31 to each).
       if (WALK_STATS && max(max(max(walk_queries, walk_nodes), max(walk_leaves, walk_boxes)),
@@ -372,4 +432,118 @@ void main() {
     accum_sum[index] = acc;
     accum_sq[index] = sq;
   }
+}
+
+// The tail queue (PassParams.tail_depth > 0; docs/design.md): a dispatch
+// of samples runs as three. STAGE_HEAD traces every sample's path up to
+// bounce tail_depth; a path still going on there is put in the queue (while
+// it has room; past that the head finishes it itself), and every other
+// sample's value goes to tail_values[s][pixel]. STAGE_TAIL takes the queue,
+// one path per invocation, dense: the few long paths (light trapped in a
+// closed mesh, glass and metal between close spheres) no longer hold a warp
+// of short ones. STAGE_ACCUMULATE adds each pixel's values in sample order.
+// The arithmetic and its order are those of whole_pass: the same bits.
+layout(constant_id = SPEC_STAGE) const uint STAGE = STAGE_WHOLE;
+layout(std430, binding = BINDING_TAIL_VALUES) buffer TailValueBuf { vec4 tail_values[]; };
+layout(std430, binding = BINDING_TAIL_QUEUE) buffer TailQueueBuf { GpuTailPath tail_queue[]; };
+layout(std430, binding = BINDING_TAIL_CONTROL) buffer TailControlBuf { TailControl tail_control; };
+
+const uint TAIL_INTO_FROM = 0x40000000u, TAIL_PREV_NEE = 0x80000000u;
+
+void tail_store(uint slot, PathState p, uint index, uint s) {
+  GpuTailPath q;
+  q.origin = p.ray.origin;
+  q.pixel = index;
+  q.dir = p.ray.dir;
+  q.sample_offset = s;
+  q.throughput = vec3(p.throughput);
+  q.bounce_flags = p.bounce | (p.into_from ? TAIL_INTO_FROM : 0u) | (p.prev_nee ? TAIL_PREV_NEE : 0u);
+  q.radiance = vec3(p.radiance);
+  q.segments = p.segments;
+  q.direct = p.direct;
+  q.from_prim = p.from_prim;
+  q.prev_p = p.prev_p;
+  q.prev_pdf = p.prev_pdf;
+  tail_queue[slot] = q;
+}
+
+PathState tail_load(GpuTailPath q) {
+  PathState p;
+  p.ray = Ray(q.origin, q.dir);
+  p.radiance = real3(q.radiance);
+  p.throughput = real3(q.throughput);
+  p.direct = q.direct;
+  p.prev_p = q.prev_p;
+  p.prev_pdf = q.prev_pdf;
+  p.from_prim = q.from_prim;
+  p.into_from = (q.bounce_flags & TAIL_INTO_FROM) != 0u;
+  p.prev_nee = (q.bounce_flags & TAIL_PREV_NEE) != 0u;
+  p.bounce = q.bounce_flags & ~(TAIL_INTO_FROM | TAIL_PREV_NEE);
+  p.segments = q.segments;
+  return p;
+}
+
+uint pixel_count() { return pass.width * pass.height; }
+
+// One invocation per sample: workgroup z is the round of lanes (sample s =
+// z * lanes + lane), the pixel as whole_pass maps it.
+void head_pass() {
+  const uint lanes = SAMPLE_LANES ? pass.sample_lanes : 1u;
+  const uint lane = gl_LocalInvocationIndex % lanes;
+  const uint local_pixel = gl_LocalInvocationIndex / lanes;
+  const uvec2 pixel = uvec2(gl_WorkGroupID.x * WORKGROUP_SIZE + local_pixel % WORKGROUP_SIZE,
+                            gl_WorkGroupID.y * (WORKGROUP_SIZE / lanes) + local_pixel / WORKGROUP_SIZE);
+  const uint s = gl_WorkGroupID.z * lanes + lane;
+  if (pixel.x >= pass.width || pixel.y >= pass.height || s >= pass.sample_count) return;
+  const uint index = pixel.y * pass.width + pixel.x;
+  const uint sample_index = pass.sample_index + s;
+  PathState p = path_start(camera_ray(pixel, index, sample_index));
+  // A scene with no emitter under a black sky is black: nothing to trace.
+  if (ANY_LIGHT && !trace_path(p, index, sample_index, min(pass.tail_depth, pass.bounce_limit))) {
+    uint slot = atomicAdd(tail_control.count, 1u);
+    if (slot < pass.tail_capacity) {
+      tail_store(slot, p, index, s);
+      // The tail's dispatch size: one workgroup per 64 slots taken.
+      if (slot % (WORKGROUP_SIZE * WORKGROUP_SIZE) == 0u) atomicAdd(tail_control.groups_x, 1u);
+      if (WALK_STATS) flush_walk_counts();
+      return;
+    }
+    trace_path(p, index, sample_index, pass.bounce_limit);  // the queue is full
+  }
+  if (WALK_STATS) flush_walk_counts();
+  tail_values[s * pixel_count() + index] = vec4(path_value(p), uintBitsToFloat(p.segments));
+}
+
+void tail_pass() {
+  const uint slot = gl_WorkGroupID.x * (WORKGROUP_SIZE * WORKGROUP_SIZE) + gl_LocalInvocationIndex;
+  if (slot >= min(tail_control.count, pass.tail_capacity)) return;
+  GpuTailPath q = tail_queue[slot];
+  PathState p = tail_load(q);
+  trace_path(p, q.pixel, pass.sample_index + q.sample_offset, pass.bounce_limit);
+  if (WALK_STATS) flush_walk_counts();
+  tail_values[q.sample_offset * pixel_count() + q.pixel] = vec4(path_value(p), uintBitsToFloat(p.segments));
+}
+
+// One invocation per pixel (an 8 x 8 tile per workgroup).
+void accumulate_pass() {
+  const uvec2 pixel = gl_WorkGroupID.xy * WORKGROUP_SIZE +
+                      uvec2(gl_LocalInvocationIndex % WORKGROUP_SIZE, gl_LocalInvocationIndex / WORKGROUP_SIZE);
+  if (pixel.x >= pass.width || pixel.y >= pass.height) return;
+  const uint index = pixel.y * pass.width + pixel.x;
+  vec4 acc = accum_sum[index], sq = accum_sq[index];
+  vec3 comp = accum_comp[index].rgb;
+  for (uint s = 0u; s < pass.sample_count; ++s) {
+    vec4 v = tail_values[s * pixel_count() + index];
+    add_sample(v.rgb, floatBitsToUint(v.w), acc, comp, sq);
+  }
+  accum_comp[index].rgb = comp;
+  accum_sum[index] = acc;
+  accum_sq[index] = sq;
+}
+
+void main() {
+  if (STAGE == STAGE_HEAD) head_pass();
+  else if (STAGE == STAGE_TAIL) tail_pass();
+  else if (STAGE == STAGE_ACCUMULATE) accumulate_pass();
+  else whole_pass();
 }

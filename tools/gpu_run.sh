@@ -25,7 +25,7 @@ S="--size 1200x800 --spp 10 --depth 50 --device gpu"
 ab() {
   local name=$1; shift
   local labels; labels=$(printf '%s\n' "${V[@]}" | grep -v '^--variant$' | sed 's/=.*//' | paste -sd'|')
-  timeout 90 python3 tools/ab_render.py --octrace "$B" --rounds 5 --render "$*" "${V[@]}" --out "$R/ab_$name.md" > "$R/ab_$name.log" 2>&1
+  timeout ${AB_TIMEOUT:-90} python3 tools/ab_render.py --octrace "$B" --rounds 5 --render "$*" "${V[@]}" --out "$R/ab_$name.md" > "$R/ab_$name.log" 2>&1
   echo "$name rc=$?: $(grep -E "^\| ($labels) " "$R/ab_$name.md" | cut -d'|' -f2,5,6,7,9 | tr '\n' ' ')" >> "$T"
 }
 gpu_finish() { tar czf "$OUT/results.tgz" -C /tmp res; cat "$T"; }

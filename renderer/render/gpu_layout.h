@@ -130,7 +130,7 @@ static_assert(offsetof(GpuMesh, first_triangle) == 12);
 static_assert(offsetof(GpuMesh, triangle_count) == 16);
 static_assert(offsetof(GpuMesh, pad2) == 28);
 
-static_assert(sizeof(PassParams) == 112);
+static_assert(sizeof(PassParams) == 128);
 static_assert(offsetof(PassParams, lens_radius) == 12);
 static_assert(offsetof(PassParams, lens_u) == 16);
 static_assert(offsetof(PassParams, width) == 28);
@@ -145,7 +145,19 @@ static_assert(offsetof(PassParams, sample_index) == 92);
 static_assert(offsetof(PassParams, rr_depth) == 96);
 static_assert(offsetof(PassParams, sample_count) == 100);
 static_assert(offsetof(PassParams, sample_lanes) == 104);
-static_assert(offsetof(PassParams, pad2) == 108);
+static_assert(offsetof(PassParams, tail_depth) == 108);
+static_assert(offsetof(PassParams, tail_capacity) == 112);
+static_assert(offsetof(PassParams, pad3) == 120);
+static_assert(offsetof(PassParams, pad4) == 124);
+
+static_assert(sizeof(GpuTailPath) == 96);
+static_assert(offsetof(GpuTailPath, pixel) == 12);
+static_assert(offsetof(GpuTailPath, sample_offset) == 28);
+static_assert(offsetof(GpuTailPath, bounce_flags) == 44);
+static_assert(offsetof(GpuTailPath, segments) == 60);
+static_assert(offsetof(GpuTailPath, from_prim) == 76);
+static_assert(offsetof(GpuTailPath, prev_pdf) == 92);
+static_assert(sizeof(TailControl) == 16);
 // Vulkan guarantees at least 128 bytes of push constants on every device.
 static_assert(sizeof(PassParams) <= 128);
 

@@ -1,6 +1,7 @@
 #include "render/path_tracer.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdlib>
 #include <bit>
 #include <vector>
@@ -43,9 +44,24 @@ struct PathTracer::State {
     if (settings.big_list != BigList::Auto) return settings.big_list == BigList::FirstLeaf;
     return ctx.info.software || !f.triangles;
   }
+  // RenderSettings::tail_depth for this device: auto queues on GPUs only
+  // (a CPU device's SIMD lanes idle little behind a long path, and it would
+  // compile the path tracer three times).
+  uint32_t tail_depth() const {
+    if (settings.tail_depth != RenderSettings::kTailAuto) return settings.tail_depth;
+    return ctx.info.software ? 0u : kTailDepthDefault;
+  }
   GpuScene scene;
   Buffer accum_sum, accum_comp, accum_sq, stats;
-  ComputePipeline pipeline;
+  // With the tail queue: each sample's value per [sample of the dispatch]
+  // [pixel], the queue and its TailControl (shared.h); 16-byte placeholders
+  // without.
+  Buffer tail_values, tail_queue, tail_control;
+  uint32_t tail_samples = 0;   // samples one head dispatch takes (tail_values holds them)
+  uint32_t tail_capacity = 0;  // GpuTailPath entries of tail_queue
+  // The whole paths (STAGE_WHOLE), or with the tail queue its head; and
+  // then the tail and the sum (path_trace.comp STAGE_*).
+  ComputePipeline pipeline, tail_pipeline, accumulate_pipeline;
   GpuTimer timer;
 
   explicit State(const VulkanContext& c) : ctx(c) {}
@@ -53,7 +69,16 @@ struct PathTracer::State {
   void create_accumulation();
   void bind_accumulation();
   void create_pipeline();
+  void create_stage(ComputePipeline& p, uint32_t stage, const uint32_t* spirv, size_t spirv_bytes);
+  void record_tail_passes(VkCommandBuffer cmd, gpu::PassParams pc, uint32_t first_sample, uint32_t count,
+                          uint32_t per_dispatch) const;
 };
+
+// Bytes the tail queue's buffers may take each: a quarter GiB, or the
+// device's limit per buffer if that is less.
+static uint64_t tail_buffer_bytes(const VulkanContext& ctx) {
+  return std::min<uint64_t>(uint64_t(1) << 28, ctx.limits.maxStorageBufferRange);
+}
 
 // The accumulation state, three arrays of one vec4 per pixel (shared.h).
 void PathTracer::State::create_accumulation() {
@@ -67,14 +92,45 @@ void PathTracer::State::create_accumulation() {
   create_buffer(s.accum_sum, s.ctx, bytes, false, "accumulation buffer");
   create_buffer(s.accum_comp, s.ctx, bytes, false, "accumulation buffer");
   create_buffer(s.accum_sq, s.ctx, bytes, false, "accumulation buffer");
+  // The tail queue: as many samples per head dispatch as tail_values holds
+  // (in whole rounds of lanes), and a queue for a quarter of them, at most
+  // what one indirect dispatch of 65535 workgroups covers. A head that
+  // finds the queue full finishes its path itself: the size is a matter of
+  // speed, not of the image.
+  s.tail_samples = s.tail_capacity = 0;
+  if (s.tail_depth() > 0) {
+    const uint64_t budget = tail_buffer_bytes(s.ctx);
+    const uint64_t value_bytes = s.pixels() * sizeof(glm::vec4);
+    s.tail_samples = uint32_t(std::clamp<uint64_t>(budget / value_bytes, 1, 1024));
+    if (s.tail_samples >= gpu::MAX_SAMPLE_LANES) s.tail_samples -= s.tail_samples % gpu::MAX_SAMPLE_LANES;
+    // No more than a dispatch takes (record_passes: one sample on software devices).
+    const uint32_t per_dispatch = s.settings.samples_per_dispatch ? s.settings.samples_per_dispatch
+                                  : s.ctx.info.software             ? 1u
+                                                                    : s.tail_samples;
+    s.tail_samples = std::min(s.tail_samples, per_dispatch);
+    const uint64_t group = gpu::WORKGROUP_SIZE * gpu::WORKGROUP_SIZE;
+    s.tail_capacity = uint32_t(std::min<uint64_t>({std::max<uint64_t>(s.pixels() * s.tail_samples / 4, group),
+                                                   65535 * group, budget / sizeof(gpu::GpuTailPath)}));
+    if (s.settings.tail_queue_entries) s.tail_capacity = std::min(s.tail_capacity, s.settings.tail_queue_entries);
+  }
+  create_buffer(s.tail_values, s.ctx, uint64_t(s.tail_samples) * s.pixels() * sizeof(glm::vec4), false,
+                "tail queue's values");
+  create_buffer(s.tail_queue, s.ctx, uint64_t(s.tail_capacity) * sizeof(gpu::GpuTailPath), false, "tail queue");
+  create_buffer(s.tail_control, s.ctx, sizeof(gpu::TailControl), false, "tail queue's control");
 }
 
 void PathTracer::State::bind_accumulation() {
   State& s = *this;
-  bind_buffers(s.pipeline, {{gpu::BINDING_ACCUM_SUM, &s.accum_sum},
-                            {gpu::BINDING_ACCUM_COMP, &s.accum_comp},
-                            {gpu::BINDING_ACCUM_SQ, &s.accum_sq},
-                            {gpu::BINDING_STATS, &s.stats}});
+  for (ComputePipeline* p : {&s.pipeline, &s.tail_pipeline, &s.accumulate_pipeline}) {
+    if (p->pipeline == VK_NULL_HANDLE) continue;
+    bind_buffers(*p, {{gpu::BINDING_ACCUM_SUM, &s.accum_sum},
+                      {gpu::BINDING_ACCUM_COMP, &s.accum_comp},
+                      {gpu::BINDING_ACCUM_SQ, &s.accum_sq},
+                      {gpu::BINDING_STATS, &s.stats},
+                      {gpu::BINDING_TAIL_VALUES, &s.tail_values},
+                      {gpu::BINDING_TAIL_QUEUE, &s.tail_queue},
+                      {gpu::BINDING_TAIL_CONTROL, &s.tail_control}});
+  }
 }
 
 // The pipeline of the settings' precision, accel and effects, bound to the
@@ -89,13 +145,6 @@ void PathTracer::State::create_pipeline() {
                                         (s.ctx.info.shader_float16 ? "storageBuffer16BitAccess" : "shaderFloat16"));
   auto start = Clock::now();
   s.features = settings.all_effects ? s.every_feature : s.scene_features;
-  const SceneFeatures& f = s.features;
-  // SPEC_SKY: the sky's type, or SKY_RUNTIME for the general pipeline; a
-  // black sky of any type is specialised to none.
-  const uint32_t sky = settings.all_effects ? gpu::SKY_RUNTIME : f.sky_black ? gpu::SKY_NONE : uint32_t(f.sky);
-  const uint32_t accel = settings.accel == Accel::Octree ? gpu::ACCEL_OCTREE
-                         : settings.accel == Accel::Bvh ? gpu::ACCEL_BVH
-                                                        : gpu::ACCEL_BRUTE;
   // A scene split over several buffers (GpuScene::part_log2) has a pipeline
   // of its own (shaders/shared/scene_buffers.glsl), so that one in one
   // buffer per array runs the code it always has.
@@ -110,7 +159,32 @@ void PathTracer::State::create_pipeline() {
     spirv = split ? path_trace_fp16_all_split_spv : path_trace_fp16_all_spv;
     spirv_bytes = split ? sizeof(path_trace_fp16_all_split_spv) : sizeof(path_trace_fp16_all_spv);
   }
-  ComputePipeline& p = s.pipeline;
+  create_stage(s.pipeline, s.tail_depth() > 0 ? gpu::STAGE_HEAD : gpu::STAGE_WHOLE, spirv, spirv_bytes);
+  if (s.tail_depth() > 0) {
+    create_stage(s.tail_pipeline, gpu::STAGE_TAIL, spirv, spirv_bytes);
+    create_stage(s.accumulate_pipeline, gpu::STAGE_ACCUMULATE, spirv, spirv_bytes);
+  } else {
+    destroy_compute_pipeline(s.tail_pipeline);
+    destroy_compute_pipeline(s.accumulate_pipeline);
+  }
+  bind_accumulation();
+  s.timings.pipeline_ms = ms_since(start);
+}
+
+// One pipeline of the path tracer (path_trace.comp STAGE_*), specialised to
+// the settings and the features in force, bound to the scene on the device.
+void PathTracer::State::create_stage(ComputePipeline& p, uint32_t stage, const uint32_t* spirv, size_t spirv_bytes) {
+  State& s = *this;
+  const RenderSettings& settings = s.settings;
+  const bool half = settings.precision != Precision::FP32;
+  const SceneFeatures& f = s.features;
+  // SPEC_SKY: the sky's type, or SKY_RUNTIME for the general pipeline; a
+  // black sky of any type is specialised to none.
+  const uint32_t sky = settings.all_effects ? gpu::SKY_RUNTIME : f.sky_black ? gpu::SKY_NONE : uint32_t(f.sky);
+  const uint32_t accel = settings.accel == Accel::Octree ? gpu::ACCEL_OCTREE
+                         : settings.accel == Accel::Bvh ? gpu::ACCEL_BVH
+                                                        : gpu::ACCEL_BRUTE;
+  const GpuScene& g = s.scene;
   create_compute_pipeline(p, s.ctx, spirv, spirv_bytes, gpu::BINDING_COUNT, sizeof(gpu::PassParams),
                           {{gpu::SPEC_ACCEL, accel},
                            {gpu::SPEC_LAMBERTIAN, f.lambertian},
@@ -140,7 +214,8 @@ void PathTracer::State::create_pipeline() {
                            {gpu::SPEC_PUNCTUAL, f.punctual},
                            {gpu::SPEC_SKY_LIGHT, f.sky_light},
                            {gpu::SPEC_TRIANGLE_LIGHTS, f.triangle_lights},
-                           {gpu::SPEC_PART_LOG2, g.part_log2}},
+                           {gpu::SPEC_PART_LOG2, g.part_log2},
+                           {gpu::SPEC_STAGE, stage}},
                           // Brute force reaches llvmpipe's loop limit first; the
                           // optimizer would change where it cuts (vk/specialize.h).
                           settings.accel != Accel::Brute);
@@ -166,8 +241,6 @@ void PathTracer::State::create_pipeline() {
                    {gpu::BINDING_ENVMAP_MARGINAL, &g.envmap_marginal},
                    {gpu::BINDING_ENVMAP_CONDITIONAL, &g.envmap_conditional},
                    {gpu::BINDING_BUFFER_PARTS, &g.part_table}});
-  bind_accumulation();
-  s.timings.pipeline_ms = ms_since(start);
 }
 
 PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const RenderSettings& settings)
@@ -181,7 +254,8 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
   s.create_accumulation();
   create_buffer(s.stats, ctx, sizeof(gpu::RenderStats), false, "statistics buffer");
   upload_scene(s.scene, ctx, scene, settings.accel, settings.octree,
-               3 * s.pixels() * sizeof(glm::vec4) + sizeof(gpu::RenderStats));
+               3 * s.pixels() * sizeof(glm::vec4) + sizeof(gpu::RenderStats) + s.tail_values.size +
+                   s.tail_queue.size);
   s.timings.accel_build_ms = s.scene.accel_build_ms;
   s.timings.upload_ms = s.scene.upload_ms;
   s.create_pipeline();
@@ -198,6 +272,7 @@ uint64_t PathTracer::buffer_part_bytes() const {
   return state_->scene.part_log2 ? uint64_t(1) << state_->scene.part_log2 : 0;
 }
 const SceneFeatures& PathTracer::features() const { return state_->features; }
+uint32_t PathTracer::tail_depth() const { return state_->tail_depth(); }
 const Buffer& PathTracer::accum_sum() const { return state_->accum_sum; }
 const Buffer& PathTracer::accum_comp() const { return state_->accum_comp; }
 const RenderSettings& PathTracer::settings() const { return state_->settings; }
@@ -266,6 +341,48 @@ static uint32_t sample_lanes(uint32_t setting, bool triangles, uint32_t count, u
   return lanes;
 }
 
+// The passes with the tail queue (path_trace.comp): per dispatch of samples
+// the head (one invocation per sample, in rounds of lanes along z), the
+// tail over the paths it queued (an indirect dispatch the head sized) and
+// the sum of the values in sample order.
+void PathTracer::State::record_tail_passes(VkCommandBuffer cmd, gpu::PassParams pc, uint32_t first_sample,
+                                           uint32_t count, uint32_t per_dispatch) const {
+  const State& s = *this;
+  const uint32_t width = uint32_t(s.settings.width), height = uint32_t(s.settings.height);
+  const uint32_t groups_x = (width + gpu::WORKGROUP_SIZE - 1) / gpu::WORKGROUP_SIZE;
+  pc.tail_depth = s.tail_depth();
+  pc.tail_capacity = s.tail_capacity;
+  const auto bind = [&](const ComputePipeline& p) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &p.set, 0, nullptr);
+    vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
+  };
+  const gpu::TailControl empty{0u, 0u, 1u, 1u};
+  for (uint32_t done = 0; done < count; done += pc.sample_count) {
+    pc.sample_index = first_sample + done;
+    pc.sample_count = std::min(per_dispatch, count - done);
+    pc.sample_lanes = s.sample_lanes_enabled()
+                          ? sample_lanes(s.settings.sample_lanes, s.scene_features.triangles, pc.sample_count, height)
+                          : 1u;
+    const uint32_t tile_height = gpu::WORKGROUP_SIZE / pc.sample_lanes;
+    // The previous dispatch's tail and sum read the queue and the values.
+    compute_barrier(cmd);
+    vkCmdUpdateBuffer(cmd, s.tail_control.buffer, 0, sizeof(empty), &empty);
+    compute_barrier(cmd);
+    bind(s.pipeline);
+    vkCmdDispatch(cmd, groups_x, (height + tile_height - 1) / tile_height,
+                  (pc.sample_count + pc.sample_lanes - 1) / pc.sample_lanes);
+    compute_barrier(cmd);
+    bind(s.tail_pipeline);
+    // TailControl's groups_x, groups_y, groups_z (after its count) are the
+    // VkDispatchIndirectCommand.
+    vkCmdDispatchIndirect(cmd, s.tail_control.buffer, offsetof(gpu::TailControl, groups_x));
+    compute_barrier(cmd);
+    bind(s.accumulate_pipeline);
+    vkCmdDispatch(cmd, groups_x, (height + gpu::WORKGROUP_SIZE - 1) / gpu::WORKGROUP_SIZE, 1);
+  }
+}
+
 void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, uint32_t first_sample,
                                uint32_t count) const {
   const State& s = *state_;
@@ -288,6 +405,10 @@ void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, ui
   const uint32_t per_dispatch = s.settings.samples_per_dispatch ? s.settings.samples_per_dispatch
                                 : s.ctx.info.software             ? 1u
                                                                   : count;
+  if (s.tail_depth() > 0) {
+    s.record_tail_passes(cmd, pc, first_sample, count, std::min(per_dispatch, s.tail_samples));
+    return;
+  }
   for (uint32_t done = 0; done < count; done += pc.sample_count) {
     if (done > 0) compute_barrier(cmd);
     pc.sample_index = first_sample + done;
@@ -434,6 +555,7 @@ RenderResult PathTracer::read_result(const Accumulation& acc) {
   r.buffer_parts = buffer_parts();
   r.buffer_part_bytes = buffer_part_bytes();
   r.features = s.features;
+  r.tail_depth = s.tail_depth();
   r.pipeline_statistics = s.pipeline.statistics;
   return r;
 }

@@ -73,6 +73,7 @@ struct RenderResult {
   // shaders/shared/scene_buffers.glsl) and the largest part's bytes.
   uint32_t buffer_parts = 0;
   uint64_t buffer_part_bytes = 0;
+  uint32_t tail_depth = 0;   // the tail queue's bounce in force (RenderSettings::tail_depth; 0: off)
   uint32_t samples = 0;      // samples per pixel the state holds (settings.spp unless interrupted)
   bool interrupted = false;  // render(): RenderControl::stop ended it early
 };
@@ -140,6 +141,9 @@ class PathTracer {
   uint32_t buffer_parts() const;
   uint64_t buffer_part_bytes() const;
   const SceneFeatures& features() const;
+  // The tail queue's bounce in force (RenderSettings::tail_depth resolved
+  // for the device; 0: off).
+  uint32_t tail_depth() const;
 
  private:
   struct State;

@@ -77,7 +77,23 @@ struct RenderSettings {
   // same; the counting (atomics) costs time, so timings with it on are not
   // the renderer's. Off, it compiles out of the pipeline.
   bool walk_stats = false;
+  // The tail queue (shaders/path_trace.comp): a dispatch traces every path
+  // up to this bounce, and the paths still going on there are finished in a
+  // dispatch of their own, one per invocation, so that a few long paths do
+  // not hold warps of short ones. The image is the same, bit for bit.
+  // kTailAuto: kTailDepthDefault on GPUs, off on software devices; 0: off.
+  uint32_t tail_depth = kTailAuto;
+  static constexpr uint32_t kTailAuto = UINT32_MAX;
+  // Paths the tail queue holds per dispatch (0: auto, a quarter of the
+  // dispatch's samples, in at most a quarter GiB); a path past it finishes
+  // in the head. The image is the same; tests use a small one.
+  uint32_t tail_queue_entries = 0;
 };
+
+// The bounce at which RenderSettings::tail_depth's auto queues paths on a
+// GPU (optimisation log 49: of 2, 3 and 4 on the H200, 2 was the fastest on
+// the sphere fields and the peer's scene, 3 and 4 on the engine).
+constexpr uint32_t kTailDepthDefault = 2;
 
 // Checks sizes and counts; throws SettingError naming the setting
 // ("size 0x10: width and height must be >= 1").

@@ -82,8 +82,9 @@ struct BufferBinding {
 };
 void bind_buffers(ComputePipeline& p, std::initializer_list<BufferBinding> buffers);
 
-// Full-pipeline compute->compute/transfer barrier on all memory: passes are
-// read-modify-write on the accumulation buffers.
+// Full-pipeline compute->compute/transfer/indirect barrier on all memory:
+// passes are read-modify-write on the accumulation buffers, and a pass may
+// write the next one's indirect dispatch size.
 void compute_barrier(VkCommandBuffer cmd);
 
 }  // namespace octrace

@@ -123,7 +123,14 @@ OCT_CONST(uint, BINDING_BUFFER_PARTS, 24u);
 // What transmission reads besides GpuMaterial, one GpuTransmission per
 // material; a 16-byte placeholder in a scene without transmission.
 OCT_CONST(uint, BINDING_TRANSMISSION, 26u);
-OCT_CONST(uint, BINDING_COUNT, 27u);
+// The tail queue (PassParams.tail_depth; path_trace.comp): each sample's
+// value (vec4: rgb, segments as uint bits) per [sample of the dispatch][pixel],
+// the paths that go on after the head (GpuTailPath), and TailControl. 16-byte
+// placeholders when the queue is off.
+OCT_CONST(uint, BINDING_TAIL_VALUES, 27u);
+OCT_CONST(uint, BINDING_TAIL_QUEUE, 28u);
+OCT_CONST(uint, BINDING_TAIL_CONTROL, 29u);
+OCT_CONST(uint, BINDING_COUNT, 30u);
 
 // A scene larger than one storage buffer (the device's maxStorageBufferRange,
 // 128 MiB on lavapipe) is read through buffer device addresses
@@ -212,6 +219,13 @@ OCT_CONST(uint, SPEC_BIG_LEAF, 26u);
 // Whether the walks count what they do (RenderSettings::walk_stats,
 // RenderStats.walk); off, the counting compiles out.
 OCT_CONST(uint, SPEC_WALK_STATS, 28u);
+// Which part of a dispatch of samples the pipeline runs (path_trace.comp):
+// the whole paths, or with the tail queue its head, its tail or the sum.
+OCT_CONST(uint, SPEC_STAGE, 29u);
+OCT_CONST(uint, STAGE_WHOLE, 0u);
+OCT_CONST(uint, STAGE_HEAD, 1u);
+OCT_CONST(uint, STAGE_TAIL, 2u);
+OCT_CONST(uint, STAGE_ACCUMULATE, 3u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 255u);
 
@@ -523,7 +537,7 @@ struct SceneParams {
   uint envmap_height;   // envmap: rows
 };
 
-// 112 bytes, the push constants of one dispatch of passes: everything that may change from
+// 128 bytes, the push constants of one dispatch of passes: everything that may change from
 // one pass to the next without touching the scene (the camera, the image
 // size, the bounce limit, the sampler's seed and the sample index). The camera
 // is precomputed on the host (render/camera.h): a pixel (x, y) (top row
@@ -545,7 +559,37 @@ struct PassParams {
   uint rr_depth;      // Russian roulette from this bounce on (0xffffffff: never)
   uint sample_count;  // ... and how many: sample_index .. sample_index + sample_count - 1
   uint sample_lanes;  // invocations per pixel (1, 2, 4 or 8): a workgroup covers an 8 x (8 / lanes) tile
+  uint tail_depth;    // the tail queue: paths still going at this bounce go on in the tail's dispatch (0: off)
+  uint tail_capacity; // the queue's entries (GpuTailPath); a head past them finishes its path itself
   uint pad2;
+  uint pad3;
+  uint pad4;
+};
+
+// 96 bytes: a path in the tail queue (path_trace.comp PathState), in fp32
+// whatever the precision (a half converts to float and back exactly).
+struct GpuTailPath {
+  vec3 origin;
+  uint pixel;          // pixel index (y * width + x)
+  vec3 dir;
+  uint sample_offset;  // the sample's place in its dispatch (sample index - PassParams.sample_index)
+  vec3 throughput;
+  uint bounce_flags;   // the next bounce | 0x40000000 into_from | 0x80000000 prev_nee
+  vec3 radiance;
+  uint segments;
+  vec3 direct;
+  uint from_prim;
+  vec3 prev_p;
+  float prev_pdf;
+};
+
+// 16 bytes: the tail queue's fill and, from byte 4, the tail's indirect
+// dispatch (a VkDispatchIndirectCommand), reset before each head.
+struct TailControl {
+  uint count;     // paths the heads asked to queue (those past tail_capacity were not)
+  uint groups_x;  // workgroups of 64 the tail needs: one per 64 slots taken
+  uint groups_y;  // 1
+  uint groups_z;  // 1
 };
 
 // 16 bytes, the push constants of the resolve pass.

@@ -97,6 +97,8 @@ const BadInput BAD_INPUTS[] = {
     {"precision_unknown", "--precision fp8", "--precision: expected fp32, fp16 or fp16-all"},
     {"effects_unknown", "--effects some", "--effects: expected auto or all"},
     {"octant_culling_unknown", "--octant-culling maybe", "--octant-culling: expected on or off, got \"maybe\""},
+    {"tail_depth_unknown", "--tail-depth soon", "--tail-depth: expected auto, off or a bounce >= 1, got \"soon\""},
+    {"tail_depth_zero", "--tail-depth 0", "--tail-depth: expected auto, off or a bounce >= 1, got \"0\""},
     {"first_sample_overflow", "--first-sample 4294967295 --spp 2", "--first-sample"},
     {"sample_lanes_three", "--sample-lanes 3", "--sample-lanes: must be 0 (auto), 1, 2, 4 or 8, got 3"},
     {"sample_lanes_sixteen", "--sample-lanes 16", "--sample-lanes: must be 0 (auto), 1, 2, 4 or 8, got 16"},

@@ -21,7 +21,8 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   // every device the suite runs on (lavapipe, the H100) has.
   ASSERT_TRUE(ctx.fp16_enabled) << ctx.info.name << " lacks 16-bit storage";
   Buffer scene_buf, pass_buf, resolve_buf, sphere_buf, material_buf, half_buf, node_buf, stats_buf, tri_buf, normal_buf,
-      inst_buf, mesh_buf, texture_buf, uv_buf, uv_transform_buf, light_buf, transmission_buf;
+      inst_buf, mesh_buf, texture_buf, uv_buf, uv_transform_buf, light_buf, transmission_buf,
+      tail_buf, tail_control_buf;
   create_buffer(scene_buf, ctx, sizeof(gpu::SceneParams), false, "probe");
   create_buffer(pass_buf, ctx, sizeof(gpu::PassParams), false, "probe");
   create_buffer(resolve_buf, ctx, sizeof(gpu::ResolveParams), false, "probe");
@@ -39,13 +40,15 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   create_buffer(uv_transform_buf, ctx, 2 * sizeof(gpu::GpuUvTransform), false, "probe");
   create_buffer(light_buf, ctx, 2 * sizeof(gpu::GpuLight), false, "probe");
   create_buffer(transmission_buf, ctx, 2 * sizeof(gpu::GpuTransmission), false, "probe");
+  create_buffer(tail_buf, ctx, 2 * sizeof(gpu::GpuTailPath), false, "probe");
+  create_buffer(tail_control_buf, ctx, sizeof(gpu::TailControl), false, "probe");
   ComputePipeline pipeline;
-  create_compute_pipeline(pipeline, ctx, layout_probe_spv, sizeof(layout_probe_spv), 17, 0);
+  create_compute_pipeline(pipeline, ctx, layout_probe_spv, sizeof(layout_probe_spv), 19, 0);
   bind_buffers(pipeline, {{0, &scene_buf}, {1, &pass_buf}, {2, &resolve_buf}, {3, &sphere_buf},
                           {4, &material_buf}, {5, &half_buf}, {6, &node_buf}, {7, &stats_buf},
                           {8, &tri_buf},   {9, &normal_buf}, {10, &inst_buf}, {11, &mesh_buf},
                           {12, &texture_buf}, {13, &uv_buf}, {14, &uv_transform_buf}, {15, &light_buf},
-                          {16, &transmission_buf}});
+                          {16, &transmission_buf}, {17, &tail_buf}, {18, &tail_control_buf}});
   submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout, 0, 1, &pipeline.set, 0, nullptr);
@@ -85,7 +88,20 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   EXPECT_EQ(f.rr_depth, 25u);
   EXPECT_EQ(f.sample_count, 26u);
   EXPECT_EQ(f.sample_lanes, 27u);
-  EXPECT_EQ(f.pad2, 28u);
+  EXPECT_EQ(f.tail_depth, 28u);
+  EXPECT_EQ(f.tail_capacity, 29u);
+  EXPECT_EQ(f.pad2, 30u);
+  EXPECT_EQ(f.pad3, 31u);
+  EXPECT_EQ(f.pad4, 32u);
+
+  gpu::TailControl tc{};
+  download_buffer(ctx, tail_control_buf, &tc, sizeof tc);
+  EXPECT_EQ(tc.count, 41u);
+  EXPECT_EQ(tc.groups_x, 42u);
+  EXPECT_EQ(tc.groups_y, 43u);
+  EXPECT_EQ(tc.groups_z, 44u);
+  gpu::GpuTailPath tails[2];
+  download_buffer(ctx, tail_buf, tails, sizeof tails);
 
   gpu::ResolveParams r{};
   download_buffer(ctx, resolve_buf, &r, sizeof r);
@@ -221,6 +237,18 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(lights[i].pad0, u + 140) << "light " << i;
     EXPECT_EQ(transmissions[i].absorption, glm::vec3(o + 141, o + 142, o + 143)) << "transmission " << i;
     EXPECT_EQ(transmissions[i].transmission_texture, u + 144) << "transmission " << i;
+    EXPECT_EQ(tails[i].origin, glm::vec3(o + 151, o + 152, o + 153)) << "tail path " << i;
+    EXPECT_EQ(tails[i].pixel, u + 154) << "tail path " << i;
+    EXPECT_EQ(tails[i].dir, glm::vec3(o + 155, o + 156, o + 157)) << "tail path " << i;
+    EXPECT_EQ(tails[i].sample_offset, u + 158) << "tail path " << i;
+    EXPECT_EQ(tails[i].throughput, glm::vec3(o + 159, o + 160, o + 161)) << "tail path " << i;
+    EXPECT_EQ(tails[i].bounce_flags, u + 162) << "tail path " << i;
+    EXPECT_EQ(tails[i].radiance, glm::vec3(o + 163, o + 164, o + 165)) << "tail path " << i;
+    EXPECT_EQ(tails[i].segments, u + 166) << "tail path " << i;
+    EXPECT_EQ(tails[i].direct, glm::vec3(o + 167, o + 168, o + 169)) << "tail path " << i;
+    EXPECT_EQ(tails[i].from_prim, u + 170) << "tail path " << i;
+    EXPECT_EQ(tails[i].prev_p, glm::vec3(o + 171, o + 172, o + 173)) << "tail path " << i;
+    EXPECT_EQ(tails[i].prev_pdf, o + 174) << "tail path " << i;
   }
 }
 

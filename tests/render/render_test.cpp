@@ -118,6 +118,53 @@ TEST_F(RenderTest, BatchingAndSampleLanesDoNotChangeTheResult) {
   }
 }
 
+// The tail queue (RenderSettings::tail_depth) splits a dispatch into head,
+// tail and sum; the paths' arithmetic and the sum's order are those of the
+// whole paths: every bit of the result is the same, whatever bounce the
+// queue takes paths at, however the samples are batched, in fp32 and fp16,
+// with roulette, and with a queue too small for the paths (the head then
+// finishes the rest itself).
+TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
+  Scene scene = make_rtiow_scene({40, 0.2f, 3});
+  test::place(scene, test::icosphere(2, 1, true), glm::translate(glm::mat4(1.0f), glm::vec3(2, 1, 2)));
+  Material light;
+  light.type = MaterialType::Emissive;
+  light.radiance = glm::vec3(6.0f, 5.0f, 4.0f);
+  scene.materials.push_back(light);
+  scene.spheres.push_back({{-1, 3, 1}, 0.5f, uint32_t(scene.materials.size() - 1)});
+  for (Precision precision : {Precision::FP32, Precision::FP16}) {
+    for (uint32_t rr : {0u, 2u}) {
+      RenderSettings s;
+      s.width = 37;
+      s.height = 23;
+      s.spp = 6;
+      s.precision = precision;
+      s.rr_depth = rr;
+      s.tail_depth = 0;
+      const RenderResult want = render(test::shared_context(), scene, s);
+      ASSERT_EQ(want.tail_depth, 0u);
+      for (auto [depth, per_dispatch, lanes, entries] :
+           {std::tuple{1u, 0u, 0u, 0u}, {2u, 0u, 0u, 0u}, {5u, 3u, 4u, 0u}, {2u, 5u, 8u, 0u}, {1u, 0u, 2u, 64u},
+            {3u, 0u, 0u, 1u}, {60u, 0u, 0u, 0u}}) {
+        s.tail_depth = depth;
+        s.samples_per_dispatch = per_dispatch;
+        s.sample_lanes = lanes;
+        s.tail_queue_entries = entries;
+        SCOPED_TRACE(std::string(precision_name(precision)) + ", rr " + std::to_string(rr) + ", tail depth " +
+                     std::to_string(depth) + ", per dispatch " + std::to_string(per_dispatch) + ", lanes " +
+                     std::to_string(lanes) + ", queue " + std::to_string(entries));
+        const RenderResult got = render(test::shared_context(), scene, s);
+        EXPECT_EQ(got.tail_depth, depth);
+        EXPECT_TRUE(same_bits(got.mean, want.mean));
+        EXPECT_TRUE(same_bits(got.variance_of_mean, want.variance_of_mean));
+        EXPECT_EQ(got.count, want.count);
+        EXPECT_EQ(got.rays, want.rays);
+        EXPECT_EQ(got.nonfinite_samples, want.nonfinite_samples);
+      }
+    }
+  }
+}
+
 // Batches of about a quarter second, in whole rounds of a pixel's lanes;
 // one round at least while it takes at most a second (a prompt stop).
 TEST(NextBatch, TakesWholeRoundsOfLanesAndKeepsAStopPrompt) {
