@@ -163,6 +163,22 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
       }
     }
   }
+  // The other structures' walks run in the same head and tail.
+  for (Accel accel : {Accel::Bvh, Accel::Brute}) {
+    RenderSettings s;
+    s.width = 37;
+    s.height = 23;
+    s.spp = 4;
+    s.accel = accel;
+    s.tail_depth = 0;
+    const RenderResult want = render(test::shared_context(), scene, s);
+    s.tail_depth = 1;
+    const RenderResult got = render(test::shared_context(), scene, s);
+    SCOPED_TRACE(accel_name(accel));
+    EXPECT_TRUE(same_bits(got.mean, want.mean));
+    EXPECT_TRUE(same_bits(got.variance_of_mean, want.variance_of_mean));
+    EXPECT_EQ(got.rays, want.rays);
+  }
 }
 
 // Batches of about a quarter second, in whole rounds of a pixel's lanes;
