@@ -44,12 +44,23 @@ struct PathTracer::State {
     if (settings.big_list != BigList::Auto) return settings.big_list == BigList::FirstLeaf;
     return ctx.info.software || !f.triangles;
   }
-  // RenderSettings::tail_depth for this device: auto queues on GPUs only
-  // (a CPU device's SIMD lanes idle little behind a long path, and it would
-  // compile the path tracer three times).
+  // RenderSettings::tail_depth for this device: auto queues on GPUs only.
+  // On lavapipe the queue saves a quarter of the default scene's passes
+  // (optimisation log 49), but a render then compiles three pipelines: 0.47
+  // s more on a cold cache, and twice the test suite's time.
   uint32_t tail_depth() const {
     if (settings.tail_depth != RenderSettings::kTailAuto) return settings.tail_depth;
     return ctx.info.software ? 0u : kTailDepthDefault;
+  }
+  // Samples one dispatch takes (RenderSettings::samples_per_dispatch; 0
+  // here: the whole batch). The whole paths take one sample per dispatch on
+  // a software device, whose compiler (llvmpipe 22.3) ends a loop after
+  // 65535 iterations counted over the whole invocation: several samples in
+  // one invocation would cut their paths short (optimisation log 16). With
+  // the tail queue an invocation traces one sample, so the batch goes whole.
+  uint32_t samples_per_dispatch() const {
+    if (settings.samples_per_dispatch) return settings.samples_per_dispatch;
+    return ctx.info.software && tail_depth() == 0 ? 1u : 0u;
   }
   GpuScene scene;
   Buffer accum_sum, accum_comp, accum_sq, stats;
@@ -103,11 +114,8 @@ void PathTracer::State::create_accumulation() {
     const uint64_t value_bytes = s.pixels() * sizeof(glm::vec4);
     s.tail_samples = uint32_t(std::clamp<uint64_t>(budget / value_bytes, 1, 1024));
     if (s.tail_samples >= gpu::MAX_SAMPLE_LANES) s.tail_samples -= s.tail_samples % gpu::MAX_SAMPLE_LANES;
-    // No more than a dispatch takes (record_passes: one sample on software devices).
-    const uint32_t per_dispatch = s.settings.samples_per_dispatch ? s.settings.samples_per_dispatch
-                                  : s.ctx.info.software             ? 1u
-                                                                    : s.tail_samples;
-    s.tail_samples = std::min(s.tail_samples, per_dispatch);
+    // No more than a dispatch takes.
+    if (s.samples_per_dispatch()) s.tail_samples = std::min(s.tail_samples, s.samples_per_dispatch());
     const uint64_t group = gpu::WORKGROUP_SIZE * gpu::WORKGROUP_SIZE;
     s.tail_capacity = uint32_t(std::min<uint64_t>({std::max<uint64_t>(s.pixels() * s.tail_samples / 4, group),
                                                    65535 * group, budget / sizeof(gpu::GpuTailPath)}));
@@ -398,13 +406,7 @@ void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, ui
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.pipeline);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.layout, 0, 1, &s.pipeline.set, 0,
                           nullptr);
-  // Auto: the whole batch in one dispatch on a GPU; one sample per dispatch
-  // on a software device, whose compiler (llvmpipe 22.3) ends a loop after
-  // 65535 iterations counted over the whole invocation: several samples in
-  // one invocation would cut their paths short (optimisation log 16).
-  const uint32_t per_dispatch = s.settings.samples_per_dispatch ? s.settings.samples_per_dispatch
-                                : s.ctx.info.software             ? 1u
-                                                                  : count;
+  const uint32_t per_dispatch = s.samples_per_dispatch() ? s.samples_per_dispatch() : count;
   if (s.tail_depth() > 0) {
     s.record_tail_passes(cmd, pc, first_sample, count, std::min(per_dispatch, s.tail_samples));
     return;

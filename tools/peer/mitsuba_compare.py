@@ -150,6 +150,8 @@ def main():
     ap.add_argument("--python", help="a Python with mitsuba installed (default: .venv-mitsuba, created if missing)")
     ap.add_argument("--out", default="/tmp/mitsuba_compare")
     ap.add_argument("--markdown", help="also write the table and settings to this markdown file")
+    ap.add_argument("--octrace-flags", default="",
+                    help="extra render flags for octrace's timed runs (e.g. \"--tail-depth 2\"); default none")
     args = ap.parse_args()
     if args.rounds < 5:
         fail("--rounds: at least 5 (the table reports a median of >= 5)")
@@ -169,7 +171,7 @@ def main():
 
     w, h = SIZE
     oct_cmd = [args.octrace, "render", "--device", "cpu", "--size", f"{w}x{h}", "--spp", str(SPP),
-               "--depth", str(DEPTH), "--quiet", "--out", str(out / "octrace.png")]
+               "--depth", str(DEPTH), "--quiet"] + args.octrace_flags.split() + ["--out", str(out / "octrace.png")]
     mts_cmd = [py, "-c", MITSUBA_RUN, str(out / "scene.xml"), str(out / "mitsuba.png")]
     info = json.loads(run(oct_cmd[:-2] + ["--json", "--out", str(out / "octrace_info.png")], env=env).stdout)
     mts_version = run([py, "-c", "import mitsuba; print(mitsuba.__version__)"]).stdout.strip()
@@ -216,7 +218,7 @@ def main():
         "",
         "| renderer | whole process wall, median (min–max) | CPU time (user + sys), median (min–max) |",
         "|---|---:|---:|",
-        f"| octrace (`render --device cpu`) | {o[0]:.0f} ms ({o[1]:.0f}–{o[2]:.0f}) | {oc[0]:.0f} ms ({oc[1]:.0f}–{oc[2]:.0f}) |",
+        f"| octrace (`render --device cpu{(' ' + args.octrace_flags) if args.octrace_flags else ''}`) | {o[0]:.0f} ms ({o[1]:.0f}–{o[2]:.0f}) | {oc[0]:.0f} ms ({oc[1]:.0f}–{oc[2]:.0f}) |",
         f"| Mitsuba 3 scalar_rgb (`python3 -c`) | {m[0]:.0f} ms ({m[1]:.0f}–{m[2]:.0f}) | {mc[0]:.0f} ms ({mc[1]:.0f}–{mc[2]:.0f}) |",
         f"| **octrace / Mitsuba** | **{ratio:.2f}** | {oc[0] / mc[0]:.2f} |",
         "",
