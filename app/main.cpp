@@ -172,7 +172,8 @@ struct RenderOptions {
         ->capture_default_str();
     cmd.add_option("--tail-depth", tail_depth,
                    "Tail queue: paths still going at this bounce finish in a dispatch of their own: auto | off | "
-                   "BOUNCE (auto: " + std::to_string(kTailDepthDefault) + " on a GPU, off on a CPU device); same image")
+                   "BOUNCE (auto: " + std::to_string(kTailDepthDefault) +
+                       " on a GPU; on a CPU device no queue, one sample per invocation); same image")
         ->capture_default_str();
     cmd.add_option("--device", device, "auto | cpu | gpu | INDEX (see `octrace devices`)")->capture_default_str();
     cmd.add_flag("--validation", validation, "Enable the Khronos validation layer (also OCTRACE_VALIDATION=1)");

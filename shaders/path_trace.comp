@@ -321,30 +321,7 @@ bool trace_path(inout PathState p, uint pixel_index, uint sample_index, uint bou
   return ended;
 }
 
-// Adds one sample to a pixel's accumulation state. Kahan summation keeps the
-// mean unbiased over millions of samples; `precise` stops the compiler from
-// reassociating the compensation away. Welford's update of the sum of squared
-// deviations (M2): no cancellation of two large sums, so a pixel with tiny
-// variance keeps an accurate one. sq.w counts the pixel's ray segments, as the
-// bits of a uint (shared.h).
-void add_sample(vec3 value, uint segments, inout vec4 acc, inout vec3 comp, inout vec4 sq) {
-  // A NaN or Inf sample is counted, never added: one would poison the pixel.
-  if (any(isnan(value)) || any(isinf(value))) {
-    atomicAdd(stats.nonfinite_samples, 1u);
-    return;
-  }
-  precise vec3 c = comp;
-  precise vec3 y = value - c;
-  precise vec3 t = acc.rgb + y;
-  float n = acc.w;
-  vec3 mean_old = n > 0.0 ? (acc.rgb - c) / n : vec3(0.0);
-  c = (t - acc.rgb) - y;
-  vec3 mean_new = (t - c) / (n + 1.0);
-  comp = c;
-  acc = vec4(t, n + 1.0);
-  sq.rgb += (value - mean_old) * (value - mean_new);
-  sq.w = uintBitsToFloat(floatBitsToUint(sq.w) + segments);
-}
+#include "shared/accumulate.glsl"
 
 // Samples that lanes traced, for their pixel's first lane to add in order.
 shared vec4 lane_sample[WORKGROUP_SIZE * WORKGROUP_SIZE];
@@ -441,8 +418,8 @@ void whole_pass() {
 // sample's value goes to tail_values[s][pixel]. STAGE_TAIL takes the queue,
 // one path per invocation, dense: the few long paths (light trapped in a
 // closed mesh, glass and metal between close spheres) no longer hold a warp
-// of short ones. STAGE_ACCUMULATE adds each pixel's values in sample order.
-// The arithmetic and its order are those of whole_pass: the same bits.
+// of short ones. accumulate.comp then adds each pixel's values in sample
+// order. The arithmetic and its order are those of whole_pass: the same bits.
 layout(constant_id = SPEC_STAGE) const uint STAGE = STAGE_WHOLE;
 layout(std430, binding = BINDING_TAIL_VALUES) buffer TailValueBuf { vec4 tail_values[]; };
 layout(std430, binding = BINDING_TAIL_QUEUE) buffer TailQueueBuf { GpuTailPath tail_queue[]; };
@@ -524,26 +501,8 @@ void tail_pass() {
   tail_values[q.sample_offset * pixel_count() + q.pixel] = vec4(path_value(p), uintBitsToFloat(p.segments));
 }
 
-// One invocation per pixel (an 8 x 8 tile per workgroup).
-void accumulate_pass() {
-  const uvec2 pixel = gl_WorkGroupID.xy * WORKGROUP_SIZE +
-                      uvec2(gl_LocalInvocationIndex % WORKGROUP_SIZE, gl_LocalInvocationIndex / WORKGROUP_SIZE);
-  if (pixel.x >= pass.width || pixel.y >= pass.height) return;
-  const uint index = pixel.y * pass.width + pixel.x;
-  vec4 acc = accum_sum[index], sq = accum_sq[index];
-  vec3 comp = accum_comp[index].rgb;
-  for (uint s = 0u; s < pass.sample_count; ++s) {
-    vec4 v = tail_values[s * pixel_count() + index];
-    add_sample(v.rgb, floatBitsToUint(v.w), acc, comp, sq);
-  }
-  accum_comp[index].rgb = comp;
-  accum_sum[index] = acc;
-  accum_sq[index] = sq;
-}
-
 void main() {
   if (STAGE == STAGE_HEAD) head_pass();
   else if (STAGE == STAGE_TAIL) tail_pass();
-  else if (STAGE == STAGE_ACCUMULATE) accumulate_pass();
   else whole_pass();
 }

@@ -8,6 +8,7 @@
 
 #include "core/clock.h"
 #include "core/errors.h"
+#include "accumulate.h"
 #include "core/text.h"
 #include "path_trace_fp16.h"
 #include "path_trace_fp16_all.h"
@@ -44,23 +45,30 @@ struct PathTracer::State {
     if (settings.big_list != BigList::Auto) return settings.big_list == BigList::FirstLeaf;
     return ctx.info.software || !f.triangles;
   }
-  // RenderSettings::tail_depth for this device: auto queues on GPUs only.
-  // On lavapipe the queue saves a quarter of the default scene's passes
-  // (optimisation log 49), but a render then compiles three pipelines: 0.47
-  // s more on a cold cache, and twice the test suite's time.
+  // RenderSettings::tail_depth for this device: the bounce at which the
+  // tail queue takes paths (0: no queue). Auto queues on GPUs only: on
+  // lavapipe the queue saved another 4% of the default scene's passes
+  // (optimisation log 49), but its pipeline is a third compile of the path
+  // tracer, 0.47 s more on a cold cache, and the test suite took twice as long.
   uint32_t tail_depth() const {
     if (settings.tail_depth != RenderSettings::kTailAuto) return settings.tail_depth;
     return ctx.info.software ? 0u : kTailDepthDefault;
   }
+  // Whether a dispatch runs as head and sum (and tail, with a queue): one
+  // sample per invocation and each pixel's values added after. Auto on a
+  // software device has it without a queue: its compiler (llvmpipe 22.3)
+  // ends a loop after 65535 iterations counted over the whole invocation,
+  // so the whole paths take one sample per dispatch there (optimisation
+  // log 16), and the head takes a batch in one dispatch instead, which
+  // keeps lavapipe's threads busy: the default scene's passes 18% faster.
+  bool staged() const {
+    return tail_depth() > 0 || (ctx.info.software && settings.tail_depth == RenderSettings::kTailAuto);
+  }
   // Samples one dispatch takes (RenderSettings::samples_per_dispatch; 0
-  // here: the whole batch). The whole paths take one sample per dispatch on
-  // a software device, whose compiler (llvmpipe 22.3) ends a loop after
-  // 65535 iterations counted over the whole invocation: several samples in
-  // one invocation would cut their paths short (optimisation log 16). With
-  // the tail queue an invocation traces one sample, so the batch goes whole.
+  // here: the whole batch): one for the whole paths on a software device.
   uint32_t samples_per_dispatch() const {
     if (settings.samples_per_dispatch) return settings.samples_per_dispatch;
-    return ctx.info.software && tail_depth() == 0 ? 1u : 0u;
+    return ctx.info.software && !staged() ? 1u : 0u;
   }
   GpuScene scene;
   Buffer accum_sum, accum_comp, accum_sq, stats;
@@ -70,8 +78,8 @@ struct PathTracer::State {
   Buffer tail_values, tail_queue, tail_control;
   uint32_t tail_samples = 0;   // samples one head dispatch takes (tail_values holds them)
   uint32_t tail_capacity = 0;  // GpuTailPath entries of tail_queue
-  // The whole paths (STAGE_WHOLE), or with the tail queue its head; and
-  // then the tail and the sum (path_trace.comp STAGE_*).
+  // The whole paths (STAGE_WHOLE), or staged its head, with a queue its
+  // tail (path_trace.comp STAGE_*), and the sum (accumulate.comp).
   ComputePipeline pipeline, tail_pipeline, accumulate_pipeline;
   GpuTimer timer;
 
@@ -85,10 +93,11 @@ struct PathTracer::State {
                           uint32_t per_dispatch) const;
 };
 
-// Bytes the tail queue's buffers may take each: a quarter GiB, or the
-// device's limit per buffer if that is less.
+// Bytes the tail queue's buffers may take each: a quarter GiB on a GPU, 32
+// MiB in a software device's host memory, or the device's limit per buffer
+// if that is less.
 static uint64_t tail_buffer_bytes(const VulkanContext& ctx) {
-  return std::min<uint64_t>(uint64_t(1) << 28, ctx.limits.maxStorageBufferRange);
+  return std::min<uint64_t>(uint64_t(1) << (ctx.info.software ? 25 : 28), ctx.limits.maxStorageBufferRange);
 }
 
 // The accumulation state, three arrays of one vec4 per pixel (shared.h).
@@ -104,21 +113,25 @@ void PathTracer::State::create_accumulation() {
   create_buffer(s.accum_comp, s.ctx, bytes, false, "accumulation buffer");
   create_buffer(s.accum_sq, s.ctx, bytes, false, "accumulation buffer");
   // The tail queue: as many samples per head dispatch as tail_values holds
-  // (in whole rounds of lanes), and a queue for a quarter of them, at most
+  // (in whole rounds of lanes, at most 16), and a queue for a quarter of them, at most
   // what one indirect dispatch of 65535 workgroups covers. A head that
   // finds the queue full finishes its path itself: the size is a matter of
   // speed, not of the image.
   s.tail_samples = s.tail_capacity = 0;
-  if (s.tail_depth() > 0) {
+  if (s.staged()) {
     const uint64_t budget = tail_buffer_bytes(s.ctx);
     const uint64_t value_bytes = s.pixels() * sizeof(glm::vec4);
-    s.tail_samples = uint32_t(std::clamp<uint64_t>(budget / value_bytes, 1, 1024));
+    // At most 16 samples: what the H200 runs of log 49 took at 1200x800
+    // (the budget's 17 in whole rounds of 8); more saves little per
+    // dispatch and costs memory on small images.
+    s.tail_samples = uint32_t(std::clamp<uint64_t>(budget / value_bytes, 1, 2 * gpu::MAX_SAMPLE_LANES));
     if (s.tail_samples >= gpu::MAX_SAMPLE_LANES) s.tail_samples -= s.tail_samples % gpu::MAX_SAMPLE_LANES;
     // No more than a dispatch takes.
     if (s.samples_per_dispatch()) s.tail_samples = std::min(s.tail_samples, s.samples_per_dispatch());
     const uint64_t group = gpu::WORKGROUP_SIZE * gpu::WORKGROUP_SIZE;
-    s.tail_capacity = uint32_t(std::min<uint64_t>({std::max<uint64_t>(s.pixels() * s.tail_samples / 4, group),
-                                                   65535 * group, budget / sizeof(gpu::GpuTailPath)}));
+    if (s.tail_depth() > 0)
+      s.tail_capacity = uint32_t(std::min<uint64_t>({std::max<uint64_t>(s.pixels() * s.tail_samples / 4, group),
+                                                     65535 * group, budget / sizeof(gpu::GpuTailPath)}));
     if (s.settings.tail_queue_entries) s.tail_capacity = std::min(s.tail_capacity, s.settings.tail_queue_entries);
   }
   create_buffer(s.tail_values, s.ctx, uint64_t(s.tail_samples) * s.pixels() * sizeof(glm::vec4), false,
@@ -167,14 +180,14 @@ void PathTracer::State::create_pipeline() {
     spirv = split ? path_trace_fp16_all_split_spv : path_trace_fp16_all_spv;
     spirv_bytes = split ? sizeof(path_trace_fp16_all_split_spv) : sizeof(path_trace_fp16_all_spv);
   }
-  create_stage(s.pipeline, s.tail_depth() > 0 ? gpu::STAGE_HEAD : gpu::STAGE_WHOLE, spirv, spirv_bytes);
-  if (s.tail_depth() > 0) {
-    create_stage(s.tail_pipeline, gpu::STAGE_TAIL, spirv, spirv_bytes);
-    create_stage(s.accumulate_pipeline, gpu::STAGE_ACCUMULATE, spirv, spirv_bytes);
-  } else {
-    destroy_compute_pipeline(s.tail_pipeline);
+  create_stage(s.pipeline, s.staged() ? gpu::STAGE_HEAD : gpu::STAGE_WHOLE, spirv, spirv_bytes);
+  if (s.tail_depth() > 0) create_stage(s.tail_pipeline, gpu::STAGE_TAIL, spirv, spirv_bytes);
+  else destroy_compute_pipeline(s.tail_pipeline);
+  if (s.staged())
+    create_compute_pipeline(s.accumulate_pipeline, s.ctx, accumulate_spv, sizeof(accumulate_spv), gpu::BINDING_COUNT,
+                            sizeof(gpu::PassParams));
+  else
     destroy_compute_pipeline(s.accumulate_pipeline);
-  }
   bind_accumulation();
   s.timings.pipeline_ms = ms_since(start);
 }
@@ -358,7 +371,9 @@ void PathTracer::State::record_tail_passes(VkCommandBuffer cmd, gpu::PassParams 
   const State& s = *this;
   const uint32_t width = uint32_t(s.settings.width), height = uint32_t(s.settings.height);
   const uint32_t groups_x = (width + gpu::WORKGROUP_SIZE - 1) / gpu::WORKGROUP_SIZE;
-  pc.tail_depth = s.tail_depth();
+  // Without a queue the head traces every path to its end.
+  const bool queue = s.tail_depth() > 0;
+  pc.tail_depth = queue ? s.tail_depth() : UINT32_MAX;
   pc.tail_capacity = s.tail_capacity;
   const auto bind = [&](const ComputePipeline& p) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
@@ -375,16 +390,20 @@ void PathTracer::State::record_tail_passes(VkCommandBuffer cmd, gpu::PassParams 
     const uint32_t tile_height = gpu::WORKGROUP_SIZE / pc.sample_lanes;
     // The previous dispatch's tail and sum read the queue and the values.
     compute_barrier(cmd);
-    vkCmdUpdateBuffer(cmd, s.tail_control.buffer, 0, sizeof(empty), &empty);
-    compute_barrier(cmd);
+    if (queue) {
+      vkCmdUpdateBuffer(cmd, s.tail_control.buffer, 0, sizeof(empty), &empty);
+      compute_barrier(cmd);
+    }
     bind(s.pipeline);
     vkCmdDispatch(cmd, groups_x, (height + tile_height - 1) / tile_height,
                   (pc.sample_count + pc.sample_lanes - 1) / pc.sample_lanes);
-    compute_barrier(cmd);
-    bind(s.tail_pipeline);
-    // TailControl's groups_x, groups_y, groups_z (after its count) are the
-    // VkDispatchIndirectCommand.
-    vkCmdDispatchIndirect(cmd, s.tail_control.buffer, offsetof(gpu::TailControl, groups_x));
+    if (queue) {
+      compute_barrier(cmd);
+      bind(s.tail_pipeline);
+      // TailControl's groups_x, groups_y, groups_z (after its count) are the
+      // VkDispatchIndirectCommand.
+      vkCmdDispatchIndirect(cmd, s.tail_control.buffer, offsetof(gpu::TailControl, groups_x));
+    }
     compute_barrier(cmd);
     bind(s.accumulate_pipeline);
     vkCmdDispatch(cmd, groups_x, (height + gpu::WORKGROUP_SIZE - 1) / gpu::WORKGROUP_SIZE, 1);
@@ -407,7 +426,7 @@ void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, ui
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.layout, 0, 1, &s.pipeline.set, 0,
                           nullptr);
   const uint32_t per_dispatch = s.samples_per_dispatch() ? s.samples_per_dispatch() : count;
-  if (s.tail_depth() > 0) {
+  if (s.staged()) {
     s.record_tail_passes(cmd, pc, first_sample, count, std::min(per_dispatch, s.tail_samples));
     return;
   }

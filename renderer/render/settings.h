@@ -81,7 +81,9 @@ struct RenderSettings {
   // up to this bounce, and the paths still going on there are finished in a
   // dispatch of their own, one per invocation, so that a few long paths do
   // not hold warps of short ones. The image is the same, bit for bit.
-  // kTailAuto: kTailDepthDefault on GPUs, off on software devices; 0: off.
+  // kTailAuto: kTailDepthDefault on GPUs; on software devices the head
+  // and the sum without a queue (render/path_tracer.cpp); 0: off (the
+  // whole paths in one pass).
   uint32_t tail_depth = kTailAuto;
   static constexpr uint32_t kTailAuto = UINT32_MAX;
   // Paths the tail queue holds per dispatch (0: auto, a quarter of the

@@ -220,12 +220,12 @@ OCT_CONST(uint, SPEC_BIG_LEAF, 26u);
 // RenderStats.walk); off, the counting compiles out.
 OCT_CONST(uint, SPEC_WALK_STATS, 28u);
 // Which part of a dispatch of samples the pipeline runs (path_trace.comp):
-// the whole paths, or with the tail queue its head, its tail or the sum.
+// the whole paths, or with the tail queue its head or its tail (the sum is
+// accumulate.comp).
 OCT_CONST(uint, SPEC_STAGE, 29u);
 OCT_CONST(uint, STAGE_WHOLE, 0u);
 OCT_CONST(uint, STAGE_HEAD, 1u);
 OCT_CONST(uint, STAGE_TAIL, 2u);
-OCT_CONST(uint, STAGE_ACCUMULATE, 3u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 255u);
 
