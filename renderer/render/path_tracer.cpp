@@ -89,7 +89,7 @@ struct PathTracer::State {
   void bind_accumulation();
   void create_pipeline();
   void create_stage(ComputePipeline& p, uint32_t stage, const uint32_t* spirv, size_t spirv_bytes);
-  void record_tail_passes(VkCommandBuffer cmd, gpu::PassParams pc, uint32_t first_sample, uint32_t count,
+  void record_staged_passes(VkCommandBuffer cmd, gpu::PassParams pc, uint32_t first_sample, uint32_t count,
                           uint32_t per_dispatch) const;
 };
 
@@ -362,11 +362,11 @@ static uint32_t sample_lanes(uint32_t setting, bool triangles, uint32_t count, u
   return lanes;
 }
 
-// The passes with the tail queue (path_trace.comp): per dispatch of samples
-// the head (one invocation per sample, in rounds of lanes along z), the
-// tail over the paths it queued (an indirect dispatch the head sized) and
-// the sum of the values in sample order.
-void PathTracer::State::record_tail_passes(VkCommandBuffer cmd, gpu::PassParams pc, uint32_t first_sample,
+// The staged passes (path_trace.comp, accumulate.comp): per dispatch of
+// samples the head (one invocation per sample, in rounds of lanes along z),
+// with a queue the tail over the paths it queued (an indirect dispatch the
+// head sized), and the sum of the values in sample order.
+void PathTracer::State::record_staged_passes(VkCommandBuffer cmd, gpu::PassParams pc, uint32_t first_sample,
                                            uint32_t count, uint32_t per_dispatch) const {
   const State& s = *this;
   const uint32_t width = uint32_t(s.settings.width), height = uint32_t(s.settings.height);
@@ -427,7 +427,7 @@ void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, ui
                           nullptr);
   const uint32_t per_dispatch = s.samples_per_dispatch() ? s.samples_per_dispatch() : count;
   if (s.staged()) {
-    s.record_tail_passes(cmd, pc, first_sample, count, std::min(per_dispatch, s.tail_samples));
+    s.record_staged_passes(cmd, pc, first_sample, count, std::min(per_dispatch, s.tail_samples));
     return;
   }
   for (uint32_t done = 0; done < count; done += pc.sample_count) {
