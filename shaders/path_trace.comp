@@ -347,6 +347,15 @@ void flush_walk_counts() {
   walk_queries = walk_nodes = walk_leaves = walk_boxes = walk_primitives = walk_instances = 0u;
 }
 
+// The pixel of this invocation: `lanes` invocations share a pixel (lane =
+// gl_LocalInvocationIndex % lanes) and a workgroup covers an 8 x (8 / lanes)
+// tile.
+uvec2 lane_pixel(uint lanes) {
+  const uint local_pixel = gl_LocalInvocationIndex / lanes;
+  return uvec2(gl_WorkGroupID.x * WORKGROUP_SIZE + local_pixel % WORKGROUP_SIZE,
+               gl_WorkGroupID.y * (WORKGROUP_SIZE / lanes) + local_pixel / WORKGROUP_SIZE);
+}
+
 // A dispatch adds samples sample_index .. + sample_count - 1 to every pixel.
 // Each pixel's state is read once, takes the samples in sample-index order
 // and is written once: the same arithmetic in the same order however the
@@ -359,9 +368,7 @@ void flush_walk_counts() {
 void whole_pass() {
   const uint lanes = SAMPLE_LANES ? pass.sample_lanes : 1u;
   const uint lane = gl_LocalInvocationIndex % lanes;
-  const uint local_pixel = gl_LocalInvocationIndex / lanes;
-  const uvec2 pixel = uvec2(gl_WorkGroupID.x * WORKGROUP_SIZE + local_pixel % WORKGROUP_SIZE,
-                            gl_WorkGroupID.y * (WORKGROUP_SIZE / lanes) + local_pixel / WORKGROUP_SIZE);
+  const uvec2 pixel = lane_pixel(lanes);
   const bool in_image = pixel.x < pass.width && pixel.y < pass.height;
   const uint index = pixel.y * pass.width + pixel.x;
 
@@ -460,16 +467,17 @@ PathState tail_load(GpuTailPath q) {
   return p;
 }
 
-uint pixel_count() { return pass.width * pass.height; }
+// A finished path's value for accumulate.comp: sample s of the dispatch, pixel `index`.
+void store_value(uint s, uint index, PathState p) {
+  tail_values[s * (pass.width * pass.height) + index] = vec4(path_value(p), uintBitsToFloat(p.segments));
+}
 
 // One invocation per sample: workgroup z is the round of lanes (sample s =
 // z * lanes + lane), the pixel as whole_pass maps it.
 void head_pass() {
   const uint lanes = SAMPLE_LANES ? pass.sample_lanes : 1u;
   const uint lane = gl_LocalInvocationIndex % lanes;
-  const uint local_pixel = gl_LocalInvocationIndex / lanes;
-  const uvec2 pixel = uvec2(gl_WorkGroupID.x * WORKGROUP_SIZE + local_pixel % WORKGROUP_SIZE,
-                            gl_WorkGroupID.y * (WORKGROUP_SIZE / lanes) + local_pixel / WORKGROUP_SIZE);
+  const uvec2 pixel = lane_pixel(lanes);
   const uint s = gl_WorkGroupID.z * lanes + lane;
   if (pixel.x >= pass.width || pixel.y >= pass.height || s >= pass.sample_count) return;
   const uint index = pixel.y * pass.width + pixel.x;
@@ -488,7 +496,7 @@ void head_pass() {
     trace_path(p, index, sample_index, pass.bounce_limit);  // the queue is full
   }
   if (WALK_STATS) flush_walk_counts();
-  tail_values[s * pixel_count() + index] = vec4(path_value(p), uintBitsToFloat(p.segments));
+  store_value(s, index, p);
 }
 
 void tail_pass() {
@@ -498,7 +506,7 @@ void tail_pass() {
   PathState p = tail_load(q);
   trace_path(p, q.pixel, pass.sample_index + q.sample_offset, pass.bounce_limit);
   if (WALK_STATS) flush_walk_counts();
-  tail_values[q.sample_offset * pixel_count() + q.pixel] = vec4(path_value(p), uintBitsToFloat(p.segments));
+  store_value(q.sample_offset, q.pixel, p);
 }
 
 void main() {

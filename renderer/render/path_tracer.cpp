@@ -6,9 +6,9 @@
 #include <bit>
 #include <vector>
 
+#include "accumulate.h"
 #include "core/clock.h"
 #include "core/errors.h"
-#include "accumulate.h"
 #include "core/text.h"
 #include "path_trace_fp16.h"
 #include "path_trace_fp16_all.h"
@@ -90,7 +90,7 @@ struct PathTracer::State {
   void create_pipeline();
   void create_stage(ComputePipeline& p, uint32_t stage, const uint32_t* spirv, size_t spirv_bytes);
   void record_staged_passes(VkCommandBuffer cmd, gpu::PassParams pc, uint32_t first_sample, uint32_t count,
-                          uint32_t per_dispatch) const;
+                            uint32_t per_dispatch) const;
 };
 
 // Bytes the tail queue's buffers may take each: a quarter GiB on a GPU, 32
@@ -367,7 +367,7 @@ static uint32_t sample_lanes(uint32_t setting, bool triangles, uint32_t count, u
 // with a queue the tail over the paths it queued (an indirect dispatch the
 // head sized), and the sum of the values in sample order.
 void PathTracer::State::record_staged_passes(VkCommandBuffer cmd, gpu::PassParams pc, uint32_t first_sample,
-                                           uint32_t count, uint32_t per_dispatch) const {
+                                             uint32_t count, uint32_t per_dispatch) const {
   const State& s = *this;
   const uint32_t width = uint32_t(s.settings.width), height = uint32_t(s.settings.height);
   const uint32_t groups_x = (width + gpu::WORKGROUP_SIZE - 1) / gpu::WORKGROUP_SIZE;

@@ -559,7 +559,7 @@ struct PassParams {
   uint rr_depth;      // Russian roulette from this bounce on (0xffffffff: never)
   uint sample_count;  // ... and how many: sample_index .. sample_index + sample_count - 1
   uint sample_lanes;  // invocations per pixel (1, 2, 4 or 8): a workgroup covers an 8 x (8 / lanes) tile
-  uint tail_depth;    // the tail queue: paths still going at this bounce go on in the tail's dispatch (0: off)
+  uint tail_depth;    // staged (head): paths still going at this bounce go to the tail queue (>= bounce_limit: none)
   uint tail_capacity; // the queue's entries (GpuTailPath); a head past them finishes its path itself
   uint pad2;
   uint pad3;

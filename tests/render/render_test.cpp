@@ -132,6 +132,13 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
   light.radiance = glm::vec3(6.0f, 5.0f, 4.0f);
   scene.materials.push_back(light);
   scene.spheres.push_back({{-1, 3, 1}, 0.5f, uint32_t(scene.materials.size() - 1)});
+  const auto expect_same = [](const RenderResult& got, const RenderResult& want) {
+    EXPECT_TRUE(same_bits(got.mean, want.mean));
+    EXPECT_TRUE(same_bits(got.variance_of_mean, want.variance_of_mean));
+    EXPECT_EQ(got.count, want.count);
+    EXPECT_EQ(got.rays, want.rays);
+    EXPECT_EQ(got.nonfinite_samples, want.nonfinite_samples);
+  };
   for (Precision precision : {Precision::FP32, Precision::FP16}) {
     for (uint32_t rr : {0u, 2u}) {
       RenderSettings s;
@@ -155,11 +162,7 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
                      std::to_string(lanes) + ", queue " + std::to_string(entries));
         const RenderResult got = render(test::shared_context(), scene, s);
         EXPECT_EQ(got.tail_depth, depth);
-        EXPECT_TRUE(same_bits(got.mean, want.mean));
-        EXPECT_TRUE(same_bits(got.variance_of_mean, want.variance_of_mean));
-        EXPECT_EQ(got.count, want.count);
-        EXPECT_EQ(got.rays, want.rays);
-        EXPECT_EQ(got.nonfinite_samples, want.nonfinite_samples);
+        expect_same(got, want);
       }
     }
   }
@@ -175,9 +178,7 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
     s.tail_depth = 1;
     const RenderResult got = render(test::shared_context(), scene, s);
     SCOPED_TRACE(accel_name(accel));
-    EXPECT_TRUE(same_bits(got.mean, want.mean));
-    EXPECT_TRUE(same_bits(got.variance_of_mean, want.variance_of_mean));
-    EXPECT_EQ(got.rays, want.rays);
+    expect_same(got, want);
   }
 }
 
