@@ -107,10 +107,10 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
       }
       // Batches grow until one takes about a quarter second, and shrink near
       // the end so that no device is left with much more than the others.
-      // The first batch (and every later one) in whole rounds of a pixel's
-      // lanes, as render()'s.
+      // The first batch (PathTracer::first_batch) and every later one in whole
+      // rounds of a pixel's lanes, as render()'s.
       const uint32_t lanes = tracer.full_lanes();
-      uint32_t batch = lanes;
+      uint32_t batch = tracer.first_batch();
       for (;;) {
         if (failed || (control.stop && control.stop->load())) break;
         const uint32_t remaining = settings.spp - std::min(settings.spp, next.load());

@@ -453,6 +453,13 @@ void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, ui
   }
 }
 
+uint32_t PathTracer::first_batch() const {
+  const State& s = *state_;
+  const uint32_t lanes = full_lanes();
+  if (!s.staged() || s.ctx.info.software) return lanes;
+  return std::max(lanes, s.tail_samples);
+}
+
 uint32_t PathTracer::full_lanes() const {
   const State& s = *state_;
   if (!s.sample_lanes_enabled()) return 1u;
@@ -622,10 +629,11 @@ RenderResult render(const VulkanContext& ctx, const Scene& scene, const RenderSe
   bool interrupted = false;
   // Batches grow until one takes about a quarter second: few submissions for
   // fast passes, regular progress, a prompt stop and no driver watchdog for
-  // slow ones. The first has as many samples as a pixel has lanes, so that
-  // it runs with all of them (a batch of one sample would have one lane).
+  // slow ones. The first has at least as many samples as a pixel has lanes,
+  // so that it runs with all of them (a batch of one sample would have one
+  // lane); on a GPU as many as a dispatch of the staged head takes.
   const uint32_t lanes = tracer.full_lanes();
-  uint32_t batch = lanes;
+  uint32_t batch = tracer.first_batch();
   // Test hook: OCTRACE_TEST_DEVICE_LOST_AFTER=N fails the render as a lost
   // device would, after the first batch that reaches N samples and its
   // checkpoint (tests/app/interrupt_test).

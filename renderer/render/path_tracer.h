@@ -111,6 +111,11 @@ class PathTracer {
   // How many invocations share a pixel when a batch has enough samples for
   // them (1 where lanes are compiled out): the smallest batch that uses them.
   uint32_t full_lanes() const;
+  // The samples of a render's first batch, before a batch's time is known:
+  // full_lanes(), and on a GPU with the staged passes as many as one
+  // dispatch of the head takes (its tail, the longest path's bounces one
+  // after another, then comes once for them; optimisation log 50).
+  uint32_t first_batch() const;
   // Records the same passes into `cmd` without submitting, for a caller that
   // adds its own work to the submission (the preview's resolve pass).
   void record_passes(VkCommandBuffer cmd, const PassSettings& pass, uint32_t first_sample, uint32_t count) const;
