@@ -11,6 +11,8 @@
 #   - ab NAME FLAGS...: tools/ab_render.py of the variants in the array V
 #     (set by the script: V=(--variant base=BIN=$A --variant new=)), 5
 #     rounds, into $R/ab_NAME.md, one line per variant in $T;
+#   - suite NAME LIMIT: build-gpu/tests/NAME with a time limit of LIMIT
+#     seconds, into $R/NAME.txt, its rc and gtest's PASSED/FAILED lines in $T;
 #   - gpu_finish: $R tarred into $OUT/results.tgz, $T printed.
 set -u
 rm -rf build-gpu; mkdir build-gpu; tar xzf .gpub/bin.tgz -C build-gpu
@@ -27,5 +29,9 @@ ab() {
   local labels; labels=$(printf '%s\n' "${V[@]}" | grep -v '^--variant$' | sed 's/=.*//' | paste -sd'|')
   timeout ${AB_TIMEOUT:-90} python3 tools/ab_render.py --octrace "$B" --rounds 5 --render "$*" "${V[@]}" --out "$R/ab_$name.md" > "$R/ab_$name.log" 2>&1
   echo "$name rc=$?: $(grep -E "^\| ($labels) " "$R/ab_$name.md" | cut -d'|' -f2,5,6,7,9 | tr '\n' ' ')" >> "$T"
+}
+suite() {
+  timeout "$2" "build-gpu/tests/$1" > "$R/$1.txt" 2>&1
+  echo "$1 rc=$? $(grep -E '^\[  (PASSED|FAILED)' "$R/$1.txt" | tr '\n' ' ')" >> "$T"
 }
 gpu_finish() { tar czf "$OUT/results.tgz" -C /tmp res; cat "$T"; }
