@@ -76,6 +76,16 @@ bool same_bits(const Image& a, const Image& b) {
          std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)) == 0;
 }
 
+// Every bit of a render's result as another's: mean, variance, sample and
+// ray counts, and the NaN/Inf samples rejected.
+void expect_same_result(const RenderResult& got, const RenderResult& want) {
+  EXPECT_TRUE(same_bits(got.mean, want.mean));
+  EXPECT_TRUE(same_bits(got.variance_of_mean, want.variance_of_mean));
+  EXPECT_EQ(got.count, want.count);
+  EXPECT_EQ(got.rays, want.rays);
+  EXPECT_EQ(got.nonfinite_samples, want.nonfinite_samples);
+}
+
 // How samples are split into dispatches and shared among invocations does
 // not change a bit of the result: mean, variance, sample and ray counts
 // (shaders/path_trace.comp main()). The image size is not a multiple of the
@@ -96,10 +106,7 @@ TEST_F(RenderTest, BatchingAndSampleLanesDoNotChangeTheResult) {
     const RenderResult want = render(test::shared_context(), scene, s);
     const auto check = [&](const RenderResult& got, const std::string& what) {
       SCOPED_TRACE(std::string(mesh ? "spheres and a mesh, " : "spheres only, ") + what);
-      EXPECT_TRUE(same_bits(got.mean, want.mean));
-      EXPECT_TRUE(same_bits(got.variance_of_mean, want.variance_of_mean));
-      EXPECT_EQ(got.count, want.count);
-      EXPECT_EQ(got.rays, want.rays);
+      expect_same_result(got, want);
       EXPECT_EQ(got.min_samples, 7u);
     };
     for (auto [per_dispatch, lanes] : {std::pair{0u, 0u}, {0u, 8u}, {0u, 4u}, {0u, 2u}, {3u, 4u}, {5u, 8u}, {2u, 1u}}) {
@@ -132,13 +139,6 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
   light.radiance = glm::vec3(6.0f, 5.0f, 4.0f);
   scene.materials.push_back(light);
   scene.spheres.push_back({{-1, 3, 1}, 0.5f, uint32_t(scene.materials.size() - 1)});
-  const auto expect_same = [](const RenderResult& got, const RenderResult& want) {
-    EXPECT_TRUE(same_bits(got.mean, want.mean));
-    EXPECT_TRUE(same_bits(got.variance_of_mean, want.variance_of_mean));
-    EXPECT_EQ(got.count, want.count);
-    EXPECT_EQ(got.rays, want.rays);
-    EXPECT_EQ(got.nonfinite_samples, want.nonfinite_samples);
-  };
   for (Precision precision : {Precision::FP32, Precision::FP16}) {
     for (uint32_t rr : {0u, 2u}) {
       RenderSettings s;
@@ -162,7 +162,7 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
                      std::to_string(lanes) + ", queue " + std::to_string(entries));
         const RenderResult got = render(test::shared_context(), scene, s);
         EXPECT_EQ(got.tail_depth, depth);
-        expect_same(got, want);
+        expect_same_result(got, want);
       }
     }
   }
@@ -178,7 +178,7 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
     s.tail_depth = 1;
     const RenderResult got = render(test::shared_context(), scene, s);
     SCOPED_TRACE(accel_name(accel));
-    expect_same(got, want);
+    expect_same_result(got, want);
   }
 }
 
@@ -211,10 +211,7 @@ TEST_F(RenderTest, StagedSlotsDoNotChangeTheResult) {
     staged.run_passes(pass_settings(scene, s), 0, 7);  // 7 dispatches in one batch
     const RenderResult got = staged.read_result();
     SCOPED_TRACE("spp " + std::to_string(spp) + ", tail depth " + std::to_string(depth));
-    EXPECT_TRUE(same_bits(got.mean, want.mean));
-    EXPECT_TRUE(same_bits(got.variance_of_mean, want.variance_of_mean));
-    EXPECT_EQ(got.count, want.count);
-    EXPECT_EQ(got.rays, want.rays);
+    expect_same_result(got, want);
     EXPECT_EQ(got.min_samples, 7u);
   }
 }
