@@ -437,7 +437,7 @@ layout(std430, binding = BINDING_TAIL_CONTROL) buffer TailControlBuf { TailContr
 
 const uint TAIL_INTO_FROM = 0x40000000u, TAIL_PREV_NEE = 0x80000000u;
 
-void tail_store(uint slot, PathState p, uint index, uint s) {
+void tail_store(uint entry, PathState p, uint index, uint s) {
   GpuTailPath q;
   q.origin = p.ray.origin;
   q.pixel = index;
@@ -451,7 +451,7 @@ void tail_store(uint slot, PathState p, uint index, uint s) {
   q.from_prim = p.from_prim;
   q.prev_p = p.prev_p;
   q.prev_pdf = p.prev_pdf;
-  tail_queue[pass.tail_slot * pass.tail_capacity + slot] = q;
+  tail_queue[pass.tail_slot * pass.tail_capacity + entry] = q;
 }
 
 PathState tail_load(GpuTailPath q) {
@@ -489,11 +489,11 @@ void head_pass() {
   PathState p = path_start(camera_ray(pixel, index, sample_index));
   // A scene with no emitter under a black sky is black: nothing to trace.
   if (ANY_LIGHT && !trace_path(p, index, sample_index, min(pass.tail_depth, pass.bounce_limit))) {
-    uint slot = atomicAdd(tail_control[pass.tail_slot].count, 1u);
-    if (slot < pass.tail_capacity) {
-      tail_store(slot, p, index, s);
-      // The tail's dispatch size: one workgroup per 64 slots taken.
-      if (slot % (WORKGROUP_SIZE * WORKGROUP_SIZE) == 0u) atomicAdd(tail_control[pass.tail_slot].groups_x, 1u);
+    uint entry = atomicAdd(tail_control[pass.tail_slot].count, 1u);
+    if (entry < pass.tail_capacity) {
+      tail_store(entry, p, index, s);
+      // The tail's dispatch size: one workgroup per 64 entries taken.
+      if (entry % (WORKGROUP_SIZE * WORKGROUP_SIZE) == 0u) atomicAdd(tail_control[pass.tail_slot].groups_x, 1u);
       if (WALK_STATS) flush_walk_counts();
       return;
     }
@@ -504,9 +504,9 @@ void head_pass() {
 }
 
 void tail_pass() {
-  const uint slot = gl_WorkGroupID.x * (WORKGROUP_SIZE * WORKGROUP_SIZE) + gl_LocalInvocationIndex;
-  if (slot >= min(tail_control[pass.tail_slot].count, pass.tail_capacity)) return;
-  GpuTailPath q = tail_queue[pass.tail_slot * pass.tail_capacity + slot];
+  const uint entry = gl_WorkGroupID.x * (WORKGROUP_SIZE * WORKGROUP_SIZE) + gl_LocalInvocationIndex;
+  if (entry >= min(tail_control[pass.tail_slot].count, pass.tail_capacity)) return;
+  GpuTailPath q = tail_queue[pass.tail_slot * pass.tail_capacity + entry];
   PathState p = tail_load(q);
   trace_path(p, q.pixel, pass.sample_index + q.sample_offset, pass.bounce_limit);
   if (WALK_STATS) flush_walk_counts();

@@ -590,7 +590,7 @@ struct GpuTailPath {
 // dispatch (a VkDispatchIndirectCommand), reset before each head that uses the slot.
 struct TailControl {
   uint count;     // paths the heads asked to queue (those past tail_capacity were not)
-  uint groups_x;  // workgroups of 64 the tail needs: one per 64 slots taken
+  uint groups_x;  // workgroups of 64 the tail needs: one per 64 entries taken
   uint groups_y;  // 1
   uint groups_z;  // 1
 };
