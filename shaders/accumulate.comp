@@ -1,5 +1,5 @@
 // The sum of a dispatch of samples with the tail queue (path_trace.comp,
-// PassParams.tail_depth): each pixel's values, tail_values[slot][s][pixel], added
+// PassParams.tail_depth): each pixel's values, tail_values[s][pixel], added
 // to its accumulation state in sample order, as the whole paths add them.
 // A shader of its own so that it compiles in milliseconds.
 #version 460
@@ -26,11 +26,10 @@ void main() {
   if (pixel.x >= pass.width || pixel.y >= pass.height) return;
   const uint index = pixel.y * pass.width + pixel.x;
   const uint pixels = pass.width * pass.height;
-  const uint first = pass.tail_slot * pass.tail_slot_samples;
   vec4 acc = accum_sum[index], sq = accum_sq[index];
   vec3 comp = accum_comp[index].rgb;
   for (uint s = 0u; s < pass.sample_count; ++s) {
-    vec4 v = tail_values[(first + s) * pixels + index];
+    vec4 v = tail_values[s * pixels + index];
     add_sample(v.rgb, floatBitsToUint(v.w), acc, comp, sq);
   }
   accum_comp[index].rgb = comp;

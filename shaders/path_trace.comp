@@ -422,22 +422,19 @@ void whole_pass() {
 // of samples runs as three. STAGE_HEAD traces every sample's path up to
 // bounce tail_depth; a path still going on there is put in the queue (while
 // it has room; past that the head finishes it itself), and every other
-// sample's value goes to tail_values[slot][s][pixel]. STAGE_TAIL takes the
-// queue, one path per invocation, dense: the few long paths (light trapped in
-// a closed mesh, glass and metal between close spheres) no longer hold a warp
+// sample's value goes to tail_values[s][pixel]. STAGE_TAIL takes the queue,
+// one path per invocation, dense: the few long paths (light trapped in a
+// closed mesh, glass and metal between close spheres) no longer hold a warp
 // of short ones. accumulate.comp then adds each pixel's values in sample
 // order. The arithmetic and its order are those of whole_pass: the same bits.
-// Each dispatch uses one slot (PassParams.tail_slot) of the values, the
-// queue and its TailControl, so the host can run the next dispatch's head
-// beside this one's tail and sum.
 layout(constant_id = SPEC_STAGE) const uint STAGE = STAGE_WHOLE;
 layout(std430, binding = BINDING_TAIL_VALUES) buffer TailValueBuf { vec4 tail_values[]; };
 layout(std430, binding = BINDING_TAIL_QUEUE) buffer TailQueueBuf { GpuTailPath tail_queue[]; };
-layout(std430, binding = BINDING_TAIL_CONTROL) buffer TailControlBuf { TailControl tail_control[]; };
+layout(std430, binding = BINDING_TAIL_CONTROL) buffer TailControlBuf { TailControl tail_control; };
 
 const uint TAIL_INTO_FROM = 0x40000000u, TAIL_PREV_NEE = 0x80000000u;
 
-void tail_store(uint entry, PathState p, uint index, uint s) {
+void tail_store(uint slot, PathState p, uint index, uint s) {
   GpuTailPath q;
   q.origin = p.ray.origin;
   q.pixel = index;
@@ -451,7 +448,7 @@ void tail_store(uint entry, PathState p, uint index, uint s) {
   q.from_prim = p.from_prim;
   q.prev_p = p.prev_p;
   q.prev_pdf = p.prev_pdf;
-  tail_queue[pass.tail_slot * pass.tail_capacity + entry] = q;
+  tail_queue[slot] = q;
 }
 
 PathState tail_load(GpuTailPath q) {
@@ -472,8 +469,7 @@ PathState tail_load(GpuTailPath q) {
 
 // A finished path's value for accumulate.comp: sample s of the dispatch, pixel `index`.
 void store_value(uint s, uint index, PathState p) {
-  tail_values[(pass.tail_slot * pass.tail_slot_samples + s) * (pass.width * pass.height) + index] =
-      vec4(path_value(p), uintBitsToFloat(p.segments));
+  tail_values[s * (pass.width * pass.height) + index] = vec4(path_value(p), uintBitsToFloat(p.segments));
 }
 
 // One invocation per sample: workgroup z is the round of lanes (sample s =
@@ -489,11 +485,11 @@ void head_pass() {
   PathState p = path_start(camera_ray(pixel, index, sample_index));
   // A scene with no emitter under a black sky is black: nothing to trace.
   if (ANY_LIGHT && !trace_path(p, index, sample_index, min(pass.tail_depth, pass.bounce_limit))) {
-    uint entry = atomicAdd(tail_control[pass.tail_slot].count, 1u);
-    if (entry < pass.tail_capacity) {
-      tail_store(entry, p, index, s);
-      // The tail's dispatch size: one workgroup per 64 entries taken.
-      if (entry % (WORKGROUP_SIZE * WORKGROUP_SIZE) == 0u) atomicAdd(tail_control[pass.tail_slot].groups_x, 1u);
+    uint slot = atomicAdd(tail_control.count, 1u);
+    if (slot < pass.tail_capacity) {
+      tail_store(slot, p, index, s);
+      // The tail's dispatch size: one workgroup per 64 slots taken.
+      if (slot % (WORKGROUP_SIZE * WORKGROUP_SIZE) == 0u) atomicAdd(tail_control.groups_x, 1u);
       if (WALK_STATS) flush_walk_counts();
       return;
     }
@@ -504,9 +500,9 @@ void head_pass() {
 }
 
 void tail_pass() {
-  const uint entry = gl_WorkGroupID.x * (WORKGROUP_SIZE * WORKGROUP_SIZE) + gl_LocalInvocationIndex;
-  if (entry >= min(tail_control[pass.tail_slot].count, pass.tail_capacity)) return;
-  GpuTailPath q = tail_queue[pass.tail_slot * pass.tail_capacity + entry];
+  const uint slot = gl_WorkGroupID.x * (WORKGROUP_SIZE * WORKGROUP_SIZE) + gl_LocalInvocationIndex;
+  if (slot >= min(tail_control.count, pass.tail_capacity)) return;
+  GpuTailPath q = tail_queue[slot];
   PathState p = tail_load(q);
   trace_path(p, q.pixel, pass.sample_index + q.sample_offset, pass.bounce_limit);
   if (WALK_STATS) flush_walk_counts();

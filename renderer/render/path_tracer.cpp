@@ -70,23 +70,14 @@ struct PathTracer::State {
     if (settings.samples_per_dispatch) return settings.samples_per_dispatch;
     return ctx.info.software && !staged() ? 1u : 0u;
   }
-  // The stages a staged dispatch goes through: the head, with a queue the
-  // tail, and the sum.
-  uint32_t stages() const { return tail_depth() > 0 ? 3u : 2u; }
   GpuScene scene;
   Buffer accum_sum, accum_comp, accum_sq, stats;
-  // Staged: each sample's value per [slot][sample of the dispatch][pixel],
-  // with a queue the queue per [slot][entry] and a TailControl per slot
-  // (shared.h); 16-byte placeholders for what is not used.
+  // With the tail queue: each sample's value per [sample of the dispatch]
+  // [pixel], the queue and its TailControl (shared.h); 16-byte placeholders
+  // without.
   Buffer tail_values, tail_queue, tail_control;
-  uint32_t tail_samples = 0;   // samples one head dispatch takes (a slot of tail_values holds them)
-  uint32_t tail_capacity = 0;  // GpuTailPath entries of a slot of tail_queue
-  // Slots of those buffers (shared.h, BINDING_TAIL_VALUES): one per stage, so
-  // that the stages of consecutive dispatches run side by side
-  // (record_staged_passes), but no more than a render of settings.spp
-  // samples has dispatches (10 spp at 1200x800 is one dispatch: the other
-  // slots would hold a GiB for nothing); 0 for the whole paths.
-  uint32_t tail_slots = 0;
+  uint32_t tail_samples = 0;   // samples one head dispatch takes (tail_values holds them)
+  uint32_t tail_capacity = 0;  // GpuTailPath entries of tail_queue
   // The whole paths (STAGE_WHOLE), or staged its head, with a queue its
   // tail (path_trace.comp STAGE_*), and the sum (accumulate.comp).
   ComputePipeline pipeline, tail_pipeline, accumulate_pipeline;
@@ -102,11 +93,11 @@ struct PathTracer::State {
                             uint32_t per_dispatch) const;
 };
 
-// Bytes a slot of each of the tail queue's buffers may take: a quarter GiB
-// on a GPU, 32 MiB in a software device's host memory, or the device's limit
-// per buffer shared by `slots` if that is less.
-static uint64_t tail_buffer_bytes(const VulkanContext& ctx, uint32_t slots) {
-  return std::min<uint64_t>(uint64_t(1) << (ctx.info.software ? 25 : 28), ctx.limits.maxStorageBufferRange / slots);
+// Bytes the tail queue's buffers may take each: a quarter GiB on a GPU, 32
+// MiB in a software device's host memory, or the device's limit per buffer
+// if that is less.
+static uint64_t tail_buffer_bytes(const VulkanContext& ctx) {
+  return std::min<uint64_t>(uint64_t(1) << (ctx.info.software ? 25 : 28), ctx.limits.maxStorageBufferRange);
 }
 
 // The accumulation state, three arrays of one vec4 per pixel (shared.h).
@@ -126,9 +117,9 @@ void PathTracer::State::create_accumulation() {
   // what one indirect dispatch of 65535 workgroups covers. A head that
   // finds the queue full finishes its path itself: the size is a matter of
   // speed, not of the image.
-  s.tail_samples = s.tail_capacity = s.tail_slots = 0;
+  s.tail_samples = s.tail_capacity = 0;
   if (s.staged()) {
-    const uint64_t budget = tail_buffer_bytes(s.ctx, s.stages());
+    const uint64_t budget = tail_buffer_bytes(s.ctx);
     const uint64_t value_bytes = s.pixels() * sizeof(glm::vec4);
     // At most 16 samples: what the H200 runs of log 49 took at 1200x800
     // (the budget's 17 in whole rounds of 8); more saves little per
@@ -142,13 +133,11 @@ void PathTracer::State::create_accumulation() {
       s.tail_capacity = uint32_t(std::min<uint64_t>({std::max<uint64_t>(s.pixels() * s.tail_samples / 4, group),
                                                      65535 * group, budget / sizeof(gpu::GpuTailPath)}));
     if (s.settings.tail_queue_entries) s.tail_capacity = std::min(s.tail_capacity, s.settings.tail_queue_entries);
-    s.tail_slots = std::clamp((s.settings.spp + s.tail_samples - 1) / s.tail_samples, 1u, s.stages());
   }
-  const uint64_t slots = std::max(s.tail_slots, 1u);
-  create_buffer(s.tail_values, s.ctx, slots * s.tail_samples * s.pixels() * sizeof(glm::vec4), false,
+  create_buffer(s.tail_values, s.ctx, uint64_t(s.tail_samples) * s.pixels() * sizeof(glm::vec4), false,
                 "tail queue's values");
-  create_buffer(s.tail_queue, s.ctx, slots * s.tail_capacity * sizeof(gpu::GpuTailPath), false, "tail queue");
-  create_buffer(s.tail_control, s.ctx, slots * sizeof(gpu::TailControl), false, "tail queue's control");
+  create_buffer(s.tail_queue, s.ctx, uint64_t(s.tail_capacity) * sizeof(gpu::GpuTailPath), false, "tail queue");
+  create_buffer(s.tail_control, s.ctx, sizeof(gpu::TailControl), false, "tail queue's control");
 }
 
 void PathTracer::State::bind_accumulation() {
@@ -376,18 +365,9 @@ static uint32_t sample_lanes(uint32_t setting, bool triangles, uint32_t count, u
 // The staged passes (path_trace.comp, accumulate.comp): per dispatch of
 // samples the head (one invocation per sample, in rounds of lanes along z),
 // with a queue the tail over the paths it queued (an indirect dispatch the
-// head sized), and the sum of the values in sample order. Dispatch d takes
-// slot d % tail_slots of the buffers; its stage j (the head, the tail, the
-// sum) runs in step d * spacing + j, and one barrier ends each step. With a
-// slot per stage the spacing is 1: a step records the tail of one dispatch,
-// the sum of the one before and the head of the next, so the GPU fills the
-// tail's last few long paths and the sum's memory traffic with the next
-// head's work (optimisation log 52). With fewer slots the spacing keeps a
-// slot's next head after its last dispatch's sum. The values and the order
-// they are added in are the same however the stages overlap.
+// head sized), and the sum of the values in sample order.
 void PathTracer::State::record_staged_passes(VkCommandBuffer cmd, gpu::PassParams pc, uint32_t first_sample,
                                              uint32_t count, uint32_t per_dispatch) const {
-  if (count == 0) return;
   const State& s = *this;
   const uint32_t width = uint32_t(s.settings.width), height = uint32_t(s.settings.height);
   const uint32_t groups_x = (width + gpu::WORKGROUP_SIZE - 1) / gpu::WORKGROUP_SIZE;
@@ -395,58 +375,38 @@ void PathTracer::State::record_staged_passes(VkCommandBuffer cmd, gpu::PassParam
   const bool queue = s.tail_depth() > 0;
   pc.tail_depth = queue ? s.tail_depth() : UINT32_MAX;
   pc.tail_capacity = s.tail_capacity;
-  pc.tail_slot_samples = s.tail_samples;
-  const uint32_t dispatches = (count + per_dispatch - 1) / per_dispatch;
-  const uint32_t stages = s.stages(), slots = s.tail_slots;
-  const uint32_t spacing = dispatches > slots ? (stages + slots - 1) / slots : 1u;
-  // Binds `p` with the push constants of dispatch d.
-  const auto bind = [&](const ComputePipeline& p, uint32_t d) {
-    pc.sample_index = first_sample + d * per_dispatch;
-    pc.sample_count = std::min(per_dispatch, count - d * per_dispatch);
-    pc.sample_lanes = s.sample_lanes_enabled()
-                          ? sample_lanes(s.settings.sample_lanes, s.scene_features.triangles, pc.sample_count, height)
-                          : 1u;
-    pc.tail_slot = d % slots;
+  const auto bind = [&](const ComputePipeline& p) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &p.set, 0, nullptr);
     vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
   };
-  // The dispatch whose stage j runs in `step`, or `dispatches` for none.
-  const auto at = [&](uint32_t step, uint32_t j) {
-    return step >= j && (step - j) % spacing == 0 ? std::min((step - j) / spacing, dispatches) : dispatches;
-  };
-  const auto reset_control = [&](uint32_t d) {
-    const gpu::TailControl empty{0u, 0u, 1u, 1u};
-    vkCmdUpdateBuffer(cmd, s.tail_control.buffer, (d % slots) * sizeof(empty), sizeof(empty), &empty);
-  };
-  // The previous batch's stages read the slots.
-  compute_barrier(cmd);
-  if (queue) {
-    reset_control(0);
+  const gpu::TailControl empty{0u, 0u, 1u, 1u};
+  for (uint32_t done = 0; done < count; done += pc.sample_count) {
+    pc.sample_index = first_sample + done;
+    pc.sample_count = std::min(per_dispatch, count - done);
+    pc.sample_lanes = s.sample_lanes_enabled()
+                          ? sample_lanes(s.settings.sample_lanes, s.scene_features.triangles, pc.sample_count, height)
+                          : 1u;
+    const uint32_t tile_height = gpu::WORKGROUP_SIZE / pc.sample_lanes;
+    // The previous dispatch's tail and sum read the queue and the values.
     compute_barrier(cmd);
-  }
-  for (uint32_t step = 0; step < (dispatches - 1) * spacing + stages; ++step) {
-    if (step > 0) compute_barrier(cmd);
-    if (const uint32_t d = at(step, 1); queue && d < dispatches) {
-      bind(s.tail_pipeline, d);
+    if (queue) {
+      vkCmdUpdateBuffer(cmd, s.tail_control.buffer, 0, sizeof(empty), &empty);
+      compute_barrier(cmd);
+    }
+    bind(s.pipeline);
+    vkCmdDispatch(cmd, groups_x, (height + tile_height - 1) / tile_height,
+                  (pc.sample_count + pc.sample_lanes - 1) / pc.sample_lanes);
+    if (queue) {
+      compute_barrier(cmd);
+      bind(s.tail_pipeline);
       // TailControl's groups_x, groups_y, groups_z (after its count) are the
       // VkDispatchIndirectCommand.
-      vkCmdDispatchIndirect(cmd, s.tail_control.buffer,
-                            pc.tail_slot * sizeof(gpu::TailControl) + offsetof(gpu::TailControl, groups_x));
+      vkCmdDispatchIndirect(cmd, s.tail_control.buffer, offsetof(gpu::TailControl, groups_x));
     }
-    if (const uint32_t d = at(step, stages - 1); d < dispatches) {
-      bind(s.accumulate_pipeline, d);
-      vkCmdDispatch(cmd, groups_x, (height + gpu::WORKGROUP_SIZE - 1) / gpu::WORKGROUP_SIZE, 1);
-    }
-    if (const uint32_t d = at(step, 0); d < dispatches) {
-      bind(s.pipeline, d);
-      const uint32_t tile_height = gpu::WORKGROUP_SIZE / pc.sample_lanes;
-      vkCmdDispatch(cmd, groups_x, (height + tile_height - 1) / tile_height,
-                    (pc.sample_count + pc.sample_lanes - 1) / pc.sample_lanes);
-    }
-    // The next head's slot: the tail that read its control before ran in an
-    // earlier step (slots x spacing >= stages).
-    if (const uint32_t d = at(step + 1, 0); queue && d > 0 && d < dispatches) reset_control(d);
+    compute_barrier(cmd);
+    bind(s.accumulate_pipeline);
+    vkCmdDispatch(cmd, groups_x, (height + gpu::WORKGROUP_SIZE - 1) / gpu::WORKGROUP_SIZE, 1);
   }
 }
 

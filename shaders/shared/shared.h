@@ -123,13 +123,10 @@ OCT_CONST(uint, BINDING_BUFFER_PARTS, 24u);
 // What transmission reads besides GpuMaterial, one GpuTransmission per
 // material; a 16-byte placeholder in a scene without transmission.
 OCT_CONST(uint, BINDING_TRANSMISSION, 26u);
-// The staged passes (path_trace.comp STAGE_*, accumulate.comp): each
-// sample's value (vec4: rgb, segments as uint bits) per [slot][sample of the
-// dispatch][pixel], the tail queue's paths that go on after the head
-// (GpuTailPath) per [slot][entry], and a TailControl per slot. Consecutive
-// dispatches take the slots in turn, so that one dispatch's head, the one
-// before's tail and the one before that's sum run side by side
-// (render/path_tracer.cpp). 16-byte placeholders for the whole paths.
+// The tail queue (PassParams.tail_depth; path_trace.comp): each sample's
+// value (vec4: rgb, segments as uint bits) per [sample of the dispatch][pixel],
+// the paths that go on after the head (GpuTailPath), and TailControl. 16-byte
+// placeholders when the queue is off.
 OCT_CONST(uint, BINDING_TAIL_VALUES, 27u);
 OCT_CONST(uint, BINDING_TAIL_QUEUE, 28u);
 OCT_CONST(uint, BINDING_TAIL_CONTROL, 29u);
@@ -563,9 +560,9 @@ struct PassParams {
   uint sample_count;  // ... and how many: sample_index .. sample_index + sample_count - 1
   uint sample_lanes;  // invocations per pixel (1, 2, 4 or 8): a workgroup covers an 8 x (8 / lanes) tile
   uint tail_depth;    // staged (head): paths still going at this bounce go to the tail queue (>= bounce_limit: none)
-  uint tail_capacity; // entries (GpuTailPath) of a slot's queue; a head past them finishes its path itself
-  uint tail_slot;     // staged: the slot of the tail's buffers this dispatch uses (values, queue, TailControl)
-  uint tail_slot_samples;  // staged: samples a slot of tail_values holds ([slot][sample][pixel])
+  uint tail_capacity; // the queue's entries (GpuTailPath); a head past them finishes its path itself
+  uint pad2;
+  uint pad3;
   uint pad4;
 };
 
@@ -586,11 +583,11 @@ struct GpuTailPath {
   float prev_pdf;
 };
 
-// 16 bytes: a slot's tail queue fill and, from byte 4, the tail's indirect
-// dispatch (a VkDispatchIndirectCommand), reset before each head that uses the slot.
+// 16 bytes: the tail queue's fill and, from byte 4, the tail's indirect
+// dispatch (a VkDispatchIndirectCommand), reset before each head.
 struct TailControl {
   uint count;     // paths the heads asked to queue (those past tail_capacity were not)
-  uint groups_x;  // workgroups of 64 the tail needs: one per 64 entries taken
+  uint groups_x;  // workgroups of 64 the tail needs: one per 64 slots taken
   uint groups_y;  // 1
   uint groups_z;  // 1
 };

@@ -182,40 +182,6 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
   }
 }
 
-// The staged passes' slots (PathTracer::record_staged_passes): dispatch d
-// takes slot d % slots of the values, the queue and its control. With a
-// slot per stage the stages of consecutive dispatches run side by side;
-// with fewer (a render of settings.spp samples needs fewer dispatches, but
-// a caller asks for more) a slot's next head waits for the last sum that
-// read it. Batches of more dispatches than slots, with and without the
-// queue, add every bit as the whole paths do.
-TEST_F(RenderTest, StagedSlotsDoNotChangeTheResult) {
-  Scene scene = make_rtiow_scene({40, 0.2f, 3});
-  RenderSettings s;
-  s.width = 37;
-  s.height = 23;
-  s.spp = 7;
-  s.rr_depth = 2;
-  s.tail_depth = 0;
-  PathTracer whole(test::shared_context(), scene, s);
-  whole.run_passes(pass_settings(scene, s), 0, 7);
-  const RenderResult want = whole.read_result();
-  // Slots: spp / samples per dispatch, at most the stages (3 with a queue,
-  // 2 for the head and sum alone, software devices' auto).
-  for (auto [spp, depth] : {std::pair{7u, 2u}, {2u, 1u}, {1u, 3u}, {7u, RenderSettings::kTailAuto},
-                            {1u, RenderSettings::kTailAuto}}) {
-    s.spp = spp;
-    s.tail_depth = depth;
-    s.samples_per_dispatch = 1;
-    PathTracer staged(test::shared_context(), scene, s);
-    staged.run_passes(pass_settings(scene, s), 0, 7);  // 7 dispatches in one batch
-    const RenderResult got = staged.read_result();
-    SCOPED_TRACE("spp " + std::to_string(spp) + ", tail depth " + std::to_string(depth));
-    expect_same_result(got, want);
-    EXPECT_EQ(got.min_samples, 7u);
-  }
-}
-
 // Batches of about a quarter second, in whole rounds of a pixel's lanes;
 // one round at least while it takes at most a second (a prompt stop).
 TEST(NextBatch, TakesWholeRoundsOfLanesAndKeepsAStopPrompt) {
