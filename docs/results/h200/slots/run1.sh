@@ -1,4 +1,4 @@
-# Log 51 (the staged stages of consecutive dispatches side by side, slots of
+# Log 52 (the stages of consecutive dispatches side by side, slots of
 # the tail's buffers) at its final form, on the H200:
 #   bash docs/results/h200/slots/run1.sh figures   # A/B against 70d7e3b, the peer side by side (both structures), GPU tests
 #   bash docs/results/h200/slots/run1.sh suites    # the hard cases on the GPU
