@@ -133,25 +133,88 @@ class Builder {
   Octree& tree_;
 };
 
+// The binary tree collapsed into a kBvhWidth-wide one (bvh.h "How it is
+// built"): node `wide` of `out` gets binary node `b`'s box and, if b is
+// internal, up to kBvhWidth children, consecutive, in the binary tree's
+// left-to-right order. refs are the binary tree's, unchanged.
+class Collapser {
+ public:
+  Collapser(const Octree& binary, uint32_t width, Octree& out) : bin_(binary), width_(width), out_(out) {}
+
+  void collapse(uint32_t b, uint32_t wide, uint32_t depth) {
+    const gpu::GpuOctreeNode& n = bin_.nodes[b];
+    out_.nodes[wide] = n;
+    out_.stats.max_depth_reached = std::max(out_.stats.max_depth_reached, depth);
+    if (n.count_or_mask < gpu::OCTREE_INTERNAL) return;
+    // The children so far and how many binary levels below b each is.
+    uint32_t children[kBvhWidth] = {n.first, n.first + 1};
+    uint32_t levels[kBvhWidth] = {1, 1};
+    uint32_t count = 2;
+    while (count < width_) {
+      // The internal child of the largest box opens (ties: the one fewer
+      // levels down, then the first, so equal boxes open evenly).
+      int open = -1;
+      double best = -1.0;
+      for (uint32_t c = 0; c < count; ++c) {
+        const gpu::GpuOctreeNode& ch = bin_.nodes[children[c]];
+        if (ch.count_or_mask < gpu::OCTREE_INTERNAL) continue;
+        const double a = half_area({ch.lo, ch.hi});
+        if (a > best || (a == best && levels[c] < levels[open])) {
+          best = a;
+          open = static_cast<int>(c);
+        }
+      }
+      if (open < 0) break;
+      const uint32_t grand = bin_.nodes[children[open]].first, level = levels[open] + 1;
+      for (uint32_t c = count; c > static_cast<uint32_t>(open) + 1; --c) {
+        children[c] = children[c - 1];
+        levels[c] = levels[c - 1];
+      }
+      children[open] = grand;
+      children[open + 1] = grand + 1;
+      levels[open] = levels[open + 1] = level;
+      ++count;
+    }
+    const uint32_t first = static_cast<uint32_t>(out_.nodes.size());
+    out_.nodes[wide].first = first;
+    out_.nodes[wide].count_or_mask = gpu::OCTREE_INTERNAL | ((1u << count) - 1u);
+    out_.nodes.resize(out_.nodes.size() + count);
+    for (uint32_t c = 0; c < count; ++c) collapse(children[c], first + c, depth + 1);
+  }
+
+ private:
+  const Octree& bin_;
+  uint32_t width_;
+  Octree& out_;
+};
+
 }  // namespace
 
-Octree build_bvh(std::span<const Aabb> boxes) {
+Octree build_bvh(std::span<const Aabb> boxes, uint32_t width) {
   const auto start = Clock::now();
   Octree tree;
+  if (width < 2 || width > kBvhWidth)
+    throw SettingError("accel", ": a BVH node has 2 to " + std::to_string(kBvhWidth) + " children, not " +
+                                    std::to_string(width));
   if (boxes.size() >= gpu::OCTREE_INTERNAL)
     throw SettingError("accel", ": a BVH holds at most 2^31 - 1 primitives, got " + std::to_string(boxes.size()));
   std::vector<Item> items;
   items.reserve(boxes.size());
   for (uint32_t i = 0; i < boxes.size(); ++i)
     items.push_back({boxes[i], 0.5f * (boxes[i].lo + boxes[i].hi), i});
-  tree.nodes.reserve(boxes.empty() ? 1 : 2 * boxes.size() - 1);
-  tree.refs.reserve(boxes.size());
   tree.nodes.push_back({});
   if (boxes.empty()) {
     tree.nodes[0] = {glm::vec3(0.0f), 0, glm::vec3(0.0f), 0};
     tree.stats.leaves = 1;
   } else {
-    Builder(std::move(items), tree).build(0, 0, boxes.size(), 0);
+    Octree binary;
+    binary.nodes.reserve(2 * boxes.size() - 1);
+    binary.refs.reserve(boxes.size());
+    binary.nodes.push_back({});
+    Builder(std::move(items), binary).build(0, 0, boxes.size(), 0);
+    tree.refs = std::move(binary.refs);
+    tree.stats.leaves = binary.stats.leaves;
+    Collapser(binary, width, tree).collapse(0, 0, 0);
   }
 
   finish_tree_stats(tree, boxes.size(), ms_since(start));

@@ -2,8 +2,9 @@
 // beside the octree (`--accel bvh`) so that what the octree costs or saves
 // can be measured. Boxes in, node arrays out, like accel/octree.h, and into
 // the SAME arrays (GpuOctreeNode, refs): buffers, bindings, the two levels
-// and the upload stay as they are, only the shader walk differs
-// (shaders/accel/bvh_walk.glsl).
+// and the upload stay as they are, only the shader walks differ
+// (shaders/accel/bvh_walk.glsl for binary trees, bvh_walk_wide.glsl for
+// four-wide ones).
 #pragma once
 
 #include <cstdint>
@@ -19,23 +20,25 @@ namespace octrace {
 //
 //   lo, hi          the node's box: the union of its primitives' AABBs (so a
 //                   child's box lies inside its parent's; siblings may overlap).
-//   count_or_mask   internal node: OCTREE_INTERNAL | 0x3 (two children, as if
-//                   an octree node had octants 0 and 1), leaf: the number of
-//                   references (0 only for the root of an empty tree, whose
-//                   box is the point lo = hi = 0).
-//   first           internal node: index of its left child; the right child
-//                   is first + 1. leaf: index of its first reference in refs.
+//   count_or_mask   internal node: OCTREE_INTERNAL | (2^n - 1) for its n
+//                   children, 2 <= n <= kBvhWidth (as if an octree node had
+//                   octants 0 .. n-1), leaf: the number of references (0
+//                   only for the root of an empty tree, whose box is the
+//                   point lo = hi = 0).
+//   first           internal node: index of its first child; the others
+//                   follow it (first + 1 .. first + n - 1). leaf: index of
+//                   its first reference in refs.
 //
-//     nodes: ... [ node | first = c | INTERNAL|3 ] ... [ left ][ right ] ...
-//                                                      ^ c     c + 1
+//     nodes: ... [ node | first = c | INTERNAL|0xf ] ... [ c ][ c+1 ][ c+2 ][ c+3 ] ...
 //
 //   Every primitive is referenced exactly once (no duplicates, no big list:
 //   big_count = 0), so a tree over n primitives has at most 2n - 1 nodes.
-//   Nodes are in depth-first order (left subtree before right) below the
-//   pair of siblings, which keeps a pair in one 64-byte line.
+//   Nodes are in depth-first order below each group of siblings, which keeps
+//   four siblings in two 64-byte lines.
 //
-// How it is built (Wald 2007, "On fast construction of SAH-based bounding
-// volume hierarchies", binned SAH): a node's primitive centroids are binned
+// How it is built: a binary tree first (Wald 2007, "On fast construction of
+// SAH-based bounding volume hierarchies", binned SAH): a node's primitive
+// centroids are binned
 // into kBvhBins equal bins along each axis of the centroids' box; for each of
 // the kBvhBins - 1 planes between bins the surface area heuristic cost
 //   C = kBvhNodeCost + (A_left * N_left + A_right * N_right) / A
@@ -47,18 +50,44 @@ namespace octrace {
 // no plane separates the centroids (coincident centroids), the node splits
 // at the median of the primitive ids instead. Depth is capped at
 // kMaxBvhDepth (a deeper node becomes a leaf), which bounds the shader's
-// stack. Single-threaded and deterministic: the result depends only on the
-// input.
+// stack. Then the binary tree is collapsed to kBvhWidth children per node
+// (Wald, Benthin and Boulos 2008, "Getting rid of packets"; Dammertz et al.
+// 2008, "Shallow bounding volume hierarchies"): an internal node's children
+// start as its two, and the internal child of the largest box (ties: the
+// one fewer binary levels below the node, then the first, so that equal
+// boxes open evenly) is replaced by its own two children, in place, until there are
+// kBvhWidth or all are leaves. Leaves and references are the binary tree's;
+// a wide node's depth is at most its binary depth. A wide walk step tests a
+// node's children together, so a ray takes about half the steps; which
+// level is built how wide: bvh_top_width and kBvhMeshWidth below. Single-threaded and deterministic: the
+// result depends only on the input.
 // ---------------------------------------------------------------------------
 inline constexpr uint32_t kBvhBins = 16;
 inline constexpr uint32_t kBvhMinLeaf = 1;
 inline constexpr uint32_t kBvhMaxLeaf = 8;
 inline constexpr uint32_t kMaxBvhDepth = gpu::BVH_MAX_DEPTH;  // bounds the shader walk's stack
-inline constexpr double kBvhNodeCost = 1.0;   // a node visit (two box tests) in primitive tests
+inline constexpr uint32_t kBvhWidth = gpu::BVH_WIDTH;          // children per internal node, at most
+// The widths a scene's trees are built with, as the shader's walks expect
+// them (accel/bvh_walk.glsl walks binary trees, accel/bvh_walk_wide.glsl
+// four-wide ones; SPEC_BVH_TOP_WIDE picks the top level's): the meshes'
+// trees four-wide; the top level four-wide over instances only, binary
+// where it holds spheres. Why (optimisation log 54, H200, against the
+// binary tree): four-wide, the engine (instances of meshes) rendered 9%
+// faster and the balloon (one instance) 5%, the meshes' own trees giving
+// about 5% of that; but the sparse sphere fields 1-6% slower (488 and 8000
+// spheres, the CUDA peer's scene: a ray finds its sphere within a few
+// steps, and a wide node tests at once the boxes a binary walk would have
+// culled), though the dense 1M field 11% faster; and binary trees through
+// the four-wide walk were 28% slower than through the binary walk.
+inline constexpr uint32_t kBvhMeshWidth = kBvhWidth;
+inline constexpr uint32_t bvh_top_width(bool has_spheres) { return has_spheres ? 2 : kBvhWidth; }
+inline constexpr double kBvhNodeCost = 1.0;   // a binary node's visit (two box tests) in primitive tests
 
 // Builds the BVH over `boxes` (finite; primitive i is boxes[i]). Returns the
 // octree's struct: the same arrays, big_count = 0, and the same statistics
 // (big_primitives 0, refs_per_primitive 1).
-Octree build_bvh(std::span<const Aabb> boxes);
+// `width`: children per internal node, at most (2: the binary tree itself;
+// 2 <= width <= kBvhWidth; a scene's levels: bvh_top_width, kBvhMeshWidth).
+Octree build_bvh(std::span<const Aabb> boxes, uint32_t width = kBvhWidth);
 
 }  // namespace octrace

@@ -110,7 +110,11 @@ static SceneOctree build_scene_octree(GpuScene& g, const Scene& scene, Accel acc
   // The top level over spheres and instances, then one tree per mesh in
   // object space, appended: their `first` fields are moved by where they land.
   const std::vector<Aabb> boxes = primitive_boxes(scene);
-  SceneOctree t{accel == Accel::Bvh ? build_bvh(boxes) : build_octree(boxes, params), gpu_meshes(scene)};
+  // A BVH's widths per level (accel/bvh.h says why); the pipeline's
+  // SPEC_BVH_TOP_WIDE follows g.bvh_top_wide.
+  const uint32_t top_width = bvh_top_width(!scene.spheres.empty());
+  g.bvh_top_wide = accel == Accel::Bvh && top_width > 2;
+  SceneOctree t{accel == Accel::Bvh ? build_bvh(boxes, top_width) : build_octree(boxes, params), gpu_meshes(scene)};
   Octree& octree = t.octree;
   OctreeStats& st = octree.stats;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -120,7 +124,7 @@ static SceneOctree build_scene_octree(GpuScene& g, const Scene& scene, Accel acc
       const uint32_t* v = &mesh.indices[3 * size_t(t)];
       return clip_triangle(mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]], cell, part);
     };
-    const Octree mesh_tree = accel == Accel::Bvh ? build_bvh(mesh_triangle_boxes(mesh))
+    const Octree mesh_tree = accel == Accel::Bvh ? build_bvh(mesh_triangle_boxes(mesh), kBvhMeshWidth)
                                                  : build_octree(mesh_triangle_boxes(mesh), params, clip);
     const uint32_t node_base = uint32_t(octree.nodes.size()), ref_base = uint32_t(octree.refs.size());
     for (gpu::GpuOctreeNode n : mesh_tree.nodes) {

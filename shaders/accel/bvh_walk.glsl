@@ -1,8 +1,9 @@
-// The BVH walk (renderer/accel/bvh.h has the encoding): the body of the
-// walk for ACCEL == ACCEL_BVH, included at the top of accel/octree_walk.glsl
-// inside `if (ACCEL == ACCEL_BVH) { ... return; }`, so that both levels (top
-// and meshes) take it with the same parameters and OCTREE_LEAF(k); a
-// pipeline specialised to one structure compiles only its walk.
+// The binary BVH walk (renderer/accel/bvh.h has the encoding): the body of
+// the walk for ACCEL == ACCEL_BVH where OCTREE_BVH_WIDE is false (a top
+// level with spheres, whose tree is binary), included at the top of
+// accel/octree_walk.glsl inside `if (ACCEL == ACCEL_BVH) { ... return; }`,
+// so that it takes the walk's parameters and OCTREE_LEAF(k); a pipeline
+// specialised to one structure compiles only its walks.
 //
 // Stack-based, front to back: of an internal node's two children, those
 // whose box the ray meets before the nearest hit are pushed, the farther

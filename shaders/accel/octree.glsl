@@ -21,6 +21,9 @@ layout(constant_id = SPEC_OCTANT_CULLING) const bool OCTANT_CULLING = true;
 // walk's first leaf, or (false) in a loop of the caller's. The host chooses
 // (render/path_tracer.cpp, BigList): the image is the same either way.
 layout(constant_id = SPEC_BIG_LEAF) const bool BIG_LEAF = true;
+// Whether the BVH's top level is four-wide (SPEC_BVH_TOP_WIDE; the meshes'
+// trees are): which walk accel/octree_walk.glsl takes there.
+layout(constant_id = SPEC_BVH_TOP_WIDE) const bool BVH_TOP_WIDE = false;
 
 const float WIDEN = 1.0 + 2.0 * (3.0 * 5.96046448e-8) / (1.0 - 3.0 * 5.96046448e-8);
 
@@ -101,7 +104,37 @@ bool hit_box(vec3 lo, vec3 hi, FusedSlabRay r, float t_max, out float t_entry) {
 // entries behind: 7 * 20 + 1 entries for the deepest octree (depth 20).
 const uint STACK_SIZE = 141u;
 
-// The BVH walk's stack (accel/bvh_walk.glsl): one entry per level and the root.
+// The BVH walks' stacks: a visit pops one entry and pushes at most a
+// node's children, so each level leaves at most one fewer than that behind;
+// and the root. The binary walk (accel/bvh_walk.glsl) and the four-wide one
+// (accel/bvh_walk_wide.glsl).
 const uint BVH_STACK_SIZE = BVH_MAX_DEPTH + 1u;
+const uint BVH_WIDE_STACK_SIZE = (BVH_WIDTH - 1u) * BVH_MAX_DEPTH + 1u;
+
+// The four-wide BVH walk's steps on a node's children (accel/bvh_walk_wide.glsl has the
+// keys and their order): the key of child c (< bvh_n; a node has at least
+// two, so the test folds away for c = 0 and 1) of `node`, a
+// compare-exchange of two keys, and the push of a key's child (none for a
+// miss). Macros, because the walk is the body of two functions whose slab
+// terms `sr` differ in type.
+const uint BVH_MISS = 0xffffffffu;
+#define BVH_CHILD_KEY(c, key)                                               \
+  key = BVH_MISS;                                                           \
+  if (c < 2u || c < bvh_n) {                                                \
+    GpuOctreeNode bvh_child = node_at(node.first + c);                      \
+    if (hit_box(bvh_child.lo, bvh_child.hi, sr, hit.t, bvh_t))              \
+      key = (floatBitsToUint(bvh_t) & ~3u) | c;                             \
+  }
+#define BVH_ORDER(a, b) \
+  {                     \
+    uint bvh_lo = min(a, b); \
+    b = max(a, b);      \
+    a = bvh_lo;         \
+  }
+#define BVH_PUSH(key)                                                     \
+  if (key != BVH_MISS) {                                                  \
+    bvh_stack[bvh_sp] = uvec2(node.first + (key & 3u), key & ~3u);        \
+    ++bvh_sp;                                                             \
+  }
 
 #endif

@@ -1,11 +1,16 @@
 // One octree walk, included once per level (no include guard): the includer
-// defines OCTREE_WALK_NAME (the function's name), OCTREE_LEAF(k) (how the
+// defines OCTREE_WALK_NAME (the function's name), OCTREE_BVH_WIDE (which BVH
+// walk, below), OCTREE_LEAF(k) (how the
 // reference in slot k of the refs array is tested; it may use the walk's
 // parameters and its slab terms `sr`) and
 // OCTREE_SLAB / OCTREE_SLAB_MAKE (the slab test's per-ray type and what
 // makes it: accel/octree.glsl), then undefines them. The walk is the same
 // at both levels; only the leaf and the slab test's form differ.
-// With ACCEL == ACCEL_BVH the arrays hold a BVH and accel/bvh_walk.glsl walks it.
+// With ACCEL == ACCEL_BVH the arrays hold a BVH, which accel/bvh_walk.glsl
+// walks where the includer's OCTREE_BVH_WIDE (a constant expression) is
+// false (a binary tree), accel/bvh_walk_wide.glsl where true (four-wide:
+// the meshes always, the top level with BVH_TOP_WIDE; renderer/accel/bvh.h
+// says why).
 // refs[big_first, big_end) are the primitives too large for the octree's
 // cells (the tree's big list): with BIG_LEAF the walk tests them as its
 // first leaf; without, its caller tests them before the walk
@@ -14,7 +19,11 @@
 void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, RayShear sh, uint from_prim,
                       bool into_from, InstanceRef ir, inout Hit hit) {
   if (ACCEL == ACCEL_BVH) {
+    if (OCTREE_BVH_WIDE) {
+#include "accel/bvh_walk_wide.glsl"
+    } else {
 #include "accel/bvh_walk.glsl"
+    }
     return;
   }
   OCTREE_SLAB sr = OCTREE_SLAB_MAKE(ray);

@@ -216,6 +216,10 @@ OCT_CONST(uint, SPEC_OCTANT_CULLING, 25u);
 // callers in a loop of their own (RenderSettings::big_list; the image is the
 // same either way).
 OCT_CONST(uint, SPEC_BIG_LEAF, 26u);
+// Whether a BVH's top level is four-wide (renderer/accel/bvh.h
+// bvh_top_width): its walk is accel/bvh_walk_wide.glsl, else the binary
+// accel/bvh_walk.glsl. The meshes' trees are four-wide always.
+OCT_CONST(uint, SPEC_BVH_TOP_WIDE, 30u);
 // Whether the walks count what they do (RenderSettings::walk_stats,
 // RenderStats.walk); off, the counting compiles out.
 OCT_CONST(uint, SPEC_WALK_STATS, 28u);
@@ -233,8 +237,12 @@ OCT_CONST(uint, SKY_RUNTIME, 255u);
 OCT_CONST(uint, ACCEL_BRUTE, 0u);
 OCT_CONST(uint, ACCEL_OCTREE, 1u);
 OCT_CONST(uint, ACCEL_BVH, 2u);  // the octree's arrays hold a BVH (renderer/accel/bvh.h)
-// The BVH's depth limit: its shader walk's stack holds BVH_MAX_DEPTH + 1 entries.
+// The BVH's depth limit: its shader walks' stacks hold BVH_MAX_DEPTH + 1
+// (binary) and (BVH_WIDTH - 1) * BVH_MAX_DEPTH + 1 (four-wide) entries.
 OCT_CONST(uint, BVH_MAX_DEPTH, 48u);
+// Children per BVH node, at most (renderer/accel/bvh.h; the wide walk's
+// sort, accel/bvh_walk_wide.glsl, is written for four).
+OCT_CONST(uint, BVH_WIDTH, 4u);
 
 // Kinds of light (GpuLight.type).
 OCT_CONST(uint, LIGHT_SPHERE, 0u);       // an emissive sphere, sampled by solid angle

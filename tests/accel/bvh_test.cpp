@@ -2,12 +2,14 @@
 // walk relies on: every primitive is referenced exactly once; a node's box
 // is the union of its primitives' boxes, so children lie inside parents;
 // the SAH leaf rule; depth within the shader's stack; determinism; the
-// encoding (two consecutive children) and the stats. That the walk finds the
+// encoding (two to four consecutive children) and the stats. That the walk finds the
 // same closest hit as brute force is accel_test (images on the GPU).
 #include "accel/bvh.h"
+#include "core/errors.h"
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cstring>
 #include <random>
 #include <vector>
@@ -26,8 +28,8 @@ bool inside(const GpuOctreeNode& inner, const GpuOctreeNode& outer) {
 
 // Walks the tree from node i; checks boxes and counts references per
 // primitive. Returns the exact union of the primitives' boxes below i.
-Aabb check_node(const Octree& t, std::span<const Aabb> boxes, uint32_t i, uint32_t depth, std::vector<int>& seen,
-                uint32_t& max_depth) {
+Aabb check_node(const Octree& t, std::span<const Aabb> boxes, uint32_t width, uint32_t i, uint32_t depth,
+                std::vector<int>& seen, uint32_t& max_depth) {
   const GpuOctreeNode& n = t.nodes.at(i);
   max_depth = std::max(max_depth, depth);
   Aabb u;
@@ -40,11 +42,19 @@ Aabb check_node(const Octree& t, std::span<const Aabb> boxes, uint32_t i, uint32
       u.extend(boxes[p]);
     }
   } else {
-    EXPECT_EQ(n.count_or_mask, OCTREE_INTERNAL | 0x3u) << "node " << i;
+    const uint32_t mask = n.count_or_mask & ~OCTREE_INTERNAL;
+    const uint32_t count = static_cast<uint32_t>(std::popcount(mask));
+    EXPECT_EQ(mask, (1u << count) - 1u) << "node " << i << ": children are not 0 .. n-1";
+    EXPECT_GE(count, 2u) << "node " << i;
+    EXPECT_LE(count, width) << "node " << i;
     EXPECT_GT(n.first, i) << "node " << i;
-    for (uint32_t c : {n.first, n.first + 1}) {
+    for (uint32_t c = n.first; c < n.first + count; ++c) {
       EXPECT_TRUE(inside(t.nodes.at(c), n)) << "child " << c << " of node " << i;
-      u.extend(check_node(t, boxes, c, depth + 1, seen, max_depth));
+      // The collapse stops short of the width only when every child is a leaf.
+      if (count < width) {
+        EXPECT_LT(t.nodes.at(c).count_or_mask, OCTREE_INTERNAL) << "child " << c;
+      }
+      u.extend(check_node(t, boxes, width, c, depth + 1, seen, max_depth));
     }
   }
   EXPECT_EQ(glm::vec3(n.lo), u.lo) << "node " << i << ": not the union of its primitives' boxes";
@@ -52,17 +62,17 @@ Aabb check_node(const Octree& t, std::span<const Aabb> boxes, uint32_t i, uint32
   return u;
 }
 
-void check_tree(const Octree& t, std::span<const Aabb> boxes) {
+void check_tree(const Octree& t, std::span<const Aabb> boxes, uint32_t width = kBvhWidth) {
   std::vector<int> seen(boxes.size(), 0);
   uint32_t max_depth = 0;
-  check_node(t, boxes, 0, 0, seen, max_depth);
+  check_node(t, boxes, width, 0, 0, seen, max_depth);
   for (size_t p = 0; p < boxes.size(); ++p) EXPECT_EQ(seen[p], 1) << "primitive " << p;
   EXPECT_EQ(t.refs.size(), boxes.size());
   EXPECT_EQ(t.big_count, 0u);
   EXPECT_LE(max_depth, kMaxBvhDepth);
   EXPECT_EQ(t.stats.max_depth_reached, max_depth);
   EXPECT_EQ(t.stats.nodes, t.nodes.size());
-  EXPECT_EQ(t.nodes.size(), 2 * size_t(t.stats.leaves) - 1);  // a binary tree
+  EXPECT_LE(t.nodes.size(), 2 * size_t(t.stats.leaves) - 1);  // at most a binary tree's
   EXPECT_EQ(t.stats.bytes, t.nodes.size() * 32 + t.refs.size() * 4);
 }
 
@@ -88,13 +98,54 @@ TEST(Bvh, RandomBoxesEveryPrimitiveOnceBoxesNest) {
   EXPECT_GT(t.stats.leaves, 5000u / kBvhMaxLeaf);
 }
 
+// The collapse: over 5000 boxes (3379 leaves) a binary tree has leaves - 1
+// internal nodes, all two-wide; the wide tree has fewer than half as many
+// (a full four-wide tree would have a third), over two fifths of them four
+// wide (the rest: nodes above leaves only; 1582 and 749 when written).
+TEST(Bvh, InternalNodesHoldFourChildren) {
+  const std::vector<Aabb> boxes = random_boxes(5000, 3);
+  const Octree t = build_bvh(boxes);
+  check_tree(t, boxes);
+  size_t internal = 0, four = 0;
+  for (const GpuOctreeNode& n : t.nodes) {
+    if (n.count_or_mask < OCTREE_INTERNAL) continue;
+    ++internal;
+    four += n.count_or_mask == (OCTREE_INTERNAL | 0xfu);
+  }
+  EXPECT_EQ(t.nodes.size(), internal + t.stats.leaves);
+  EXPECT_LT(internal, size_t(t.stats.leaves) / 2);
+  EXPECT_GT(four, internal * 2 / 5);  // the others: nodes whose children are all leaves
+  EXPECT_LE(t.stats.max_depth_reached, 12u);
+}
+
+// Width 2 is the binary tree itself (the top level's, kBvhTopWidth): every
+// internal node two-wide, leaves - 1 of them; the same leaves and references
+// as the four-wide tree's, which collapses it.
+TEST(Bvh, WidthTwoIsTheBinaryTree) {
+  const std::vector<Aabb> boxes = random_boxes(2000, 5);
+  const Octree binary = build_bvh(boxes, 2), wide = build_bvh(boxes, 4);
+  check_tree(binary, boxes, 2);
+  EXPECT_EQ(binary.nodes.size(), 2 * size_t(binary.stats.leaves) - 1);
+  for (const GpuOctreeNode& n : binary.nodes) {
+    if (n.count_or_mask >= OCTREE_INTERNAL) {
+      EXPECT_EQ(n.count_or_mask, OCTREE_INTERNAL | 0x3u);
+    }
+  }
+  EXPECT_EQ(binary.refs, wide.refs);
+  EXPECT_EQ(binary.stats.leaves, wide.stats.leaves);
+  EXPECT_LT(wide.nodes.size(), binary.nodes.size());
+  EXPECT_LT(wide.stats.max_depth_reached, binary.stats.max_depth_reached);
+  EXPECT_THROW(build_bvh(boxes, 1), SettingError);
+  EXPECT_THROW(build_bvh(boxes, kBvhWidth + 1), SettingError);
+}
+
 // Coincident boxes: no plane separates the centroids; the median split keeps
 // leaves within kBvhMaxLeaf, and the depth is that of a balanced tree.
 TEST(Bvh, CoincidentBoxesSplitAtTheMedian) {
   const std::vector<Aabb> boxes(1000, Aabb{glm::vec3(-1), glm::vec3(1)});
   const Octree t = build_bvh(boxes);
   check_tree(t, boxes);
-  EXPECT_LE(t.stats.max_depth_reached, 8u);  // ceil(log2(1000 / 8)) + 1
+  EXPECT_LE(t.stats.max_depth_reached, 4u);  // a balanced binary tree's ceil(log2(1000 / 8)) + 1 = 8, halved
 }
 
 TEST(Bvh, EmptyAndOne) {
@@ -124,9 +175,11 @@ TEST(Bvh, SahDecidesSmallNodes) {
                               {glm::vec3(100.5f), glm::vec3(101.5f)}};
   const Octree split = build_bvh(far);
   check_tree(split, far);
-  ASSERT_EQ(split.nodes[0].count_or_mask, OCTREE_INTERNAL | 0x3u);
+  ASSERT_GE(split.nodes[0].count_or_mask, OCTREE_INTERNAL);
   const GpuOctreeNode& left = split.nodes[split.nodes[0].first];
-  EXPECT_LT(left.hi.x, 2.0f);  // the left child holds the cluster at 0, the right the one at 100
+  EXPECT_LT(left.hi.x, 2.0f);  // the first child holds (part of) the cluster at 0, the last the one at 100
+  const uint32_t last = split.nodes[0].first + std::popcount(split.nodes[0].count_or_mask & ~OCTREE_INTERNAL) - 1;
+  EXPECT_GT(split.nodes[last].lo.x, 99.0f);
 
   std::vector<Aabb> close;
   for (int i = 0; i < 4; ++i) close.push_back({glm::vec3(0.001f * i), glm::vec3(1 + 0.001f * i)});

@@ -1,0 +1,62 @@
+// The four-wide BVH walk (renderer/accel/bvh.h has the encoding): the body
+// of the walk for ACCEL == ACCEL_BVH where OCTREE_BVH_WIDE is true (the
+// meshes; the top level over instances only), included at the top of
+// accel/octree_walk.glsl as the binary walk (accel/bvh_walk.glsl) is. It
+// walks a binary tree too, but slower than that walk (optimisation log 54).
+//
+// Stack-based, front to back: of an internal node's children (two to
+// BVH_WIDTH = 4, consecutive), those whose box the ray meets before the
+// nearest hit are pushed, the farthest first, so the nearest (by entry
+// distance) is popped next. A popped node whose box starts beyond the
+// nearest hit found since it was pushed is skipped (the early exit), with
+// the same widening as the octree's.
+// The order: a child's key is the bits of its entry distance with the low
+// two replaced by its place among the children, a miss's key 0xffffffff;
+// five compare-exchanges sort the four keys (a sorting network). Entry
+// distances are >= 0, so their bits order as the floats do, and every hit's
+// key (<= 0x7fffffff) comes before every miss. The entry pushed is the key's
+// distance with those two bits cleared: at most 3 ulps below the computed
+// one, still a lower bound of where the ray enters, so the early exit stays
+// safe; children whose entries differ by less go in the order of their places.
+// Stack bound: BVH_WIDE_STACK_SIZE (accel/octree.glsl).
+OCTREE_SLAB sr = OCTREE_SLAB_MAKE(ray);  // named as the octree walk's: OCTREE_LEAF may use it
+uvec2 bvh_stack[BVH_WIDE_STACK_SIZE];  // (node, bits of its entry distance), as the octree walk's stack
+uint bvh_sp = 0;
+float bvh_t;
+GpuOctreeNode bvh_root = node_at(root_index);
+if (WALK_STATS) ++walk_boxes;
+if (hit_box(bvh_root.lo, bvh_root.hi, sr, hit.t, bvh_t)) {
+  bvh_stack[0] = uvec2(root_index, floatBitsToUint(bvh_t));
+  bvh_sp = 1;
+}
+while (bvh_sp > 0) {
+  --bvh_sp;
+  uvec2 bvh_top = bvh_stack[bvh_sp];
+  if (uintBitsToFloat(bvh_top.y) > hit.t * WIDEN) continue;
+  GpuOctreeNode node = node_at(bvh_top.x);
+  if (node.count_or_mask < OCTREE_INTERNAL) {
+    if (WALK_STATS && node.count_or_mask > 0u) ++walk_leaves;
+    for (uint k = node.first; k < node.first + node.count_or_mask; ++k)
+      OCTREE_LEAF(k);
+    continue;
+  }
+  uint bvh_n = bitCount(node.count_or_mask & 0xfu);
+  if (WALK_STATS) {
+    ++walk_nodes;
+    walk_boxes += bvh_n;
+  }
+  uint bvh_k0, bvh_k1, bvh_k2, bvh_k3;
+  BVH_CHILD_KEY(0u, bvh_k0)
+  BVH_CHILD_KEY(1u, bvh_k1)
+  BVH_CHILD_KEY(2u, bvh_k2)
+  BVH_CHILD_KEY(3u, bvh_k3)
+  BVH_ORDER(bvh_k0, bvh_k1)
+  BVH_ORDER(bvh_k2, bvh_k3)
+  BVH_ORDER(bvh_k0, bvh_k2)
+  BVH_ORDER(bvh_k1, bvh_k3)
+  BVH_ORDER(bvh_k1, bvh_k2)
+  BVH_PUSH(bvh_k3)
+  BVH_PUSH(bvh_k2)
+  BVH_PUSH(bvh_k1)
+  BVH_PUSH(bvh_k0)
+}
