@@ -80,10 +80,12 @@ double median(std::vector<double> v) {
 
 // The line above a bench table: device, settings and what the times are.
 void print_header(const VulkanContext& ctx, const RenderSettings& settings, uint32_t repeat, const char* more) {
-  std::printf("Device: %s (%s, %s). Image %dx%d, %u spp, depth %u; render = device time of the passes "
+  const std::string bvh_width =
+      settings.octree.bvh_width ? "; BVH width " + std::to_string(settings.octree.bvh_width) : std::string();
+  std::printf("Device: %s (%s, %s). Image %dx%d, %u spp, depth %u%s; render = device time of the passes "
               "(timestamp queries), median of %u runs after a warm-up%s.\n\n",
               ctx.info.name.c_str(), ctx.info.type.c_str(), ctx.info.driver.c_str(), settings.width,
-              settings.height, settings.spp, settings.bounce_limit, repeat, more);
+              settings.height, settings.spp, settings.bounce_limit, bvh_width.c_str(), repeat, more);
 }
 
 // One configuration of a bench: its tracer (set up with `accel` and

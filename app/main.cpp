@@ -145,6 +145,10 @@ struct RenderOptions {
     cmd.add_option("--octree-leaf", settings.octree.leaf_size, "Octree: split cells holding more primitives than this")
         ->capture_default_str();
     cmd.add_option("--octree-depth", settings.octree.max_depth, "Octree: maximum depth")->capture_default_str();
+    cmd.add_option("--bvh-width", settings.octree.bvh_width,
+                   "BVH (--accel bvh): children per node, 2 or 4 (0: auto, four-wide over meshes on a GPU, "
+                   "binary over spheres and on a CPU device); same image, other speed")
+        ->capture_default_str();
     cmd.add_option("--size", size, "Image size WIDTHxHEIGHT")->capture_default_str();
     cmd.add_option("--spp", settings.spp, "Samples (passes) per pixel")->capture_default_str();
     cmd.add_option("--depth", settings.bounce_limit, "Bounce limit; a path that reaches it contributes 0")
@@ -225,6 +229,7 @@ std::string message_for_cli(const SettingError& e) {
       {"sample_seed", "--sample-seed"},
       {"octree.leaf_size", "--octree-leaf"},
       {"octree.max_depth", "--octree-depth"},
+      {"octree.bvh_width", "--bvh-width"},
       {"precision", "--precision"},
       {"accel", "--accel"},
       {"effects", "--effects"},
@@ -931,6 +936,8 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--depth", bench.settings.bounce_limit, "Bounce limit")->capture_default_str();
   bench_cmd->add_option("--octree-leaf", bench.settings.octree.leaf_size, "Octree leaf size")->capture_default_str();
   bench_cmd->add_option("--octree-depth", bench.settings.octree.max_depth, "Octree maximum depth")
+      ->capture_default_str();
+  bench_cmd->add_option("--bvh-width", bench.settings.octree.bvh_width, "BVH children per node: 2, 4 or 0 (auto)")
       ->capture_default_str();
   bench_cmd->add_option("--repeat", bench.repeat, "Timed runs per configuration, after one warm-up")
       ->capture_default_str();

@@ -59,7 +59,7 @@ namespace octrace {
 // kBvhWidth or all are leaves. Leaves and references are the binary tree's;
 // a wide node's depth is at most its binary depth. A wide walk step tests a
 // node's children together, so a ray takes about half the steps; which
-// level is built how wide: bvh_top_width and kBvhMeshWidth below. Single-threaded and deterministic: the
+// level is built how wide: default_bvh_widths below. Single-threaded and deterministic: the
 // result depends only on the input.
 // ---------------------------------------------------------------------------
 inline constexpr uint32_t kBvhBins = 16;
@@ -67,27 +67,35 @@ inline constexpr uint32_t kBvhMinLeaf = 1;
 inline constexpr uint32_t kBvhMaxLeaf = 8;
 inline constexpr uint32_t kMaxBvhDepth = gpu::BVH_MAX_DEPTH;  // bounds the shader walk's stack
 inline constexpr uint32_t kBvhWidth = gpu::BVH_WIDTH;          // children per internal node, at most
-// The widths a scene's trees are built with, as the shader's walks expect
-// them (accel/bvh_walk.glsl walks binary trees, accel/bvh_walk_wide.glsl
-// four-wide ones; SPEC_BVH_TOP_WIDE picks the top level's): the meshes'
-// trees four-wide; the top level four-wide over instances only, binary
-// where it holds spheres. Why (optimisation log 54, H200, against the
-// binary tree): four-wide, the engine (instances of meshes) rendered 9%
-// faster and the balloon (one instance) 5%, the meshes' own trees giving
-// about 5% of that; but the sparse sphere fields 1-6% slower (488 and 8000
-// spheres, the CUDA peer's scene: a ray finds its sphere within a few
-// steps, and a wide node tests at once the boxes a binary walk would have
-// culled), though the dense 1M field 11% faster; and binary trees through
-// the four-wide walk were 28% slower than through the binary walk.
-inline constexpr uint32_t kBvhMeshWidth = kBvhWidth;
-inline constexpr uint32_t bvh_top_width(bool has_spheres) { return has_spheres ? 2 : kBvhWidth; }
+// The widths a scene's trees are built with by default (OctreeParams::
+// bvh_width 0; render/gpu_scene.cpp applies them and sets the pipeline's
+// SPEC_BVH_TOP_WIDE and SPEC_BVH_MESH_WIDE, which pick accel/bvh_walk.glsl
+// for binary trees or accel/bvh_walk_wide.glsl for four-wide ones, per
+// level). On a GPU: the meshes' trees four-wide; the top level four-wide
+// over instances only, binary where it holds spheres. On a CPU device
+// (lavapipe): every tree binary. Why (optimisation log 54, against the
+// binary trees): on the H200, four-wide, the engine (instances of meshes)
+// rendered 8-9% faster and the balloon (one instance) 5%, the meshes' own
+// trees giving about 5% of that; but the sparse sphere fields 1-6% slower
+// (488 and 8000 spheres, the CUDA peer's scene: a ray finds its sphere
+// within a few steps, and a wide node tests at once the boxes a binary
+// walk would have culled), though the dense 1M field 11% faster; binary
+// trees through the four-wide walk were 28% slower than through the binary
+// walk. On llvmpipe the four-wide meshes were 28-31% slower (the engine,
+// the balloon).
+struct BvhWidths {
+  uint32_t top, meshes;
+};
+inline constexpr BvhWidths default_bvh_widths(bool software, bool has_spheres) {
+  return software ? BvhWidths{2, 2} : BvhWidths{has_spheres ? 2 : kBvhWidth, kBvhWidth};
+}
 inline constexpr double kBvhNodeCost = 1.0;   // a binary node's visit (two box tests) in primitive tests
 
 // Builds the BVH over `boxes` (finite; primitive i is boxes[i]). Returns the
 // octree's struct: the same arrays, big_count = 0, and the same statistics
 // (big_primitives 0, refs_per_primitive 1).
 // `width`: children per internal node, at most (2: the binary tree itself;
-// 2 <= width <= kBvhWidth; a scene's levels: bvh_top_width, kBvhMeshWidth).
+// 2 <= width <= kBvhWidth; a scene's levels: default_bvh_widths).
 Octree build_bvh(std::span<const Aabb> boxes, uint32_t width = kBvhWidth);
 
 }  // namespace octrace

@@ -22,6 +22,10 @@ namespace octrace {
 struct OctreeParams {
   uint32_t leaf_size = 10;  // a node with more references than this splits ...
   uint32_t max_depth = 16;  // ... while its tree depth (root = 0) is below this, 1..20
+  // The BVH's (`--accel bvh`, accel/bvh.h) children per node, at most: 2 or
+  // 4 for every tree of the scene, or 0 for the device's default
+  // (render/gpu_scene.cpp bvh_widths). The image is the same either way.
+  uint32_t bvh_width = 0;
 };
 
 struct OctreeStats {

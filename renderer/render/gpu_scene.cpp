@@ -105,16 +105,25 @@ struct SceneOctree {
   std::vector<gpu::GpuMesh> meshes;
 };
 
-static SceneOctree build_scene_octree(GpuScene& g, const Scene& scene, Accel accel, const OctreeParams& params) {
+// The widths of a scene's BVHs, top level and meshes: params.bvh_width for
+// both, or (0) the device's default (accel/bvh.h default_bvh_widths).
+static BvhWidths bvh_widths(const VulkanContext& ctx, const Scene& scene, const OctreeParams& params) {
+  if (params.bvh_width != 0) return {params.bvh_width, params.bvh_width};
+  return default_bvh_widths(ctx.info.software, !scene.spheres.empty());
+}
+
+static SceneOctree build_scene_octree(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel,
+                                      const OctreeParams& params) {
   auto start = Clock::now();
   // The top level over spheres and instances, then one tree per mesh in
   // object space, appended: their `first` fields are moved by where they land.
   const std::vector<Aabb> boxes = primitive_boxes(scene);
-  // A BVH's widths per level (accel/bvh.h says why); the pipeline's
-  // SPEC_BVH_TOP_WIDE follows g.bvh_top_wide.
-  const uint32_t top_width = bvh_top_width(!scene.spheres.empty());
-  g.bvh_top_wide = accel == Accel::Bvh && top_width > 2;
-  SceneOctree t{accel == Accel::Bvh ? build_bvh(boxes, top_width) : build_octree(boxes, params), gpu_meshes(scene)};
+  // A BVH's widths per level; the pipeline's SPEC_BVH_TOP_WIDE and
+  // SPEC_BVH_MESH_WIDE follow g.bvh_top_wide and g.bvh_mesh_wide.
+  const BvhWidths widths = bvh_widths(ctx, scene, params);
+  g.bvh_top_wide = accel == Accel::Bvh && widths.top > 2;
+  g.bvh_mesh_wide = accel == Accel::Bvh && widths.meshes > 2;
+  SceneOctree t{accel == Accel::Bvh ? build_bvh(boxes, widths.top) : build_octree(boxes, params), gpu_meshes(scene)};
   Octree& octree = t.octree;
   OctreeStats& st = octree.stats;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -124,7 +133,7 @@ static SceneOctree build_scene_octree(GpuScene& g, const Scene& scene, Accel acc
       const uint32_t* v = &mesh.indices[3 * size_t(t)];
       return clip_triangle(mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]], cell, part);
     };
-    const Octree mesh_tree = accel == Accel::Bvh ? build_bvh(mesh_triangle_boxes(mesh), kBvhMeshWidth)
+    const Octree mesh_tree = accel == Accel::Bvh ? build_bvh(mesh_triangle_boxes(mesh), widths.meshes)
                                                  : build_octree(mesh_triangle_boxes(mesh), params, clip);
     const uint32_t node_base = uint32_t(octree.nodes.size()), ref_base = uint32_t(octree.refs.size());
     for (gpu::GpuOctreeNode n : mesh_tree.nodes) {
@@ -173,7 +182,7 @@ static void upload_scene_octree(GpuScene& g, const VulkanContext& ctx, SceneOctr
 
 static void upload_octree_of(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel,
                              const OctreeParams& params) {
-  SceneOctree t = build_scene_octree(g, scene, accel, params);
+  SceneOctree t = build_scene_octree(g, ctx, scene, accel, params);
   if (g.part_log2 == 0) {
     // Uploaded whole, the scene's pipeline reads one buffer per array.
     check_fits(max_buffer_bytes(ctx), t.octree.nodes.size() * sizeof(gpu::GpuOctreeNode), octree_what(scene, "nodes"),
@@ -480,7 +489,7 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
                       .value();
   const double pack_ms = ms_since(start);
   std::optional<SceneOctree> tree;
-  if (accel != Accel::Brute) tree = build_scene_octree(g, scene, accel, params);
+  if (accel != Accel::Brute) tree = build_scene_octree(g, ctx, scene, accel, params);
   start = Clock::now();
 
   // The big arrays, each in one storage buffer, or the whole scene split

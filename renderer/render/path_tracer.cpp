@@ -219,6 +219,7 @@ void PathTracer::State::create_stage(ComputePipeline& p, uint32_t stage, const u
                            {gpu::SPEC_OCTANT_CULLING, s.settings.octant_culling},
                            {gpu::SPEC_BIG_LEAF, s.big_leaf(f)},
                            {gpu::SPEC_BVH_TOP_WIDE, g.tree == Accel::Bvh && g.bvh_top_wide},
+                           {gpu::SPEC_BVH_MESH_WIDE, g.tree == Accel::Bvh && g.bvh_mesh_wide},
                            {gpu::SPEC_WALK_STATS, settings.walk_stats},
                            {gpu::SPEC_SKY, sky},
                            {gpu::SPEC_ANY_LIGHT, f.any_light},

@@ -50,6 +50,8 @@ void validate_settings(const RenderSettings& s) {
   if (s.bounce_limit < 1) throw SettingError("bounce_limit", ": must be >= 1");
   if (s.sample_lanes > gpu::MAX_SAMPLE_LANES || (s.sample_lanes & (s.sample_lanes - 1)) != 0)
     throw SettingError("sample_lanes", ": must be 0 (auto), 1, 2, 4 or 8, got " + std::to_string(s.sample_lanes));
+  if (s.octree.bvh_width != 0 && s.octree.bvh_width != 2 && s.octree.bvh_width != 4)
+    throw SettingError("octree.bvh_width", ": must be 0 (auto), 2 or 4, got " + std::to_string(s.octree.bvh_width));
 }
 
 }  // namespace octrace

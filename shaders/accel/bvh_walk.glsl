@@ -1,6 +1,7 @@
 // The binary BVH walk (renderer/accel/bvh.h has the encoding): the body of
-// the walk for ACCEL == ACCEL_BVH where OCTREE_BVH_WIDE is false (a top
-// level with spheres, whose tree is binary), included at the top of
+// the walk for ACCEL == ACCEL_BVH where OCTREE_BVH_WIDE is false (a binary
+// tree: by default a top level with spheres, and every tree on a CPU
+// device), included at the top of
 // accel/octree_walk.glsl inside `if (ACCEL == ACCEL_BVH) { ... return; }`,
 // so that it takes the walk's parameters and OCTREE_LEAF(k); a pipeline
 // specialised to one structure compiles only its walks.

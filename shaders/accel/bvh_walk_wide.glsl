@@ -1,6 +1,6 @@
 // The four-wide BVH walk (renderer/accel/bvh.h has the encoding): the body
-// of the walk for ACCEL == ACCEL_BVH where OCTREE_BVH_WIDE is true (the
-// meshes; the top level over instances only), included at the top of
+// of the walk for ACCEL == ACCEL_BVH where OCTREE_BVH_WIDE is true (by
+// default on a GPU the meshes, and a top level over instances only), included at the top of
 // accel/octree_walk.glsl as the binary walk (accel/bvh_walk.glsl) is. It
 // walks a binary tree too, but slower than that walk (optimisation log 54).
 //

@@ -132,7 +132,7 @@ void test_instance_triangle(Ray oray, RayShear osh, InstanceRef ir, uint local, 
 #include "accel/octree.glsl"
 
 #define OCTREE_WALK_NAME traverse_mesh
-#define OCTREE_BVH_WIDE true
+#define OCTREE_BVH_WIDE BVH_MESH_WIDE
 #define OCTREE_SLAB FusedSlabRay
 #define OCTREE_SLAB_MAKE fused_slab_ray
 #define OCTREE_LEAF(k) test_instance_triangle(ray, sh, ir, ref_at(k), from_prim, hit)

@@ -21,9 +21,11 @@ layout(constant_id = SPEC_OCTANT_CULLING) const bool OCTANT_CULLING = true;
 // walk's first leaf, or (false) in a loop of the caller's. The host chooses
 // (render/path_tracer.cpp, BigList): the image is the same either way.
 layout(constant_id = SPEC_BIG_LEAF) const bool BIG_LEAF = true;
-// Whether the BVH's top level is four-wide (SPEC_BVH_TOP_WIDE; the meshes'
-// trees are): which walk accel/octree_walk.glsl takes there.
+// Whether the BVH's top level and its meshes' trees are four-wide
+// (SPEC_BVH_TOP_WIDE, SPEC_BVH_MESH_WIDE): which walk accel/octree_walk.glsl
+// takes at each level.
 layout(constant_id = SPEC_BVH_TOP_WIDE) const bool BVH_TOP_WIDE = false;
+layout(constant_id = SPEC_BVH_MESH_WIDE) const bool BVH_MESH_WIDE = false;
 
 const float WIDEN = 1.0 + 2.0 * (3.0 * 5.96046448e-8) / (1.0 - 3.0 * 5.96046448e-8);
 

@@ -9,8 +9,8 @@
 // With ACCEL == ACCEL_BVH the arrays hold a BVH, which accel/bvh_walk.glsl
 // walks where the includer's OCTREE_BVH_WIDE (a constant expression) is
 // false (a binary tree), accel/bvh_walk_wide.glsl where true (four-wide:
-// the meshes always, the top level with BVH_TOP_WIDE; renderer/accel/bvh.h
-// says why).
+// BVH_TOP_WIDE for the top level, BVH_MESH_WIDE for the meshes;
+// renderer/accel/bvh.h says which and why).
 // refs[big_first, big_end) are the primitives too large for the octree's
 // cells (the tree's big list): with BIG_LEAF the walk tests them as its
 // first leaf; without, its caller tests them before the walk

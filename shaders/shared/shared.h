@@ -216,10 +216,11 @@ OCT_CONST(uint, SPEC_OCTANT_CULLING, 25u);
 // callers in a loop of their own (RenderSettings::big_list; the image is the
 // same either way).
 OCT_CONST(uint, SPEC_BIG_LEAF, 26u);
-// Whether a BVH's top level is four-wide (renderer/accel/bvh.h
-// bvh_top_width): its walk is accel/bvh_walk_wide.glsl, else the binary
-// accel/bvh_walk.glsl. The meshes' trees are four-wide always.
+// Whether a BVH's top level, and its meshes' trees, are four-wide
+// (renderer/accel/bvh.h default_bvh_widths, OctreeParams::bvh_width): their
+// walk is accel/bvh_walk_wide.glsl, else the binary accel/bvh_walk.glsl.
 OCT_CONST(uint, SPEC_BVH_TOP_WIDE, 30u);
+OCT_CONST(uint, SPEC_BVH_MESH_WIDE, 31u);
 // Whether the walks count what they do (RenderSettings::walk_stats,
 // RenderStats.walk); off, the counting compiles out.
 OCT_CONST(uint, SPEC_WALK_STATS, 28u);

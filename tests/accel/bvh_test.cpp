@@ -118,7 +118,7 @@ TEST(Bvh, InternalNodesHoldFourChildren) {
   EXPECT_LE(t.stats.max_depth_reached, 12u);
 }
 
-// Width 2 is the binary tree itself (the top level's, kBvhTopWidth): every
+// Width 2 is the binary tree itself (a top level over spheres): every
 // internal node two-wide, leaves - 1 of them; the same leaves and references
 // as the four-wide tree's, which collapses it.
 TEST(Bvh, WidthTwoIsTheBinaryTree) {

@@ -102,6 +102,8 @@ const BadInput BAD_INPUTS[] = {
     {"first_sample_overflow", "--first-sample 4294967295 --spp 2", "--first-sample"},
     {"sample_lanes_three", "--sample-lanes 3", "--sample-lanes: must be 0 (auto), 1, 2, 4 or 8, got 3"},
     {"sample_lanes_sixteen", "--sample-lanes 16", "--sample-lanes: must be 0 (auto), 1, 2, 4 or 8, got 16"},
+    {"bvh_width_three", "--accel bvh --bvh-width 3", "--bvh-width: must be 0 (auto), 2 or 4, got 3"},
+    {"bvh_width_eight", "--bvh-width 8", "--bvh-width: must be 0 (auto), 2 or 4, got 8"},
     {"fp16_radiance_overflow", "--precision fp16", "materials[0]: radiance above 65504",
      replaced(VALID_SCENE, "{\"type\": \"lambertian\", \"albedo\": [0.5,0.5,0.5]}",
               "{\"type\": \"emissive\", \"radiance\": [1e5,1,1]}")},

@@ -52,13 +52,17 @@ namespace {
 struct AccelVariant {
   const char* name;
   Accel accel;
+  uint32_t bvh_width = 0;  // the BVH's (OctreeParams::bvh_width)
 };
 const AccelVariant ACCELS[] = {{"octree", Accel::Octree}, {"brute", Accel::Brute}};
-// The BVH (`--accel bvh`) runs every case too, in fp32 only: the walks are
+// The BVH (`--accel bvh`) runs every case too, four-wide at both levels
+// (the walk of a GPU's meshes, accel/bvh_walk_wide.glsl, which a CPU
+// device's default widths would not run; the binary walk is the one
+// accel_test holds to brute force beside it), in fp32 only: the walks are
 // fp32 at every precision level (shading/precision.glsl), so the fp16
 // levels would repeat the octree's and brute force's shading on the BVH's
 // walk, for a third more of the suite's time on lavapipe.
-const AccelVariant BVH[] = {{"bvh", Accel::Bvh}};
+const AccelVariant BVH[] = {{"bvh4", Accel::Bvh, 4}};
 
 // The shader precisions (renderer/render/settings.h): one line each.
 struct PrecisionVariant {
@@ -84,6 +88,7 @@ class CaseRun {
   RenderResult render_with(Accel accel, const Scene& scene, RenderSettings s) {
     validate_scene(scene, case_);
     s.accel = accel;
+    if (accel == accel_.accel) s.octree.bvh_width = accel_.bvh_width;
     s.precision = precision_.precision;
     RenderResult r = octrace::render(test::shared_context(), scene, s);
     nonfinite_ += r.nonfinite_samples;
