@@ -661,7 +661,8 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       j["bvh"] = {{"build_ms", o.build_ms}, {"nodes", o.nodes},           {"leaves", o.leaves},
                   {"depth_reached", o.max_depth_reached},                  {"refs", o.refs},
                   {"bytes", o.bytes},       {"refs_per_primitive", o.refs_per_primitive},
-                  {"bytes_per_primitive", o.bytes_per_primitive}};
+                  {"bytes_per_primitive", o.bytes_per_primitive},
+                  {"width", {{"top", o.bvh_top_width}, {"meshes", o.bvh_mesh_width}}}};
     }
     if (settings.accel == Accel::Octree) {
       const OctreeStats& o = result.octree;
@@ -697,8 +698,9 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       std::printf("buffers   the scene's arrays split over %u buffers of at most %s (larger than one storage buffer)\n",
                   result.buffer_parts, mib_string(result.buffer_part_bytes).c_str());
     if (settings.accel == Accel::Bvh)
-      std::printf("bvh       %u nodes, %u leaves, depth %u, %.1f bytes/primitive\n", result.octree.nodes,
-                  result.octree.leaves, result.octree.max_depth_reached, result.octree.bytes_per_primitive);
+      std::printf("bvh       %u nodes, %u leaves, depth %u, %.1f bytes/primitive, %u-wide top level, %u-wide meshes\n",
+                  result.octree.nodes, result.octree.leaves, result.octree.max_depth_reached,
+                  result.octree.bytes_per_primitive, result.octree.bvh_top_width, result.octree.bvh_mesh_width);
     std::printf("times     scene %.1f ms, %s build %.1f ms, upload %.1f ms, pipeline %.1f ms, render %.1f ms (device)\n",
                 scene_ms, accel_name(settings.accel), t.accel_build_ms, t.upload_ms, t.pipeline_ms,
                 t.render_device_ms);

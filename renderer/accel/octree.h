@@ -38,6 +38,9 @@ struct OctreeStats {
   double refs_per_primitive = 0;      // refs / primitive count (0 for an empty scene)
   double bytes_per_primitive = 0;     // bytes / primitive count (0 for an empty scene)
   uint64_t bytes = 0;                 // nodes * 32 + refs * 4: what the GPU holds for the octree
+  // A scene's BVH (render/gpu_scene.cpp): the most children a node of its
+  // top level, and of its meshes' trees, may have (2 or 4); 0 otherwise.
+  uint32_t bvh_top_width = 0, bvh_mesh_width = 0;
 };
 
 // ---------------------------------------------------------------------------

@@ -154,6 +154,10 @@ static SceneOctree build_scene_octree(GpuScene& g, const VulkanContext& ctx, con
   st.refs_per_primitive = primitives ? double(st.refs) / double(primitives) : 0.0;
   st.bytes_per_primitive = primitives ? double(st.bytes) / double(primitives) : 0.0;
   st.build_ms = ms_since(start);
+  if (accel == Accel::Bvh) {
+    st.bvh_top_width = widths.top;
+    st.bvh_mesh_width = widths.meshes;
+  }
   g.accel_build_ms = st.build_ms;
   g.octree = st;
   return t;

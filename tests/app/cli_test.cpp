@@ -175,13 +175,25 @@ TEST(Cli, JsonSummaryHasTimingsAndDevice) {
 }
 
 // With --accel bvh the summary carries the BVH's statistics (10 spheres, 3
-// big ones and the ground: one reference per primitive).
+// big ones and the ground: one reference per primitive) and widths.
 TEST(Cli, JsonSummaryHasBvhStats) {
   RunResult r = run_octrace("render --size 16x8 --spp 1 --spheres 10 --accel bvh --json --out " + tmp("bvh.png"));
   ASSERT_EQ(r.code, 0) << r.output;
   for (const char* key : {"\"bvh\"", "\"nodes\"", "\"bytes_per_primitive\"", "\"refs\": 14", "\"accel\": \"bvh\""})
     EXPECT_NE(r.output.find(key), std::string::npos) << key << " missing in " << r.output;
   EXPECT_EQ(r.output.find("\"octree\""), std::string::npos) << r.output;
+  // The widths it was built with: a top level of spheres is binary on every
+  // device by default (accel/bvh.h default_bvh_widths); --bvh-width 4 makes
+  // every tree four-wide.
+  const nlohmann::json j = nlohmann::json::parse(r.output.substr(r.output.find('{')));
+  EXPECT_EQ(j["bvh"]["width"]["top"], 2) << r.output;
+  RunResult wide =
+      run_octrace("render --size 16x8 --spp 1 --spheres 10 --accel bvh --bvh-width 4 --json --out " + tmp("bvh4.png"));
+  ASSERT_EQ(wide.code, 0) << wide.output;
+  const nlohmann::json w = nlohmann::json::parse(wide.output.substr(wide.output.find('{')));
+  EXPECT_EQ(w["bvh"]["width"]["top"], 4) << wide.output;
+  EXPECT_EQ(w["bvh"]["width"]["meshes"], 4) << wide.output;
+  EXPECT_LT(w["bvh"]["nodes"].get<int>(), j["bvh"]["nodes"].get<int>()) << "four-wide: fewer nodes";
 }
 
 // glTF scenes: bad files, and the flags that only glTF scenes take.
