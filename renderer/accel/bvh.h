@@ -2,9 +2,8 @@
 // beside the octree (`--accel bvh`) so that what the octree costs or saves
 // can be measured. Boxes in, node arrays out, like accel/octree.h, and into
 // the SAME arrays (GpuOctreeNode, refs): buffers, bindings, the two levels
-// and the upload stay as they are, only the shader walks differ
-// (shaders/accel/bvh_walk.glsl for binary trees, bvh_walk_wide.glsl for
-// four-wide ones).
+// and the upload stay as they are, only the shader walk differs
+// (shaders/accel/bvh_walk.glsl, in a binary and a four-wide form).
 #pragma once
 
 #include <cstdint>
@@ -69,9 +68,8 @@ inline constexpr uint32_t kMaxBvhDepth = gpu::BVH_MAX_DEPTH;  // bounds the shad
 inline constexpr uint32_t kBvhWidth = gpu::BVH_WIDTH;          // children per internal node, at most
 // The widths a scene's trees are built with by default (OctreeParams::
 // bvh_width 0; render/gpu_scene.cpp applies them and sets the pipeline's
-// SPEC_BVH_TOP_WIDE and SPEC_BVH_MESH_WIDE, which pick accel/bvh_walk.glsl
-// for binary trees or accel/bvh_walk_wide.glsl for four-wide ones, per
-// level). On a GPU: the meshes' trees four-wide; the top level four-wide
+// SPEC_BVH_TOP_WIDE and SPEC_BVH_MESH_WIDE, which pick the binary or the
+// four-wide form of accel/bvh_walk.glsl per level). On a GPU: the meshes' trees four-wide; the top level four-wide
 // over instances only, binary where it holds spheres. On a CPU device
 // (lavapipe): every tree binary. Why (optimisation log 54, against the
 // binary trees): on the H200, four-wide, the engine (instances of meshes)

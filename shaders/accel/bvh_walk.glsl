@@ -1,20 +1,36 @@
-// The binary BVH walk (renderer/accel/bvh.h has the encoding): the body of
-// the walk for ACCEL == ACCEL_BVH where OCTREE_BVH_WIDE is false (a binary
-// tree: by default a top level with spheres, and every tree on a CPU
-// device), included at the top of
-// accel/octree_walk.glsl inside `if (ACCEL == ACCEL_BVH) { ... return; }`,
-// so that it takes the walk's parameters and OCTREE_LEAF(k); a pipeline
-// specialised to one structure compiles only its walks.
+// The BVH walks (renderer/accel/bvh.h has the encoding): the body of the
+// walk for ACCEL == ACCEL_BVH, included at the top of accel/octree_walk.glsl
+// inside `if (ACCEL == ACCEL_BVH) { ... return; }`, once with BVH_WALK_WIDE
+// 0 (binary trees: by default a top level with spheres, and every tree on a
+// CPU device) and once with 1 (four-wide trees: by default on a GPU the
+// meshes, and a top level over instances only), under the includer's
+// OCTREE_BVH_WIDE; so that both take the walk's parameters and
+// OCTREE_LEAF(k), and a pipeline specialised to one structure and width
+// compiles only its walk. The four-wide walk takes binary trees too, but
+// slower than the binary walk (optimisation log 54).
 //
-// Stack-based, front to back: of an internal node's two children, those
-// whose box the ray meets before the nearest hit are pushed, the farther
-// first, so the nearer (by entry distance) is popped next. A popped node
-// whose box starts beyond the nearest hit found since it was pushed is
-// skipped (the early exit), with the same widening as the octree's.
-// Stack bound: each level leaves at most one entry behind (the farther
-// child), so a tree of depth BVH_MAX_DEPTH (shared.h) needs BVH_MAX_DEPTH + 1.
+// Stack-based, front to back: of an internal node's children, those whose
+// box the ray meets before the nearest hit are pushed, the farthest first,
+// so the nearest (by entry distance) is popped next. A popped node whose
+// box starts beyond the nearest hit found since it was pushed is skipped
+// (the early exit), with the same widening as the octree's. Stack bounds:
+// BVH_STACK_SIZE and BVH_WIDE_STACK_SIZE (accel/octree.glsl).
+//
+// The four-wide walk's order (two to BVH_WIDTH = 4 consecutive children): a
+// child's key is the bits of its entry distance with the low two replaced
+// by its place among the children, a miss's key 0xffffffff; five
+// compare-exchanges sort the four keys (a sorting network). Entry distances
+// are >= 0, so their bits order as the floats do, and every hit's key
+// (<= 0x7fffffff) comes before every miss. The entry pushed is the key's
+// distance with those two bits cleared: at most 3 ulps below the computed
+// one, still a lower bound of where the ray enters, so the early exit stays
+// safe; children whose entries differ by less go in the order of their places.
 OCTREE_SLAB sr = OCTREE_SLAB_MAKE(ray);  // named as the octree walk's: OCTREE_LEAF may use it
+#if BVH_WALK_WIDE
+uvec2 bvh_stack[BVH_WIDE_STACK_SIZE];  // (node, bits of its entry distance), as the octree walk's stack
+#else
 uvec2 bvh_stack[BVH_STACK_SIZE];  // (node, bits of its entry distance), as the octree walk's stack
+#endif
 uint bvh_sp = 0;
 float bvh_t;
 GpuOctreeNode bvh_root = node_at(root_index);
@@ -34,6 +50,27 @@ while (bvh_sp > 0) {
       OCTREE_LEAF(k);
     continue;
   }
+#if BVH_WALK_WIDE
+  uint bvh_n = bitCount(node.count_or_mask & 0xfu);
+  if (WALK_STATS) {
+    ++walk_nodes;
+    walk_boxes += bvh_n;
+  }
+  uint bvh_k0, bvh_k1, bvh_k2, bvh_k3;
+  BVH_CHILD_KEY(0u, bvh_k0)
+  BVH_CHILD_KEY(1u, bvh_k1)
+  BVH_CHILD_KEY(2u, bvh_k2)
+  BVH_CHILD_KEY(3u, bvh_k3)
+  BVH_ORDER(bvh_k0, bvh_k1)
+  BVH_ORDER(bvh_k2, bvh_k3)
+  BVH_ORDER(bvh_k0, bvh_k2)
+  BVH_ORDER(bvh_k1, bvh_k3)
+  BVH_ORDER(bvh_k1, bvh_k2)
+  BVH_PUSH(bvh_k3)
+  BVH_PUSH(bvh_k2)
+  BVH_PUSH(bvh_k1)
+  BVH_PUSH(bvh_k0)
+#else
   if (WALK_STATS) {
     ++walk_nodes;
     walk_boxes += 2u;
@@ -56,4 +93,5 @@ while (bvh_sp > 0) {
         uvec2(hit_left ? node.first : node.first + 1u, floatBitsToUint(hit_left ? t_left : t_right));
     ++bvh_sp;
   }
+#endif
 }

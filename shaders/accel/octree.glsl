@@ -106,15 +106,14 @@ bool hit_box(vec3 lo, vec3 hi, FusedSlabRay r, float t_max, out float t_entry) {
 // entries behind: 7 * 20 + 1 entries for the deepest octree (depth 20).
 const uint STACK_SIZE = 141u;
 
-// The BVH walks' stacks: a visit pops one entry and pushes at most a
-// node's children, so each level leaves at most one fewer than that behind;
-// and the root. The binary walk (accel/bvh_walk.glsl) and the four-wide one
-// (accel/bvh_walk_wide.glsl).
+// The BVH walks' stacks (accel/bvh_walk.glsl, binary and four-wide): a
+// visit pops one entry and pushes at most a node's children, so each level
+// leaves at most one fewer than that behind; and the root.
 const uint BVH_STACK_SIZE = BVH_MAX_DEPTH + 1u;
 const uint BVH_WIDE_STACK_SIZE = (BVH_WIDTH - 1u) * BVH_MAX_DEPTH + 1u;
 
-// The four-wide BVH walk's steps on a node's children (accel/bvh_walk_wide.glsl has the
-// keys and their order): the key of child c (< bvh_n; a node has at least
+// The four-wide BVH walk's steps on a node's children (accel/bvh_walk.glsl
+// has the keys and their order): the key of child c (< bvh_n; a node has at least
 // two, so the test folds away for c = 0 and 1) of `node`, a
 // compare-exchange of two keys, and the push of a key's child (none for a
 // miss). Macros, because the walk is the body of two functions whose slab

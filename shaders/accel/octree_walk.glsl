@@ -7,10 +7,10 @@
 // makes it: accel/octree.glsl), then undefines them. The walk is the same
 // at both levels; only the leaf and the slab test's form differ.
 // With ACCEL == ACCEL_BVH the arrays hold a BVH, which accel/bvh_walk.glsl
-// walks where the includer's OCTREE_BVH_WIDE (a constant expression) is
-// false (a binary tree), accel/bvh_walk_wide.glsl where true (four-wide:
-// BVH_TOP_WIDE for the top level, BVH_MESH_WIDE for the meshes;
-// renderer/accel/bvh.h says which and why).
+// walks, binary where the includer's OCTREE_BVH_WIDE (a constant
+// expression) is false, four-wide where true (BVH_TOP_WIDE for the top
+// level, BVH_MESH_WIDE for the meshes; renderer/accel/bvh.h says which and
+// why).
 // refs[big_first, big_end) are the primitives too large for the octree's
 // cells (the tree's big list): with BIG_LEAF the walk tests them as its
 // first leaf; without, its caller tests them before the walk
@@ -20,9 +20,13 @@ void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, Ra
                       bool into_from, InstanceRef ir, inout Hit hit) {
   if (ACCEL == ACCEL_BVH) {
     if (OCTREE_BVH_WIDE) {
-#include "accel/bvh_walk_wide.glsl"
-    } else {
+#define BVH_WALK_WIDE 1
 #include "accel/bvh_walk.glsl"
+#undef BVH_WALK_WIDE
+    } else {
+#define BVH_WALK_WIDE 0
+#include "accel/bvh_walk.glsl"
+#undef BVH_WALK_WIDE
     }
     return;
   }

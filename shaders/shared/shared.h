@@ -218,7 +218,7 @@ OCT_CONST(uint, SPEC_OCTANT_CULLING, 25u);
 OCT_CONST(uint, SPEC_BIG_LEAF, 26u);
 // Whether a BVH's top level, and its meshes' trees, are four-wide
 // (renderer/accel/bvh.h default_bvh_widths, OctreeParams::bvh_width): their
-// walk is accel/bvh_walk_wide.glsl, else the binary accel/bvh_walk.glsl.
+// walk is accel/bvh_walk.glsl's four-wide form, else its binary one.
 OCT_CONST(uint, SPEC_BVH_TOP_WIDE, 30u);
 OCT_CONST(uint, SPEC_BVH_MESH_WIDE, 31u);
 // Whether the walks count what they do (RenderSettings::walk_stats,
@@ -242,7 +242,7 @@ OCT_CONST(uint, ACCEL_BVH, 2u);  // the octree's arrays hold a BVH (renderer/acc
 // (binary) and (BVH_WIDTH - 1) * BVH_MAX_DEPTH + 1 (four-wide) entries.
 OCT_CONST(uint, BVH_MAX_DEPTH, 48u);
 // Children per BVH node, at most (renderer/accel/bvh.h; the wide walk's
-// sort, accel/bvh_walk_wide.glsl, is written for four).
+// sort, accel/bvh_walk.glsl, is written for four).
 OCT_CONST(uint, BVH_WIDTH, 4u);
 
 // Kinds of light (GpuLight.type).

@@ -56,7 +56,7 @@ struct AccelVariant {
 };
 const AccelVariant ACCELS[] = {{"octree", Accel::Octree}, {"brute", Accel::Brute}};
 // The BVH (`--accel bvh`) runs every case too, four-wide at both levels
-// (the walk of a GPU's meshes, accel/bvh_walk_wide.glsl, which a CPU
+// (the walk of a GPU's meshes, accel/bvh_walk.glsl's four-wide form, which a CPU
 // device's default widths would not run; the binary walk is the one
 // accel_test holds to brute force beside it), in fp32 only: the walks are
 // fp32 at every precision level (shading/precision.glsl), so the fp16
