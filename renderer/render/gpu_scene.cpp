@@ -118,11 +118,9 @@ static SceneOctree build_scene_octree(GpuScene& g, const VulkanContext& ctx, con
   // The top level over spheres and instances, then one tree per mesh in
   // object space, appended: their `first` fields are moved by where they land.
   const std::vector<Aabb> boxes = primitive_boxes(scene);
-  // A BVH's widths per level; the pipeline's SPEC_BVH_TOP_WIDE and
-  // SPEC_BVH_MESH_WIDE follow g.bvh_top_wide and g.bvh_mesh_wide.
+  // A BVH's widths per level, kept in its stats (below), which the
+  // pipeline's SPEC_BVH_TOP_WIDE and SPEC_BVH_MESH_WIDE follow.
   const BvhWidths widths = bvh_widths(ctx, scene, params);
-  g.bvh_top_wide = accel == Accel::Bvh && widths.top > 2;
-  g.bvh_mesh_wide = accel == Accel::Bvh && widths.meshes > 2;
   SceneOctree t{accel == Accel::Bvh ? build_bvh(boxes, widths.top) : build_octree(boxes, params), gpu_meshes(scene)};
   Octree& octree = t.octree;
   OctreeStats& st = octree.stats;

@@ -54,8 +54,6 @@ struct GpuScene {
   // belongs to.
   uint64_t content_hash = 0;
   Accel tree = Accel::Brute;  // what nodes and refs hold: Brute = placeholders, an octree or a BVH
-  bool bvh_top_wide = false;   // a BVH whose top level is four-wide (accel/bvh.h default_bvh_widths) ...
-  bool bvh_mesh_wide = false;  // ... and whose meshes' trees are
   OctreeStats octree;  // of the octree or the BVH in nodes and refs
   double accel_build_ms = 0;  // octree or BVH build on the CPU (wall)
   double upload_ms = 0;       // packing, buffer creation and copies (wall)
