@@ -1,6 +1,7 @@
 #include "bench.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <sstream>
 #include <map>
@@ -79,18 +80,31 @@ double median(std::vector<double> v) {
 }
 
 // The line above a bench table: device, settings and what the times are.
-void print_header(const VulkanContext& ctx, const RenderSettings& settings, uint32_t repeat, const char* more) {
+void print_header(const VulkanContext& ctx, const RenderSettings& settings, const BenchOptions& o, const char* more) {
   const std::string bvh_width =
       settings.octree.bvh_width ? "; BVH width " + std::to_string(settings.octree.bvh_width) : std::string();
   std::printf("Device: %s (%s, %s). Image %dx%d, %u spp, depth %u%s; render = device time of the passes "
-              "(timestamp queries), median of %u runs after a warm-up%s.\n\n",
+              "(timestamp queries), median of %u runs after a warm-up of %gs%s.\n\n",
               ctx.info.name.c_str(), ctx.info.type.c_str(), ctx.info.driver.c_str(), settings.width,
-              settings.height, settings.spp, settings.bounce_limit, bvh_width.c_str(), repeat, more);
+              settings.height, settings.spp, settings.bounce_limit, bvh_width.c_str(), o.repeat, o.warmup_s, more);
+}
+
+// Calls `run` back to back until `seconds` of wall time have passed, at
+// least once. A GPU's clock falls to its idle level within seconds of no work
+// (345 MHz against 1980 on the H200) and comes back only under sustained
+// work: one warm-up run of a few milliseconds after a long build or pipeline
+// compile left the timed runs at the idle clock, 4-6x slower (optimisation
+// log 55).
+template <class Run>
+void warm_up(double seconds, Run&& run) {
+  const auto start = std::chrono::steady_clock::now();
+  do run();
+  while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < seconds);
 }
 
 // One configuration of a bench: its tracer (set up with `accel` and
 // `precision`; a warning where a software device's loop limit cuts paths)
-// and the device times of `repeat` renders of s.spp passes, after a warm-up.
+// and the device times of `repeat` renders of s.spp passes, after warm_up.
 struct TimedRuns {
   std::unique_ptr<PathTracer> tracer;
   std::vector<double> times;
@@ -98,18 +112,19 @@ struct TimedRuns {
 };
 
 TimedRuns timed_runs(const VulkanContext& ctx, const Scene& scene, RenderSettings s, Accel accel,
-                     Precision precision, uint32_t repeat) {
+                     Precision precision, uint32_t repeat, double warmup_s) {
   s.accel = accel;
   s.precision = precision;
   if (std::string w = software_loop_limit_warning(ctx.info, scene, s); !w.empty()) print_warning(w);
   if (std::string w = punctual_without_nee_warning(scene, s); !w.empty()) print_warning(w);
   TimedRuns t;
   t.tracer = std::make_unique<PathTracer>(ctx, scene, s);
-  for (uint32_t rep = 0; rep <= repeat; ++rep) {
+  auto run = [&] {
     t.tracer->reset();
-    const double ms = t.tracer->run_passes(pass_settings(scene, s), 0, s.spp);
-    if (rep > 0) t.times.push_back(ms);
-  }
+    return t.tracer->run_passes(pass_settings(scene, s), 0, s.spp);
+  };
+  warm_up(warmup_s, run);
+  for (uint32_t rep = 0; rep < repeat; ++rep) t.times.push_back(run());
   t.median_ms = median(t.times);
   t.min_ms = *std::min_element(t.times.begin(), t.times.end());
   t.max_ms = *std::max_element(t.times.begin(), t.times.end());
@@ -148,14 +163,17 @@ int run_effects_bench(const VulkanContext& ctx, const BenchOptions& o, const Ren
       PathTracer general(ctx, scene, s);
       // Alternate the two so that drift of the machine hits both alike.
       std::vector<double> a, g;
-      for (uint32_t rep = 0; rep <= o.repeat; ++rep) {
-        specialised.reset();
-        double ta = specialised.run_passes(pass_settings(scene, s), 0, s.spp);
-        general.reset();
-        double tg = general.run_passes(pass_settings(scene, s), 0, s.spp);
-        if (rep == 0) continue;  // warm-up
-        a.push_back(ta);
-        g.push_back(tg);
+      auto run = [&](PathTracer& tracer) {
+        tracer.reset();
+        return tracer.run_passes(pass_settings(scene, s), 0, s.spp);
+      };
+      warm_up(o.warmup_s, [&] {
+        run(specialised);
+        run(general);
+      });
+      for (uint32_t rep = 0; rep < o.repeat; ++rep) {
+        a.push_back(run(specialised));
+        g.push_back(run(general));
       }
       row.auto_ms = median(a);
       row.all_ms = median(g);
@@ -170,10 +188,11 @@ int run_effects_bench(const VulkanContext& ctx, const BenchOptions& o, const Ren
     }
   }
   std::printf("Device: %s (%s, %s). Image %dx%d, %u spp, depth %u, rtiow %llu spheres r=%g with materials "
-              "replaced per family; render = device time, median of %u runs after a warm-up, auto and all "
-              "alternated.\n\n",
+              "replaced per family; render = device time, median of %u runs after a warm-up of %gs, auto "
+              "and all alternated.\n\n",
               ctx.info.name.c_str(), ctx.info.type.c_str(), ctx.info.driver.c_str(), settings.width,
-              settings.height, settings.spp, settings.bounce_limit, (unsigned long long)n, radius, o.repeat);
+              settings.height, settings.spp, settings.bounce_limit, (unsigned long long)n, radius, o.repeat,
+              o.warmup_s);
   std::printf("| family | precision | features | auto ms (min-max) | all ms (min-max) | all / auto |\n");
   std::printf("|---|---|---|---:|---:|---:|\n");
   for (const auto& r : rows) {
@@ -210,7 +229,7 @@ int run_scene_bench(const VulkanContext& ctx, const BenchOptions& o, const Rende
   for (const auto& [name, scene] : o.scenes) {
     for (Precision precision : o.precisions) {
       for (Accel accel : o.accels) {
-        TimedRuns t = timed_runs(ctx, scene, settings, accel, precision, o.repeat);
+        TimedRuns t = timed_runs(ctx, scene, settings, accel, precision, o.repeat, o.warmup_s);
         SceneRow row{name, scene.spheres.size(), instanced_triangle_count(scene), accel, precision};
         row.median_ms = t.median_ms;
         row.min_ms = t.min_ms;
@@ -229,7 +248,7 @@ int run_scene_bench(const VulkanContext& ctx, const BenchOptions& o, const Rende
       }
     }
   }
-  print_header(ctx, settings, o.repeat, "; paths/s and rays/s (every segment: camera rays and bounces) of the last run");
+  print_header(ctx, settings, o, "; paths/s and rays/s (every segment: camera rays and bounces) of the last run");
   std::printf("| scene | spheres | triangles | accel | precision | render ms (median) | min | max | paths/s | rays/s | "
               "build ms | bytes/primitive |\n");
   std::printf("|---|---:|---:|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
@@ -270,9 +289,9 @@ int run_bench(const BenchOptions& o) {
   if (!o.families.empty()) return run_effects_bench(ctx, o, settings);
   if (!o.scenes.empty()) return run_scene_bench(ctx, o, settings);
   if (!o.quiet)
-    std::fprintf(stderr, "bench on %s (%s): %dx%d, %u spp, depth %u, %u repeats after a warm-up\n",
+    std::fprintf(stderr, "bench on %s (%s): %dx%d, %u spp, depth %u, %u repeats after a warm-up of %gs\n",
                  ctx.info.name.c_str(), ctx.info.type.c_str(), settings.width, settings.height, settings.spp,
-                 settings.bounce_limit, o.repeat);
+                 settings.bounce_limit, o.repeat, o.warmup_s);
 
   std::vector<Row> rows;
   // Last measured median per (accel, radius, precision) and its sphere count:
@@ -300,7 +319,7 @@ int run_bench(const BenchOptions& o) {
               continue;
             }
           }
-          const TimedRuns t = timed_runs(ctx, scene, settings, accel, precision, o.repeat);
+          const TimedRuns t = timed_runs(ctx, scene, settings, accel, precision, o.repeat, o.warmup_s);
           row.median_ms = t.median_ms;
           row.min_ms = t.min_ms;
           row.max_ms = t.max_ms;
@@ -325,7 +344,7 @@ int run_bench(const BenchOptions& o) {
         r.speedup = b.median_ms / r.median_ms;
   }
 
-  print_header(ctx, settings, o.repeat, "");
+  print_header(ctx, settings, o, "");
   std::printf("| spheres | radius | accel | precision | render ms (median) | min | max | speedup vs brute | "
               "build ms | bytes/sphere |\n");
   std::printf("|---:|---:|---|---|---:|---:|---:|---:|---:|---:|\n");

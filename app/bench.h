@@ -18,6 +18,9 @@ struct BenchOptions {
   RenderSettings settings;   // size, spp, depth, octree parameters
   bool size_given = false;   // else 1200x800 on a GPU, 400x225 on a CPU device
   uint32_t repeat = 5;
+  // Before each configuration's timed runs: back-to-back runs for at least
+  // this long (at least one), so that a GPU's clock is up (bench.cpp, warm_up).
+  double warmup_s = 0.5;
   double budget_s = 60;      // skip a configuration predicted to take longer (all repeats)
   uint64_t seed = 1;
   std::string device = "auto";

@@ -941,7 +941,11 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bench_cmd->add_option("--bvh-width", bench.settings.octree.bvh_width, "BVH children per node: 2, 4 or 0 (auto)")
       ->capture_default_str();
-  bench_cmd->add_option("--repeat", bench.repeat, "Timed runs per configuration, after one warm-up")
+  bench_cmd->add_option("--repeat", bench.repeat, "Timed runs per configuration, after the warm-up")
+      ->capture_default_str();
+  bench_cmd->add_option("--warmup", bench.warmup_s,
+                        "Warm-up per configuration: untimed runs back to back for at least SECONDS (at least one), "
+                        "so that a GPU has left its idle clock before the timed runs")
       ->capture_default_str();
   bench_cmd->add_option("--budget", bench.budget_s, "Skip brute force predicted to take longer (seconds)")
       ->capture_default_str();
@@ -1011,6 +1015,8 @@ int main(int argc, char** argv) {
         bench.size_given = true;
       }
       if (bench.repeat < 1) throw InputError("--repeat: must be >= 1");
+      if (!(bench.warmup_s >= 0) || !std::isfinite(bench.warmup_s))
+        throw InputError("--warmup: must be a finite number of seconds >= 0");
       for (float r : bench.radii)
         if (!(r > 0) || !std::isfinite(r)) throw InputError("--radius: must be finite numbers > 0");
       if (!bench.csv.empty()) check_output_folder(bench.csv);

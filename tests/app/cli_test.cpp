@@ -293,12 +293,24 @@ TEST(Cli, BenchTimesSceneFiles) {
   const std::string quad = octrace::test::quad_gltf().write(tmp("gltf/bench_quad.glb"));
   const std::string json = write_file("bench_scene.json", VALID_SCENE);
   RunResult r = run_octrace("bench --device cpu --scene " + quad + "," + json +
-                            " --accel octree,bvh,brute --size 16x8 --spp 1 --repeat 1 --quiet");
+                            " --accel octree,bvh,brute --size 16x8 --spp 1 --repeat 1 --warmup 0 --quiet");
   ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("median of 1 runs after a warm-up of 0s"), std::string::npos) << r.output;
   for (const char* row : {"| bench_quad.glb | 0 | 2 | octree | fp32 |", "| bench_quad.glb | 0 | 2 | brute | fp32 |",
                           "| bench_quad.glb | 0 | 2 | bvh | fp32 |",
                           "bench_scene.json | 1 | 0 | brute | fp32 |", "rays/s"})
     EXPECT_NE(r.output.find(row), std::string::npos) << row << " missing in " << r.output;
+}
+
+// `bench --warmup` takes seconds >= 0: anything else is a one-line input
+// error (exit 2) before any device work.
+TEST(Cli, BenchRejectsABadWarmup) {
+  for (const char* bad : {"-1", "nan", "inf", "soon"}) {
+    RunResult r = run_octrace(std::string("bench --device cpu --spheres 10 --quiet --warmup ") + bad);
+    EXPECT_EQ(r.code, 2) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find("--warmup"), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  }
 }
 
 // A JSON scene with meshes, dumped and loaded again, is the same scene: the
