@@ -53,13 +53,9 @@ struct Split {
 // (58 bytes per sphere instead of 21).
 constexpr double kNodeCost = 2.0;
 
-// Along any path from the root, the product of the duplication factors of the
-// splits (child references / node references) stays within this.
-constexpr double kMaxDuplication = 8.0;
-
 // The build's view of a node: what its split depends on besides its
 // references. `budget` bounds the references its subtree's leaves may hold:
-// the root has kMaxDuplication times its references; a split shares its
+// the root has OctreeParams::max_refs times its references; a split shares its
 // budget among the children in proportion to their references, and may not
 // produce more references than the budget.
 struct BuildNode {
@@ -305,6 +301,9 @@ void check_params(const OctreeParams& params) {
   if (params.max_depth < 1 || params.max_depth > kMaxOctreeDepth)
     throw SettingError("octree.max_depth", ": must be in 1.." + std::to_string(kMaxOctreeDepth) + ", got " +
                      std::to_string(params.max_depth));
+  if (params.max_refs < 1 || params.max_refs > kMaxOctreeRefs)
+    throw SettingError("octree.max_refs", ": must be in 1.." + std::to_string(kMaxOctreeRefs) + ", got " +
+                       std::to_string(params.max_refs));
 }
 
 }  // namespace
@@ -330,7 +329,7 @@ Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params, con
     root.node.box.extend(box);
   }
   if (root.refs.empty()) root.node.box = {glm::vec3(0.0f), glm::vec3(0.0f)};
-  root.node.budget = kMaxDuplication * static_cast<double>(root.refs.size());
+  root.node.budget = static_cast<double>(params.max_refs) * static_cast<double>(root.refs.size());
   tree.nodes.push_back(make_node(root.node.box));
 
   // Top of the tree: split the largest pending subtree until every one is small

@@ -26,6 +26,12 @@ struct OctreeParams {
   // 4 for every tree of the scene, or 0 for the device's default
   // (render/gpu_scene.cpp bvh_widths). The image is the same either way.
   uint32_t bvh_width = 0;
+  // The references per primitive, at most (1..kMaxOctreeRefs): along any path
+  // from the root the product of the splits' duplication factors stays within
+  // this (the split budget below). 8 keeps clipped meshes under 48 bytes per
+  // triangle (issue 11); 16 took the engine's octree 13% faster at 81 bytes
+  // (optimisation log 57), a trade left to the user (`--octree-refs`).
+  uint32_t max_refs = 8;
 };
 
 struct OctreeStats {
@@ -115,8 +121,9 @@ struct OctreeStats {
 //     least the node's; and
 //   - the references it creates stay within its budget: along any path from the
 //     root the product of the splits' duplication factors (child references /
-//     node references) is at most 8, so the references never exceed 8 per
-//     primitive, whatever the input (a hard bound, where the heuristic is not).
+//     node references) is at most max_refs (8), so the references never exceed
+//     max_refs per primitive, whatever the input (a hard bound, where the
+//     heuristic is not).
 // The top levels are split on the calling thread, the subtrees below them in
 // parallel; the result depends only on the input.
 //
@@ -142,6 +149,7 @@ void finish_tree_stats(Octree& tree, size_t primitives, double build_ms);
 
 inline constexpr uint32_t kMaxBigPrimitives = 16;
 inline constexpr uint32_t kMaxOctreeDepth = 20;  // 2^-20 of the root extent is near float resolution
+inline constexpr uint32_t kMaxOctreeRefs = 64;   // OctreeParams::max_refs
 
 // Optional knowledge of the primitives' shapes (split clipping): whether
 // primitive `prim` reaches into `cell` (its closed box), and if so the box of
@@ -153,7 +161,8 @@ using ClipFn = std::function<bool(uint32_t prim, const Aabb& cell, Aabb& part)>;
 
 // Builds the octree over `boxes` (finite, non-empty; primitive i is boxes[i]).
 // Uses the hardware threads; the result depends only on the input.
-// Throws SettingError ("octree.leaf_size", "octree.max_depth") for bad params.
+// Throws SettingError ("octree.leaf_size", "octree.max_depth",
+// "octree.max_refs") for bad params.
 Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params, const ClipFn& clip = {});
 
 }  // namespace octrace

@@ -200,8 +200,10 @@ std::pair<double, double> agreement(const RenderResult& a, const RenderResult& b
 // Each tree against one brute-force render per depth; the octree with and
 // without octant culling, and with the big list tested by the walks' callers
 // for scenes with triangles (the form GPUs take for them; lavapipe's is the
-// first leaf: RenderSettings::big_list); the BVH binary, four-wide, and in
-// the device's default widths (OctreeParams::bvh_width).
+// first leaf: RenderSettings::big_list), and with a split budget of 32
+// references per primitive (OctreeParams::max_refs: deeper clipped trees);
+// the BVH binary, four-wide, and in the device's default widths
+// (OctreeParams::bvh_width).
 TEST_P(AccelTest, TreeImagesMatchBruteForce) {
   Scene scene = GetParam().make();
   for (uint32_t depth : {8u, 50u}) {
@@ -218,9 +220,11 @@ TEST_P(AccelTest, TreeImagesMatchBruteForce) {
       bool culling;
       BigList big_list;
       uint32_t bvh_width = 0;
+      uint32_t max_refs = 8;
     };
     for (Variant v : {Variant{Accel::Octree, true, BigList::FirstLeaf}, Variant{Accel::Octree, false, BigList::FirstLeaf},
-                      Variant{Accel::Octree, true, BigList::OwnLoop}, Variant{Accel::Bvh, false, BigList::Auto, 0},
+                      Variant{Accel::Octree, true, BigList::OwnLoop}, Variant{Accel::Octree, true, BigList::FirstLeaf, 0, 32},
+                      Variant{Accel::Bvh, false, BigList::Auto, 0},
                       Variant{Accel::Bvh, false, BigList::Auto, 2}, Variant{Accel::Bvh, false, BigList::Auto, 4}}) {
       if (v.big_list == BigList::OwnLoop && scene.instances.empty()) continue;
       // The BVH's auto widths on a CPU device are all binary (accel/bvh.h): width 2 again.
@@ -230,12 +234,14 @@ TEST_P(AccelTest, TreeImagesMatchBruteForce) {
       s.big_list = v.big_list;
       s.octree.leaf_size = 2;  // octree: a deep tree, many cells, many straddling spheres
       s.octree.bvh_width = v.bvh_width;
+      s.octree.max_refs = v.max_refs;
       RenderResult tree = render(test::shared_context(), scene, s);
       ASSERT_EQ(tree.nonfinite_samples, 0u);
       auto [identical, mean_diff] = agreement(tree, brute);
       const std::string what = std::string(accel_name(v.accel)) + (v.culling ? " (octant culling)" : "") +
                                (v.big_list == BigList::OwnLoop ? " (big list in its own loop)" : "") +
                                (v.accel == Accel::Bvh ? " (width " + std::to_string(v.bvh_width) + ")" : "") +
+                               (v.max_refs != 8 ? " (" + std::to_string(v.max_refs) + " refs per primitive)" : "") +
                                ", depth " + std::to_string(depth);
       if (depth <= 8) {
         EXPECT_EQ(identical, 1.0) << what << ": only " << identical * 100 << "% bit-identical";

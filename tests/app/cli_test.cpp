@@ -104,6 +104,8 @@ const BadInput BAD_INPUTS[] = {
     {"sample_lanes_sixteen", "--sample-lanes 16", "--sample-lanes: must be 0 (auto), 1, 2, 4 or 8, got 16"},
     {"bvh_width_three", "--accel bvh --bvh-width 3", "--bvh-width: must be 0 (auto), 2 or 4, got 3"},
     {"bvh_width_eight", "--bvh-width 8", "--bvh-width: must be 0 (auto), 2 or 4, got 8"},
+    {"octree_refs_zero", "--octree-refs 0", "--octree-refs: must be in 1..64, got 0"},
+    {"octree_refs_large", "--octree-refs 100", "--octree-refs: must be in 1..64, got 100"},
     {"fp16_radiance_overflow", "--precision fp16", "materials[0]: radiance above 65504",
      replaced(VALID_SCENE, "{\"type\": \"lambertian\", \"albedo\": [0.5,0.5,0.5]}",
               "{\"type\": \"emissive\", \"radiance\": [1e5,1,1]}")},

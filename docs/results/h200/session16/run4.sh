@@ -1,6 +1,6 @@
 # Session 16 on the H200, run 4: the octree's leaf size and SAH node cost on
 # the meshes (and the sparse sphere fields), a sweep with a throwaway build
-# (octrace-sweep: node_cost_env.patch, kNodeCost read from OCTRACE_NODE_COST;
+# (octrace-sweep: octree_env.patch, kNodeCost read from OCTRACE_NODE_COST;
 # the default 2 is the code as it stands). `bench --warmup 0.5` (log 55).
 # Carried: .gl, .gpub (bin.tgz), .assets. Prelude: tools/gpu_run.sh.
 source tools/gpu_run.sh
