@@ -307,7 +307,9 @@ int run_bench(const BenchOptions& o) {
           auto key = std::make_tuple(int(accel), radius, precision);
           if (accel == Accel::Brute && last.count(key)) {
             auto [prev_n, prev_ms] = last[key];
-            double predicted_s = prev_ms * double(n + 4) / double(prev_n + 4) * (o.repeat + 1) / 1000.0;
+            // The timed runs and the warm-up (warm_up: at least one run).
+            const double run_s = prev_ms * double(n + 4) / double(prev_n + 4) / 1000.0;
+            const double predicted_s = run_s * o.repeat + std::max(run_s, o.warmup_s);
             if (predicted_s > o.budget_s) {
               row.skipped = true;
               row.skip_reason = "predicted " + fmt("%.0f", predicted_s) + " s > budget " +
