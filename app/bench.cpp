@@ -102,6 +102,12 @@ void warm_up(double seconds, Run&& run) {
   while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < seconds);
 }
 
+// One timed render of s.spp passes from an empty accumulation: its device time.
+double timed_render(PathTracer& tracer, const Scene& scene, const RenderSettings& s) {
+  tracer.reset();
+  return tracer.run_passes(pass_settings(scene, s), 0, s.spp);
+}
+
 // One configuration of a bench: its tracer (set up with `accel` and
 // `precision`; a warning where a software device's loop limit cuts paths)
 // and the device times of `repeat` renders of s.spp passes, after warm_up.
@@ -119,10 +125,7 @@ TimedRuns timed_runs(const VulkanContext& ctx, const Scene& scene, RenderSetting
   if (std::string w = punctual_without_nee_warning(scene, s); !w.empty()) print_warning(w);
   TimedRuns t;
   t.tracer = std::make_unique<PathTracer>(ctx, scene, s);
-  auto run = [&] {
-    t.tracer->reset();
-    return t.tracer->run_passes(pass_settings(scene, s), 0, s.spp);
-  };
+  auto run = [&] { return timed_render(*t.tracer, scene, s); };
   warm_up(warmup_s, run);
   for (uint32_t rep = 0; rep < repeat; ++rep) t.times.push_back(run());
   t.median_ms = median(t.times);
@@ -163,17 +166,13 @@ int run_effects_bench(const VulkanContext& ctx, const BenchOptions& o, const Ren
       PathTracer general(ctx, scene, s);
       // Alternate the two so that drift of the machine hits both alike.
       std::vector<double> a, g;
-      auto run = [&](PathTracer& tracer) {
-        tracer.reset();
-        return tracer.run_passes(pass_settings(scene, s), 0, s.spp);
-      };
       warm_up(o.warmup_s, [&] {
-        run(specialised);
-        run(general);
+        timed_render(specialised, scene, s);
+        timed_render(general, scene, s);
       });
       for (uint32_t rep = 0; rep < o.repeat; ++rep) {
-        a.push_back(run(specialised));
-        g.push_back(run(general));
+        a.push_back(timed_render(specialised, scene, s));
+        g.push_back(timed_render(general, scene, s));
       }
       row.auto_ms = median(a);
       row.all_ms = median(g);

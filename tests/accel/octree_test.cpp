@@ -435,8 +435,9 @@ TEST(Octree, ReferencesStayWithinTheBudgetPerSphere) {
   std::uniform_real_distribution<float> u(-5e-6f, 5e-6f);
   std::vector<Sphere> line(10000);
   for (Sphere& s : line) s = {{1e5f + u(rng), u(rng), 0.0f}, 1e-7f, 0};
-  for (const OctreeParams params : {OctreeParams{}, OctreeParams{1, 20}, OctreeParams{1, 20, 0, 1},
-                                     OctreeParams{1, 20, 0, 16}}) {
+  for (const OctreeParams params : {OctreeParams{}, OctreeParams{1, 20},
+                                     OctreeParams{.leaf_size = 1, .max_depth = 20, .max_refs = 1},
+                                     OctreeParams{.leaf_size = 1, .max_depth = 20, .max_refs = 16}}) {
     const Octree tree = build_octree(sphere_boxes(line), params);
     EXPECT_LE(tree.refs.size(), params.max_refs * line.size()) << params.max_refs << " refs per sphere";
     expect_correct_octree(line, params, 500);
@@ -547,9 +548,7 @@ TEST(Octree, ClippedTrianglesAreFindableWithFewerReferences) {
   // A larger split budget (OctreeParams::max_refs, `--octree-refs`) lets the
   // slivers be cut further: more references, within the new bound, and fewer
   // of them met by a ray (optimisation log 57: the engine's triangle tests).
-  OctreeParams more;
-  more.max_refs = 16;
-  const Octree deeper = build_octree(boxes, more, clip);
+  const Octree deeper = build_octree(boxes, {.max_refs = 16}, clip);
   EXPECT_LE(deeper.refs.size(), 16 * tris.size());
   EXPECT_GT(deeper.refs.size(), clipped.refs.size());
   EXPECT_LT(refs_met(deeper), met_clipped);
@@ -570,9 +569,9 @@ TEST(Octree, BadParametersNameTheSetting) {
   EXPECT_EQ(message({0, 16}), "octree.leaf_size | octree.leaf_size: must be >= 1, got 0");
   EXPECT_EQ(message({8, 0}), "octree.max_depth | octree.max_depth: must be in 1..20, got 0");
   EXPECT_EQ(message({8, 21}), "octree.max_depth | octree.max_depth: must be in 1..20, got 21");
-  EXPECT_EQ(message({8, 16, 0, 0}), "octree.max_refs | octree.max_refs: must be in 1..64, got 0");
-  EXPECT_EQ(message({8, 16, 0, 65}), "octree.max_refs | octree.max_refs: must be in 1..64, got 65");
-  EXPECT_EQ(message({8, 16, 0, 64}), "no error");
+  EXPECT_EQ(message({.max_refs = 0}), "octree.max_refs | octree.max_refs: must be in 1..64, got 0");
+  EXPECT_EQ(message({.max_refs = 65}), "octree.max_refs | octree.max_refs: must be in 1..64, got 65");
+  EXPECT_EQ(message({.max_refs = 64}), "no error");
   EXPECT_EQ(message({1, 20}), "no error");
 }
 
