@@ -83,10 +83,13 @@ double median(std::vector<double> v) {
 void print_header(const VulkanContext& ctx, const RenderSettings& settings, const BenchOptions& o, const char* more) {
   const std::string bvh_width =
       settings.octree.bvh_width ? "; BVH width " + std::to_string(settings.octree.bvh_width) : std::string();
-  std::printf("Device: %s (%s, %s). Image %dx%d, %u spp, depth %u%s; render = device time of the passes "
+  // ContextOptions::robust_buffers: said only where the checks are off.
+  const char* robust = ctx.robust_buffers ? "" : "; buffer bounds checks off";
+  std::printf("Device: %s (%s, %s). Image %dx%d, %u spp, depth %u%s%s; render = device time of the passes "
               "(timestamp queries), median of %u runs after a warm-up of %gs%s.\n\n",
               ctx.info.name.c_str(), ctx.info.type.c_str(), ctx.info.driver.c_str(), settings.width,
-              settings.height, settings.spp, settings.bounce_limit, bvh_width.c_str(), o.repeat, o.warmup_s, more);
+              settings.height, settings.spp, settings.bounce_limit, bvh_width.c_str(), robust, o.repeat, o.warmup_s,
+              more);
 }
 
 // Calls `run` back to back until `seconds` of wall time have passed, at
@@ -277,7 +280,9 @@ int run_bench(const BenchOptions& o) {
   VulkanContext ctx;
   bool need_fp16 = false;
   for (Precision p : o.precisions) need_fp16 |= p != Precision::FP32;
-  create_context(ctx, {o.device, need_fp16, o.validation});
+  ContextOptions context_options{o.device, need_fp16, o.validation};
+  context_options.robust_buffers = o.robust_buffers;
+  create_context(ctx, context_options);
   RenderSettings settings = o.settings;
   if (!o.size_given) {
     settings.width = ctx.info.software ? 400 : 1200;

@@ -25,6 +25,7 @@ struct BenchOptions {
   uint64_t seed = 1;
   std::string device = "auto";
   bool validation = false;
+  bool robust_buffers = false;  // ContextOptions::robust_buffers
   std::string csv;
   bool quiet = false;
   // Non-empty: instead of the sphere-count sweep, time --effects auto against

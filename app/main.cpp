@@ -134,6 +134,7 @@ struct RenderOptions {
   std::string device = "auto";
   bool validation = false;
   bool pipeline_stats = false;
+  bool robust_buffers = false;
 
   void add_to(CLI::App& cmd) {
     cmd.add_option("--accel", accel, "Acceleration structure: octree | bvh | brute")->capture_default_str();
@@ -189,6 +190,9 @@ struct RenderOptions {
     cmd.add_flag("--pipeline-stats", pipeline_stats,
                  "Print the driver's statistics of the compiled path-tracing pipeline (registers, spills, ...; "
                  "VK_KHR_pipeline_executable_properties)");
+    cmd.add_flag("--robust-buffers", robust_buffers,
+                 "Keep the driver's bounds checks on buffer accesses (by default pipelines are created without "
+                 "them where the device has VK_EXT_pipeline_robustness; same image)");
   }
 
   RenderSettings parsed() const {
@@ -265,7 +269,7 @@ json device_json(const DeviceInfo& d) {
             {"type", d.type},             {"driver", d.driver},
             {"api_version", d.api_version}, {"software", d.software},
             {"shader_float16", d.shader_float16}, {"storage_buffer_16bit_access", d.storage_16bit},
-            {"fp16_variant", d.supports_fp16()}};
+            {"fp16_variant", d.supports_fp16()}, {"pipeline_robustness", d.pipeline_robustness}};
   for (Precision p : kPrecisions) {
     auto unmet = unmet_requirements(d, requirements_of(p));
     j["variants"][precision_name(p)] = unmet.empty();
@@ -464,6 +468,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
   VulkanContext ctx;
   ContextOptions context_opts{device_list[0], settings.precision != Precision::FP32, render_opts.validation};
   context_opts.pipeline_statistics = render_opts.pipeline_stats;
+  context_opts.robust_buffers = render_opts.robust_buffers;
   create_context(ctx, context_opts);
   std::vector<std::unique_ptr<VulkanContext>> more_contexts;
   for (size_t k = 1; k < device_list.size(); ++k) {
@@ -597,6 +602,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
   double rays_per_s = t.render_device_ms > 0 ? double(result.rays) / (t.render_device_ms / 1000.0) : 0.0;
   if (as_json) {
     json j = {{"device", device_json(ctx.info)},
+              {"robust_buffers", ctx.robust_buffers},
               {"scene", {{"source", scene_opts.describe()},
                          {"spheres", scene.spheres.size()},
                          {"meshes", scene.meshes.size()},
@@ -972,6 +978,8 @@ int main(int argc, char** argv) {
                         "(rtiow, lambertian, metal, glass, emissive, pinhole; comma-separated)")
       ->delimiter(',');
   bench_cmd->add_flag("--validation", bench.validation, "Enable the Khronos validation layer");
+  bench_cmd->add_flag("--robust-buffers", bench.robust_buffers,
+                      "Keep the driver's bounds checks on buffer accesses (see render --robust-buffers)");
   bench_cmd->add_flag("--quiet,-q", bench.quiet, "No progress on stderr");
 
   try {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs every Debian package octrace needs to build, test and render
 # (clang and libclang-rt-14-dev, which holds libFuzzer: tools/fuzz.sh; OpenMPI
-# for `mpirun -np N octrace render`, CMake option OCTRACE_MPI).
+# for `mpirun -np N octrace render`, CMake option OCTRACE_MPI; python3-zstandard
+# for tools/nvidia_sass.py).
 # Idempotent and non-interactive: packages already present are skipped, and
 # apt-get runs only when something is missing.
 set -euo pipefail
@@ -14,7 +15,7 @@ packages=(
   libtinyexr-dev libtinygltf-dev libgtest-dev
   assimp-testmodels
   clang libclang-rt-14-dev
-  xvfb xauth python3 python3-matplotlib python3-numpy
+  xvfb xauth python3 python3-matplotlib python3-numpy python3-zstandard
   libegl1 libegl-mesa0
   openmpi-bin libopenmpi-dev
   time

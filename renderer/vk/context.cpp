@@ -171,9 +171,14 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index, const std::functi
     f11.pNext = &f12;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     features.pNext = &f11;
+    VkPhysicalDevicePipelineRobustnessFeaturesEXT robustness{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_ROBUSTNESS_FEATURES_EXT};
+    const bool has_robustness = has_device_extension(physical, VK_EXT_PIPELINE_ROBUSTNESS_EXTENSION_NAME);
+    if (has_robustness) f12.pNext = &robustness;
     vkGetPhysicalDeviceFeatures2(physical, &features);
     info.shader_float16 = f12.shaderFloat16;
     info.storage_16bit = f11.storageBuffer16BitAccess;
+    info.pipeline_robustness = has_robustness && robustness.pipelineRobustness;
   }
 
   uint32_t family = 0, timestamp_bits = 0;
@@ -385,6 +390,17 @@ void create_context(VulkanContext& ctx, const ContextOptions& options) {
   }
   VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   features.pNext = &f11;
+  // Buffer robustness off per pipeline where the device lets us
+  // (ContextOptions::robust_buffers).
+  VkPhysicalDevicePipelineRobustnessFeaturesEXT robustness{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_ROBUSTNESS_FEATURES_EXT};
+  ctx.robust_buffers = options.robust_buffers || !ctx.info.pipeline_robustness;
+  if (!ctx.robust_buffers) {
+    extensions.push_back(VK_EXT_PIPELINE_ROBUSTNESS_EXTENSION_NAME);
+    robustness.pipelineRobustness = VK_TRUE;
+    robustness.pNext = features.pNext;
+    features.pNext = &robustness;
+  }
 
   VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   info.pNext = &features;
@@ -441,10 +457,32 @@ uint64_t max_buffer_bytes(const VulkanContext& ctx) {
   return limit;
 }
 
+namespace {
+
+// OCTRACE_DUMP_PIPELINE_CACHE=FILE: the pipeline cache's data
+// (vkGetPipelineCacheData) written to FILE when the context ends, i.e. every
+// pipeline the run built, as the driver compiled it; a diagnostic for
+// tools/nvidia_sass.py, which reads the machine code out of NVIDIA's.
+void dump_pipeline_cache(VkDevice device, VkPipelineCache cache) {
+  const char* path = std::getenv("OCTRACE_DUMP_PIPELINE_CACHE");
+  if (!path || !*path) return;
+  size_t n = 0;
+  if (vkGetPipelineCacheData(device, cache, &n, nullptr) != VK_SUCCESS) return;
+  std::vector<char> data(n);
+  if (vkGetPipelineCacheData(device, cache, &n, data.data()) != VK_SUCCESS) return;
+  if (FILE* f = std::fopen(path, "wb")) {
+    std::fwrite(data.data(), 1, n, f);
+    std::fclose(f);
+  }
+}
+
+}  // namespace
+
 VulkanContext::~VulkanContext() {
   if (device) {
     vkDeviceWaitIdle(device);
     if (command_pool) vkDestroyCommandPool(device, command_pool, nullptr);
+    if (pipeline_cache) dump_pipeline_cache(device, pipeline_cache);
     if (pipeline_cache) vkDestroyPipelineCache(device, pipeline_cache, nullptr);
     vkDestroyDevice(device, nullptr);
   }

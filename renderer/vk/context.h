@@ -42,6 +42,9 @@ struct DeviceInfo {
   bool shader_float16 = false;   // VkPhysicalDeviceVulkan12Features::shaderFloat16
   bool storage_16bit = false;    // VkPhysicalDeviceVulkan11Features::storageBuffer16BitAccess
   bool swapchain = false;        // VK_KHR_swapchain
+  // VK_EXT_pipeline_robustness with its pipelineRobustness feature: buffer
+  // bounds checks can be turned off per pipeline (ContextOptions::robust_buffers).
+  bool pipeline_robustness = false;
   bool presents = false;         // a compute queue family presents to the window; known only when
                                  // selecting for a window (ContextOptions::can_present)
 
@@ -83,6 +86,13 @@ struct ContextOptions {
   // spills, ...) through VK_KHR_pipeline_executable_properties, where the
   // device has it (VulkanContext::pipeline_statistics says whether it did).
   bool pipeline_statistics = false;
+  // Keep the driver's default robustness for storage and uniform buffers.
+  // Otherwise, where the device has VK_EXT_pipeline_robustness, every
+  // pipeline is created with it disabled: the shaders index within their
+  // buffers by construction, and NVIDIA's driver checks every storage-buffer
+  // load against its descriptor's range unless told not to (optimisation log
+  // 58: 8-12% of a GPU render). VulkanContext::robust_buffers says which.
+  bool robust_buffers = false;
 };
 
 // One line for a render on a software device, so that its timings are not
@@ -108,6 +118,10 @@ struct VulkanContext {
   DeviceInfo info;
   bool fp16_enabled = false;
   bool pipeline_statistics = false;  // VK_KHR_pipeline_executable_properties enabled
+  // Whether pipelines keep the driver's default robustness for storage and
+  // uniform buffers (ContextOptions::robust_buffers); false: created with it
+  // disabled (VK_EXT_pipeline_robustness).
+  bool robust_buffers = true;
   // bufferDeviceAddress (Vulkan 1.2) enabled, where the device has it: a
   // scene larger than one storage buffer is read through addresses.
   bool buffer_device_address = false;

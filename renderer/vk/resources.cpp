@@ -215,6 +215,13 @@ void create_compute_pipeline(ComputePipeline& p, const VulkanContext& ctx, const
   info.stage.pSpecializationInfo = spec.empty() || !specialized.empty() ? nullptr : &spec_info;
   info.layout = p.layout;
   if (ctx.pipeline_statistics) info.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
+  // No bounds checks on buffer loads and stores (ContextOptions::robust_buffers).
+  VkPipelineRobustnessCreateInfoEXT robustness{VK_STRUCTURE_TYPE_PIPELINE_ROBUSTNESS_CREATE_INFO_EXT};
+  robustness.storageBuffers = VK_PIPELINE_ROBUSTNESS_BUFFER_BEHAVIOR_DISABLED_EXT;
+  robustness.uniformBuffers = VK_PIPELINE_ROBUSTNESS_BUFFER_BEHAVIOR_DISABLED_EXT;
+  robustness.vertexInputs = VK_PIPELINE_ROBUSTNESS_BUFFER_BEHAVIOR_DEVICE_DEFAULT_EXT;
+  robustness.images = VK_PIPELINE_ROBUSTNESS_IMAGE_BEHAVIOR_DEVICE_DEFAULT_EXT;
+  if (!ctx.robust_buffers) info.pNext = &robustness;
   VkResult r = vkCreateComputePipelines(ctx.device, ctx.pipeline_cache, 1, &info, nullptr, &p.pipeline);
   vkDestroyShaderModule(ctx.device, module, nullptr);
   VK_CHECK(r);

@@ -167,6 +167,29 @@ TEST(Cli, PipelineStatsWarnOrReport) {
   EXPECT_NE(warned, !j["pipeline_statistics"].empty()) << r.output;
 }
 
+// Buffer bounds checks (optimisation log 58): off by default wherever the
+// device can turn them off per pipeline (`devices --json` says
+// pipeline_robustness), kept with --robust-buffers; the image is the same.
+TEST(Cli, RobustBuffersAreOffWhereTheDeviceAllowsAndTheImageIsTheSame) {
+  auto summary = [](const RunResult& r) {
+    const auto brace = r.output.find('{');
+    return brace == std::string::npos ? nlohmann::json() : nlohmann::json::parse(r.output.substr(brace));
+  };
+  const std::string args = "render --size 24x16 --spp 2 --spheres 40 --json -q";
+  RunResult plain = run_octrace(args + " --out " + tmp("robust_off.pfm"));
+  ASSERT_EQ(plain.code, 0) << plain.output;
+  RunResult robust = run_octrace(args + " --robust-buffers --out " + tmp("robust_on.pfm"));
+  ASSERT_EQ(robust.code, 0) << robust.output;
+  const nlohmann::json a = summary(plain), b = summary(robust);
+  ASSERT_TRUE(a.contains("robust_buffers") && b.contains("robust_buffers")) << plain.output << robust.output;
+  ASSERT_TRUE(a["device"].contains("pipeline_robustness")) << plain.output;
+  EXPECT_EQ(a["robust_buffers"].get<bool>(), !a["device"]["pipeline_robustness"].get<bool>());
+  EXPECT_TRUE(b["robust_buffers"].get<bool>());
+  RunResult c = run_octrace("compare " + tmp("robust_off.pfm") + " " + tmp("robust_on.pfm") + " --json");
+  ASSERT_EQ(c.code, 0) << c.output;
+  EXPECT_NE(c.output.find("\"rmse\": 0.0"), std::string::npos) << c.output;
+}
+
 TEST(Cli, JsonSummaryHasTimingsAndDevice) {
   RunResult r = run_octrace("render --size 16x8 --spp 2 --spheres 10 --json --out " + tmp("summary.png"));
   ASSERT_EQ(r.code, 0) << r.output;
