@@ -482,8 +482,10 @@ VulkanContext::~VulkanContext() {
   if (device) {
     vkDeviceWaitIdle(device);
     if (command_pool) vkDestroyCommandPool(device, command_pool, nullptr);
-    if (pipeline_cache) dump_pipeline_cache(device, pipeline_cache);
-    if (pipeline_cache) vkDestroyPipelineCache(device, pipeline_cache, nullptr);
+    if (pipeline_cache) {
+      dump_pipeline_cache(device, pipeline_cache);
+      vkDestroyPipelineCache(device, pipeline_cache, nullptr);
+    }
     vkDestroyDevice(device, nullptr);
   }
   destroy_instance(instance, messenger);
