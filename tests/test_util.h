@@ -18,6 +18,7 @@
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "render/path_tracer.h"
 #include "vk/context.h"
@@ -47,6 +48,17 @@ class VulkanTest : public ::testing::Test {
  private:
   uint32_t messages_before_ = 0;
 };
+
+// The `--json` summary in a process's output (stdout and stderr together):
+// from its first '{' to its last '}', so that lines around it (a warning
+// before, a sanitizer's suppression report after) are left out; a discarded
+// value (is_discarded()) if there is none or it does not parse.
+inline nlohmann::json json_of(const std::string& output) {
+  const auto first = output.find('{'), last = output.rfind('}');
+  if (first == std::string::npos || last == std::string::npos || last < first)
+    return nlohmann::json::value_t::discarded;
+  return nlohmann::json::parse(output.substr(first, last - first + 1), nullptr, false);
+}
 
 inline std::string tmp_path(const std::string& name) { return std::string(OCTRACE_TEST_TMP) + "/" + name; }
 

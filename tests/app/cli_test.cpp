@@ -21,6 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 
 using octrace::test::RunResult;
+using octrace::test::json_of;
 using octrace::test::run_octrace;
 
 std::string tmp(const std::string& name) { return std::string(OCTRACE_TEST_TMP) + "/cli_" + name; }
@@ -160,9 +161,8 @@ TEST(Cli, PipelineStatsWarnOrReport) {
   RunResult r = run_octrace("render --size 8x8 --spp 1 --spheres 5 --pipeline-stats --json --out " + tmp("stats.png"));
   ASSERT_EQ(r.code, 0) << r.output;
   const bool warned = r.output.find("has no VK_KHR_pipeline_executable_properties: no pipeline statistics") != std::string::npos;
-  const auto brace = r.output.find('{');
-  ASSERT_NE(brace, std::string::npos) << r.output;
-  const nlohmann::json j = nlohmann::json::parse(r.output.substr(brace));
+  const nlohmann::json j = json_of(r.output);
+  ASSERT_FALSE(j.is_discarded()) << r.output;
   ASSERT_TRUE(j.contains("pipeline_statistics"));
   EXPECT_NE(warned, !j["pipeline_statistics"].empty()) << r.output;
 }
@@ -171,17 +171,13 @@ TEST(Cli, PipelineStatsWarnOrReport) {
 // device can turn them off per pipeline (`devices --json` says
 // pipeline_robustness), kept with --robust-buffers; the image is the same.
 TEST(Cli, RobustBuffersAreOffWhereTheDeviceAllowsAndTheImageIsTheSame) {
-  auto summary = [](const RunResult& r) {
-    const auto brace = r.output.find('{');
-    return brace == std::string::npos ? nlohmann::json() : nlohmann::json::parse(r.output.substr(brace));
-  };
   const std::string args = "render --size 24x16 --spp 2 --spheres 40 --json -q";
   RunResult plain = run_octrace(args + " --out " + tmp("robust_off.pfm"));
   ASSERT_EQ(plain.code, 0) << plain.output;
   RunResult robust = run_octrace(args + " --robust-buffers --out " + tmp("robust_on.pfm"));
   ASSERT_EQ(robust.code, 0) << robust.output;
-  const nlohmann::json a = summary(plain), b = summary(robust);
-  ASSERT_TRUE(a.contains("robust_buffers") && b.contains("robust_buffers")) << plain.output << robust.output;
+  const nlohmann::json a = json_of(plain.output), b = json_of(robust.output);
+  ASSERT_TRUE(!a.is_discarded() && !b.is_discarded() && a.contains("robust_buffers") && b.contains("robust_buffers")) << plain.output << robust.output;
   ASSERT_TRUE(a["device"].contains("pipeline_robustness")) << plain.output;
   EXPECT_EQ(a["robust_buffers"].get<bool>(), !a["device"]["pipeline_robustness"].get<bool>());
   EXPECT_TRUE(b["robust_buffers"].get<bool>());
@@ -210,12 +206,12 @@ TEST(Cli, JsonSummaryHasBvhStats) {
   // The widths it was built with: a top level of spheres is binary on every
   // device by default (accel/bvh.h default_bvh_widths); --bvh-width 4 makes
   // every tree four-wide.
-  const nlohmann::json j = nlohmann::json::parse(r.output.substr(r.output.find('{')));
+  const nlohmann::json j = json_of(r.output);
   EXPECT_EQ(j["bvh"]["width"]["top"], 2) << r.output;
   RunResult wide =
       run_octrace("render --size 16x8 --spp 1 --spheres 10 --accel bvh --bvh-width 4 --json --out " + tmp("bvh4.png"));
   ASSERT_EQ(wide.code, 0) << wide.output;
-  const nlohmann::json w = nlohmann::json::parse(wide.output.substr(wide.output.find('{')));
+  const nlohmann::json w = json_of(wide.output);
   EXPECT_EQ(w["bvh"]["width"]["top"], 4) << wide.output;
   EXPECT_EQ(w["bvh"]["width"]["meshes"], 4) << wide.output;
   EXPECT_LT(w["bvh"]["nodes"].get<int>(), j["bvh"]["nodes"].get<int>()) << "four-wide: fewer nodes";
@@ -405,12 +401,12 @@ TEST(Cli, TwoDevicesRenderTheSamplesOfOne) {
   ASSERT_EQ(r.code, 0) << r.output;
   // stdout is the JSON alone (no per-device summary lines before it).
   EXPECT_EQ(r.output.find("device 0 "), std::string::npos) << r.output;
-  const nlohmann::json j = nlohmann::json::parse(r.output.substr(r.output.find('{')));
+  const nlohmann::json j = json_of(r.output);
   ASSERT_EQ(j.at("devices").size(), 2u);
   // The devices' walk counts add up to one device's (the same samples, walked the same way).
   RunResult one_json = run_octrace(args + "--json --walk-stats --device 0 --out " + tmp("one_device_again.pfm"));
   ASSERT_EQ(one_json.code, 0) << one_json.output;
-  const nlohmann::json k = nlohmann::json::parse(one_json.output.substr(one_json.output.find('{')));
+  const nlohmann::json k = json_of(one_json.output);
   EXPECT_EQ(j.at("walk"), k.at("walk"));
   EXPECT_GT(k["walk"]["queries"].get<uint64_t>(), 0u);
   EXPECT_EQ(j["devices"][0]["samples"].get<uint32_t>() + j["devices"][1]["samples"].get<uint32_t>(), 12u);

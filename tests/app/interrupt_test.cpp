@@ -24,6 +24,7 @@ namespace octrace {
 namespace {
 
 namespace fs = std::filesystem;
+using test::json_of;
 using test::run_octrace;
 using test::RunResult;
 
@@ -63,11 +64,6 @@ bool wait_for(const std::string& path, double seconds = 120) {
   return false;
 }
 
-nlohmann::json json_of(const std::string& output) {
-  const auto brace = output.find('{');
-  if (brace == std::string::npos) return {};
-  return nlohmann::json::parse(output.substr(brace), nullptr, false);
-}
 
 const std::string kScene = "--size 40x24 --spheres 200 --seed 4 ";
 

@@ -31,6 +31,7 @@ namespace octrace {
 namespace {
 
 namespace fs = std::filesystem;
+using test::json_of;
 using test::run_octrace;
 using test::RunResult;
 
@@ -60,11 +61,6 @@ RunResult mpirun(int ranks, const std::string& args) {
   return run_shell(mpirun_prefix() + "-np " + std::to_string(ranks) + " " + OCTRACE_BIN + " " + args);
 }
 
-nlohmann::json json_of(const std::string& output) {
-  const auto brace = output.find('{');
-  if (brace == std::string::npos) return {};
-  return nlohmann::json::parse(output.substr(brace), nullptr, false);
-}
 #endif
 
 // Equal to float rounding: 1e-5 relative per value, the bound of the
