@@ -44,7 +44,8 @@ def fail(message):
 
 
 def sections(obj):
-    """The NVuc object's section table: (type, size, offset) for each.
+    """The NVuc object's section table: six words for each section, the
+    first three its type, size and offset.
     Header (32 bytes): "NVuc", a version, the section count (16 bits at
     byte 8), the object's size at byte 24; then one 32-byte entry per
     section: type, size, offset, and three more words (32 bits each).
@@ -59,10 +60,12 @@ def sections(obj):
 
 
 def unpack(cache, out_dir):
-    import zstandard  # Debian: python3-zstandard
+    try:
+        import zstandard
+    except ImportError:
+        fail("unpack needs the zstandard module (Debian: python3-zstandard; tools/setup.sh installs it)")
 
     data = open(cache, "rb").read()
-    os.makedirs(out_dir, exist_ok=True)
     n = 0
     at = data.find(ZSTD_MAGIC)
     while at >= 0:
@@ -77,6 +80,7 @@ def unpack(cache, out_dir):
             code = [e for e in secs if e[0] == 1]
             if code:
                 size, offset = code[0][1], code[0][2]
+                os.makedirs(out_dir, exist_ok=True)
                 path = os.path.join(out_dir, f"pipeline_{n}.code")
                 open(path, "wb").write(uc[offset:offset + size])
                 regs = [int.from_bytes(uc[e[2]:e[2] + 4], "little") for e in secs if e[0] == 3 and e[1] >= 4]
@@ -90,6 +94,8 @@ def unpack(cache, out_dir):
 
 
 def disasm(out_dir, nvdisasm, arch):
+    if not os.path.isdir(out_dir):
+        fail(f"{out_dir}: no such folder")
     codes = sorted(f for f in os.listdir(out_dir) if f.endswith(".code"))
     if not codes:
         fail(f"{out_dir}: no .code files (run unpack first)")
@@ -102,38 +108,40 @@ def disasm(out_dir, nvdisasm, arch):
               + (f" ({p.stderr.strip()[:200]})" if p.returncode else ""))
 
 
-INSTRUCTION = re.compile(r"/\*([0-9a-f]{4,})\*/\s+(@!?U?P\w+\s+)?([A-Z][A-Z0-9_]*)(\.[A-Z0-9_.]+)?")
+# An instruction line: its address, an optional predicate, the opcode.
+INSTRUCTION = re.compile(r"/\*[0-9a-f]{4,}\*/\s+(?:@!?U?P\w+\s+)?([A-Z][A-Z0-9_]*)")
 CLASSES = [
-    ("global loads", lambda op, mod, line: op == "LDG"),
-    ("global stores", lambda op, mod, line: op == "STG"),
-    ("local loads", lambda op, mod, line: op == "LDL"),
-    ("local stores", lambda op, mod, line: op == "STL"),
-    ("shared", lambda op, mod, line: op in ("LDS", "STS", "ATOMS")),
-    ("constant loads", lambda op, mod, line: op in ("LDC", "ULDC")),
-    ("branches", lambda op, mod, line: op in ("BRA", "BRX", "JMP", "CALL", "RET")),
-    ("convergence barriers", lambda op, mod, line: op in ("BSSY", "BSYNC", "WARPSYNC", "BMOV")),
-    ("float ops", lambda op, mod, line: op.startswith(("FADD", "FMUL", "FFMA", "FMNMX", "FSET", "FSEL", "MUFU", "HFMA2"))),
+    ("global loads", lambda op, line: op == "LDG"),
+    ("global stores", lambda op, line: op == "STG"),
+    ("local loads", lambda op, line: op == "LDL"),
+    ("local stores", lambda op, line: op == "STL"),
+    ("shared", lambda op, line: op in ("LDS", "STS", "ATOMS")),
+    ("constant loads", lambda op, line: op in ("LDC", "ULDC")),
+    ("branches", lambda op, line: op in ("BRA", "BRX", "JMP", "CALL", "RET")),
+    ("convergence barriers", lambda op, line: op in ("BSSY", "BSYNC", "WARPSYNC", "BMOV")),
+    ("float ops", lambda op, line: op.startswith(("FADD", "FMUL", "FFMA", "FMNMX", "FSET", "FSEL", "MUFU", "HFMA2"))),
     # A descriptor's range is read from constant bank 0: an integer compare
     # against it is a bounds check of a buffer access (log 58).
-    ("bounds compares", lambda op, mod, line: op == "ISETP" and "c[0x0][" in line),
+    ("bounds compares", lambda op, line: op == "ISETP" and "c[0x0][" in line),
 ]
 
 
 def stats(files):
+    for f in files:
+        if not os.path.isfile(f):
+            fail(f"{f}: no such file")
     print("| file | instructions | " + " | ".join(c for c, _ in CLASSES) + " |")
     print("|---|" + "---:|" * (len(CLASSES) + 1))
     for f in files:
         counts = [0] * len(CLASSES)
         total = 0
-        if not os.path.isfile(f):
-            fail(f"{f}: no such file")
         for line in (gzip.open(f, "rt") if f.endswith(".gz") else open(f)):
             m = INSTRUCTION.search(line)
             if not m:
                 continue
             total += 1
             for i, (_, test) in enumerate(CLASSES):
-                if test(m.group(3), m.group(4) or "", line):
+                if test(m.group(1), line):
                     counts[i] += 1
         print(f"| {os.path.basename(f)} | {total} | " + " | ".join(str(c) for c in counts) + " |")
 

@@ -177,7 +177,8 @@ TEST(Cli, RobustBuffersAreOffWhereTheDeviceAllowsAndTheImageIsTheSame) {
   RunResult robust = run_octrace(args + " --robust-buffers --out " + tmp("robust_on.pfm"));
   ASSERT_EQ(robust.code, 0) << robust.output;
   const nlohmann::json a = json_of(plain.output), b = json_of(robust.output);
-  ASSERT_TRUE(!a.is_discarded() && !b.is_discarded() && a.contains("robust_buffers") && b.contains("robust_buffers")) << plain.output << robust.output;
+  ASSERT_FALSE(a.is_discarded() || b.is_discarded()) << plain.output << robust.output;
+  ASSERT_TRUE(a.contains("robust_buffers") && b.contains("robust_buffers")) << plain.output << robust.output;
   ASSERT_TRUE(a["device"].contains("pipeline_robustness")) << plain.output;
   EXPECT_EQ(a["robust_buffers"].get<bool>(), !a["device"]["pipeline_robustness"].get<bool>());
   EXPECT_TRUE(b["robust_buffers"].get<bool>());
