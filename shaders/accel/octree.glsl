@@ -107,8 +107,9 @@ bool hit_box(vec3 lo, vec3 hi, FusedSlabRay r, float t_max, out float t_entry) {
 const uint STACK_SIZE = 141u;
 
 // The BVH walks' stacks (accel/bvh_walk.glsl, binary and four-wide): a
-// visit pops one entry and pushes at most a node's children, so each level
-// leaves at most one fewer than that behind; and the root.
+// visit pops one entry (the binary walk: or descends) and pushes at most a
+// node's children (the binary walk: the farther one), so each level leaves
+// at most one fewer than a node's children behind; and the root.
 const uint BVH_STACK_SIZE = BVH_MAX_DEPTH + 1u;
 const uint BVH_WIDE_STACK_SIZE = (BVH_WIDTH - 1u) * BVH_MAX_DEPTH + 1u;
 
