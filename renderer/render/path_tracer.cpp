@@ -45,6 +45,11 @@ struct PathTracer::State {
     if (settings.big_list != BigList::Auto) return settings.big_list == BigList::FirstLeaf;
     return ctx.info.software || !f.triangles;
   }
+  // RenderSettings::nearest_child for this device: whether the octree walk holds it.
+  bool hold_nearest() const {
+    if (settings.nearest_child != NearestChild::Auto) return settings.nearest_child == NearestChild::Held;
+    return ctx.info.software;
+  }
   // RenderSettings::tail_depth for this device: the bounce at which the
   // tail queue takes paths (0: no queue). Auto queues on GPUs only: on
   // lavapipe the queue saved another 4% of the default scene's passes
@@ -218,6 +223,7 @@ void PathTracer::State::create_stage(ComputePipeline& p, uint32_t stage, const u
                            {gpu::SPEC_SAMPLE_LANES, s.sample_lanes_enabled()},
                            {gpu::SPEC_OCTANT_CULLING, s.settings.octant_culling},
                            {gpu::SPEC_BIG_LEAF, s.big_leaf(f)},
+                           {gpu::SPEC_OCTREE_HOLD_NEAREST, s.hold_nearest()},
                            {gpu::SPEC_BVH_TOP_WIDE, g.tree == Accel::Bvh && g.octree.bvh_top_width > 2},
                            {gpu::SPEC_BVH_MESH_WIDE, g.tree == Accel::Bvh && g.octree.bvh_mesh_width > 2},
                            {gpu::SPEC_WALK_STATS, settings.walk_stats},

@@ -21,6 +21,10 @@ layout(constant_id = SPEC_OCTANT_CULLING) const bool OCTANT_CULLING = true;
 // walk's first leaf, or (false) in a loop of the caller's. The host chooses
 // (render/path_tracer.cpp, BigList): the image is the same either way.
 layout(constant_id = SPEC_BIG_LEAF) const bool BIG_LEAF = true;
+// Whether the octree walk keeps a node's nearest child in registers instead
+// of pushing it (accel/octree_descend.glsl; the host chooses per device,
+// RenderSettings::nearest_child): the image is the same either way.
+layout(constant_id = SPEC_OCTREE_HOLD_NEAREST) const bool HOLD_NEAREST = false;
 // Whether the BVH's top level and its meshes' trees are four-wide
 // (SPEC_BVH_TOP_WIDE, SPEC_BVH_MESH_WIDE): which walk accel/octree_walk.glsl
 // takes at each level.
@@ -105,6 +109,57 @@ bool hit_box(vec3 lo, vec3 hi, FusedSlabRay r, float t_max, out float t_entry) {
 // 8 when it runs exactly along split planes), so each level leaves at most 7
 // entries behind: 7 * 20 + 1 entries for the deepest octree (depth 20).
 const uint STACK_SIZE = 141u;
+
+// The children of an internal octree node that the walk visits, as a mask
+// in visit order (bit j: octant j XOR sign_mask; accel/octree_descend.glsl
+// walks it from the highest bit, the farthest child, down), given where the
+// ray enters the node (entry) and the nearest hit so far (t_hit).
+//
+// Octant culling: the build split this node at the middle of its own box
+// (renderer/accel/octree.cpp, plan_split: lo + 0.5 (hi - lo), the same
+// float operations), and each child's box lies in its octant (a
+// primitive that reaches the plane goes to the upper side). Along the
+// ray, between where it enters the node and the nearest hit so far, it
+// is below the middle on axis a before (or after, going down) t_a, the
+// plane's crossing, and above it after (before). A child whose octant
+// takes a side the ray never reaches there cannot hold a nearer hit and
+// is not tested. Per axis, not per octant sequence: the set kept is a
+// superset of the octants pierced. An axis that was not split (the
+// build's middle is +inf there: every child is on the lower side) is
+// skipped: its children lie anywhere along it. t_a's sign is exact (a
+// rounded difference keeps its sign); its size and the entry are
+// widened as in hit_box. A ray in the plane (t_a = 0) keeps both sides.
+// On by default (OCTANT_CULLING; `--octant-culling off`: the same image).
+//
+// Visit order j = octant XOR sign_mask: the child mask permuted into that
+// order (XOR of the index by the sign bits swaps bits, pairs and nibbles),
+// so the walk's loop takes only the present children, not 8 trips.
+uint octree_children_order(GpuOctreeNode node, float entry, vec3 origin, vec3 inv_dir, uint sign_mask, float t_hit) {
+  uint present = node.count_or_mask & 0xffu;  // children's octants; child index = rank in it
+  uint mask = present;
+  if (OCTANT_CULLING) {
+    vec3 mid = node.lo + 0.5 * (node.hi - node.lo);
+    vec3 t_mid = (mid - origin) * inv_dir;
+    float t_in = entry / WIDEN;
+    float t_out = t_hit * WIDEN;
+    for (uint a = 0u; a < 3u; ++a) {
+      uint lower = a == 0u ? 0x55u : (a == 1u ? 0x33u : 0x0fu);  // octants below the middle on a
+      if ((present & ~lower) == 0u) continue;                     // not split on a
+      float ta = t_mid[a];
+      bool down = ((sign_mask >> a) & 1u) != 0u;
+      bool before = t_in <= ta * WIDEN || ta == 0.0;  // some of [t_in, t_out] is before t_a
+      bool after = t_out >= ta / WIDEN || ta == 0.0;  // some of it is after t_a
+      bool below = down ? after : before;
+      bool above = down ? before : after;
+      mask &= (below ? lower : 0u) | (above ? ~lower & 0xffu : 0u);
+    }
+  }
+  uint ordered = mask;
+  if ((sign_mask & 1u) != 0u) ordered = ((ordered & 0x55u) << 1) | ((ordered >> 1) & 0x55u);
+  if ((sign_mask & 2u) != 0u) ordered = ((ordered & 0x33u) << 2) | ((ordered >> 2) & 0x33u);
+  if ((sign_mask & 4u) != 0u) ordered = ((ordered & 0x0fu) << 4) | ((ordered >> 4) & 0x0fu);
+  return ordered;
+}
 
 // The BVH walks' stacks (accel/bvh_walk.glsl, binary and four-wide): a
 // visit pops one entry (the binary walk: or descends) and pushes at most a

@@ -216,6 +216,10 @@ OCT_CONST(uint, SPEC_OCTANT_CULLING, 25u);
 // callers in a loop of their own (RenderSettings::big_list; the image is the
 // same either way).
 OCT_CONST(uint, SPEC_BIG_LEAF, 26u);
+// Whether the octree walk keeps a node's nearest child in registers instead
+// of pushing it (RenderSettings::nearest_child; the image is the same
+// either way).
+OCT_CONST(uint, SPEC_OCTREE_HOLD_NEAREST, 32u);
 // Whether a BVH's top level, and its meshes' trees, are four-wide
 // (renderer/accel/bvh.h default_bvh_widths, OctreeParams::bvh_width): their
 // walk is accel/bvh_walk.glsl's four-wide form, else its binary one.

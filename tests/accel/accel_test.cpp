@@ -201,7 +201,9 @@ std::pair<double, double> agreement(const RenderResult& a, const RenderResult& b
 // without octant culling, and with the big list tested by the walks' callers
 // for scenes with triangles (the form GPUs take for them; lavapipe's is the
 // first leaf: RenderSettings::big_list), and with a split budget of 32
-// references per primitive (OctreeParams::max_refs: deeper clipped trees);
+// references per primitive (OctreeParams::max_refs: deeper clipped trees),
+// and with the other form of its loop than the device's own
+// (RenderSettings::nearest_child: held on a CPU device, pushed on a GPU);
 // the BVH binary, four-wide, and in the device's default widths
 // (OctreeParams::bvh_width).
 TEST_P(AccelTest, TreeImagesMatchBruteForce) {
@@ -221,9 +223,13 @@ TEST_P(AccelTest, TreeImagesMatchBruteForce) {
       BigList big_list;
       uint32_t bvh_width = 0;
       uint32_t max_refs = 8;
+      NearestChild nearest = NearestChild::Auto;
     };
+    const NearestChild other_form =
+        test::shared_context().info.software ? NearestChild::Pushed : NearestChild::Held;
     for (Variant v : {Variant{Accel::Octree, true, BigList::FirstLeaf}, Variant{Accel::Octree, false, BigList::FirstLeaf},
                       Variant{Accel::Octree, true, BigList::OwnLoop}, Variant{Accel::Octree, true, BigList::FirstLeaf, 0, 32},
+                      Variant{Accel::Octree, true, BigList::FirstLeaf, 0, 8, other_form},
                       Variant{Accel::Bvh, false, BigList::Auto, 0},
                       Variant{Accel::Bvh, false, BigList::Auto, 2}, Variant{Accel::Bvh, false, BigList::Auto, 4}}) {
       if (v.big_list == BigList::OwnLoop && scene.instances.empty()) continue;
@@ -232,6 +238,7 @@ TEST_P(AccelTest, TreeImagesMatchBruteForce) {
       s.accel = v.accel;
       s.octant_culling = v.culling;
       s.big_list = v.big_list;
+      s.nearest_child = v.nearest;
       s.octree.leaf_size = 2;  // octree: a deep tree, many cells, many straddling spheres
       s.octree.bvh_width = v.bvh_width;
       s.octree.max_refs = v.max_refs;
@@ -242,6 +249,9 @@ TEST_P(AccelTest, TreeImagesMatchBruteForce) {
                                (v.big_list == BigList::OwnLoop ? " (big list in its own loop)" : "") +
                                (v.accel == Accel::Bvh ? " (width " + std::to_string(v.bvh_width) + ")" : "") +
                                (v.max_refs != 8 ? " (" + std::to_string(v.max_refs) + " refs per primitive)" : "") +
+                               (v.nearest == NearestChild::Held     ? " (nearest child held)"
+                                : v.nearest == NearestChild::Pushed ? " (nearest child pushed)"
+                                                                    : "") +
                                ", depth " + std::to_string(depth);
       if (depth <= 8) {
         EXPECT_EQ(identical, 1.0) << what << ": only " << identical * 100 << "% bit-identical";
