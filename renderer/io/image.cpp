@@ -232,6 +232,69 @@ Image decode_pfm(const std::string& path, const Bytes& bytes) {
   return image;
 }
 
+// Debian's tinyexr 1.0.1 keeps its asserts, and two malformed headers end
+// the process in one instead of an error (found by tests/fuzz/fuzz_image.cpp
+// in a CI run): a "tiles" attribute of other than 9 bytes in a file whose
+// version says tiled, multipart or non-image, and a "type" attribute other
+// than scanlineimage, tiledimage, deepscanline or deeptile, or one that
+// contradicts whether the header has tiles. tinyexr converts the header it
+// has read so far even when reading it fails, so the attributes are read
+// first as its ParseEXRHeader reads them (name, type, little-endian size,
+// value; an empty name ends the list), up to where it would stop, and those
+// two are checked; anything else malformed is left to tinyexr's own errors.
+template <typename Invalid>
+void check_exr_asserts(const Bytes& bytes, const EXRVersion& version, const Invalid& invalid) {
+  const auto printable = [](std::string_view text) {
+    std::string out;
+    for (char c : text.substr(0, 40)) out += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
+    return out + (text.size() > 40 ? "..." : "");
+  };
+  constexpr size_t kVersionSize = 8;
+  if (bytes.size() <= kVersionSize) return;
+  std::string_view rest(reinterpret_cast<const char*>(bytes.data()) + kVersionSize, bytes.size() - kVersionSize);
+  bool tiled = false;
+  std::string type;
+  for (int n = 0; n < TINYEXR_MAX_HEADER_ATTRIBUTES && !rest.empty() && rest[0] != '\0'; ++n) {
+    const size_t name_end = rest.find('\0');
+    if (name_end == std::string_view::npos) break;
+    const std::string_view name = rest.substr(0, name_end);
+    const size_t type_end = rest.find('\0', name_end + 1);
+    if (type_end == std::string_view::npos || rest.size() - (type_end + 1) < 4) break;
+    const std::string_view attribute_type = rest.substr(name_end + 1, type_end - name_end - 1);
+    std::uint32_t length = 0;
+    std::memcpy(&length, rest.data() + type_end + 1, 4);
+    rest.remove_prefix(type_end + 5);
+    std::string_view value;
+    if (length == 0) {
+      if (attribute_type != "string") break;
+      value = std::string_view("\0", 1);  // tinyexr's empty string
+    } else {
+      if (rest.size() < length) break;
+      value = rest.substr(0, length);
+      rest.remove_prefix(length);
+    }
+    if ((version.tiled || version.multipart || version.non_image) && name == "tiles") {
+      if (value.size() != 9)
+        throw invalid("its \"tiles\" attribute has " + std::to_string(value.size()) + " bytes, not 9");
+      std::int32_t size_x = 0, size_y = 0;
+      std::memcpy(&size_x, value.data(), 4);
+      std::memcpy(&size_y, value.data() + 4, 4);
+      if (size_x < 0 || size_y < 0) break;  // tinyexr stops here with an error of its own
+      tiled = true;
+    } else if (name == "type" && value[0] != '\0') {
+      type = std::string(value.substr(0, value.find('\0')));
+    }
+  }
+  if (type.empty()) return;
+  const bool known = type == "scanlineimage" || type == "tiledimage" || type == "deepscanline" || type == "deeptile";
+  if (!known)
+    throw invalid("its \"type\" attribute is \"" + printable(type) +
+                  "\", not scanlineimage, tiledimage, deepscanline or deeptile");
+  const bool wants_tiles = type == "tiledimage" || type == "deeptile";
+  if (wants_tiles != tiled)
+    throw invalid("its \"type\" attribute is " + type + (tiled ? ", but the header has tiles" : ", but the header has no tiles"));
+}
+
 // tinyexr 1.0.1 sizes its offset table from the header before it checks the
 // header against the file: a tiled header of a few bytes asked for 2^61
 // entries (found by tests/fuzz/fuzz_image.cpp). So the data window, the tiles
@@ -311,6 +374,7 @@ Image decode_exr(const std::string& path, const Bytes& bytes) {
   EXRVersion version;
   if (int ret = ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size()); ret != TINYEXR_SUCCESS)
     throw invalid("Failed to parse EXR version. code(" + std::to_string(ret) + ")");
+  check_exr_asserts(bytes, version, invalid);
   const char* err = nullptr;
   if (ParseEXRHeaderFromMemory(&exr.header, &version, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS) {
     const std::string why = take_exr_error(err);

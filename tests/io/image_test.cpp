@@ -175,6 +175,39 @@ TEST(ImageIo, BrokenExrFilesAreInputErrorsOfOneLine) {
   }
 }
 
+// Headers on which Debian's tinyexr ends the process in an assert instead
+// of returning an error: a "type" attribute it does not know (found by
+// tests/fuzz/fuzz_image.cpp in a CI run), one that contradicts the header's
+// tiles, and a "tiles" attribute of other than 9 bytes in a tiled file.
+TEST(ImageIo, ExrHeadersTinyexrWouldAssertOnAreInputErrors) {
+  const std::string found = std::string(OCTRACE_SOURCE_DIR) + "/tests/fuzz/corpus/image/regression_exr_unknown_type.exr";
+  EXPECT_EQ(message_of<InputError>([&] { read_image(found); }),
+            found + ": not a valid EXR file: its \"type\" attribute is \"l\", not scanlineimage, tiledimage, "
+                    "deepscanline or deeptile");
+  // The magic number, version 2 (with the tiled bit 0x200 where asked), one
+  // attribute and the empty name that ends the list.
+  auto header = [](bool tiled, const std::string& name, const std::string& type, const std::string& value) {
+    std::string bytes("\x76\x2f\x31\x01\x02", 5);
+    bytes += tiled ? std::string("\x02\0\0", 3) : std::string("\0\0\0", 3);
+    const std::uint32_t length = std::uint32_t(value.size());
+    bytes += name + '\0' + type + '\0' + std::string(reinterpret_cast<const char*>(&length), 4) + value + '\0';
+    return std::vector<unsigned char>(bytes.begin(), bytes.end());
+  };
+  const std::string folder = fresh_folder();
+  const struct {
+    std::vector<unsigned char> bytes;
+    std::string message;
+  } cases[] = {
+      {header(false, "type", "string", "tiledimage"), "its \"type\" attribute is tiledimage, but the header has no tiles"},
+      {header(true, "tiles", "tiledesc", std::string(4, '\0')), "its \"tiles\" attribute has 4 bytes, not 9"},
+  };
+  for (const auto& c : cases) {
+    const std::string path = folder + "/header.exr";
+    write_bytes(path, c.bytes);
+    EXPECT_EQ(message_of<InputError>([&] { read_image(path); }), path + ": not a valid EXR file: " + c.message);
+  }
+}
+
 // Found by tests/fuzz/fuzz_image.cpp: stb_image read a PGM header of
 // 8888888x3 pixels given as .png, which took seconds; a .png must be a PNG.
 TEST(ImageIo, APngWithoutThePngSignatureIsAnInputError) {
