@@ -232,7 +232,7 @@ Image decode_pfm(const std::string& path, const Bytes& bytes) {
   return image;
 }
 
-// Debian's tinyexr 1.0.1 keeps its asserts, and two malformed headers end
+// Debian's tinyexr 1.0.1 keeps its asserts, and two malformed attributes end
 // the process in one instead of an error (found by tests/fuzz/fuzz_image.cpp
 // in a CI run): a "tiles" attribute of other than 9 bytes in a file whose
 // version says tiled, multipart or non-image, and a "type" attribute other
