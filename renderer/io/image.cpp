@@ -232,16 +232,50 @@ Image decode_pfm(const std::string& path, const Bytes& bytes) {
   return image;
 }
 
+// The attributes of an EXR file's (first) header, read as tinyexr's
+// ParseEXRHeader reads them (OpenEXR file layout: after the 8 bytes of magic
+// number and version, each attribute is its name and its type, each ending
+// in a zero byte, a little-endian 4-byte size and the value; an empty name
+// ends the list; a string of size 0 is one zero byte), up to where tinyexr
+// would stop reading: `visit(name, type, value)` for each, until it returns
+// false.
+template <typename Visit>
+void for_each_exr_attribute(const Bytes& bytes, Visit&& visit) {
+  constexpr size_t kVersionSize = 8;
+  if (bytes.size() <= kVersionSize) return;
+  std::string_view rest(reinterpret_cast<const char*>(bytes.data()) + kVersionSize, bytes.size() - kVersionSize);
+  for (int n = 0; n < TINYEXR_MAX_HEADER_ATTRIBUTES && !rest.empty() && rest[0] != '\0'; ++n) {
+    const size_t name_end = rest.find('\0');
+    if (name_end == std::string_view::npos) return;
+    const std::string_view name = rest.substr(0, name_end);
+    const size_t type_end = rest.find('\0', name_end + 1);
+    if (type_end == std::string_view::npos || rest.size() - (type_end + 1) < 4) return;
+    const std::string_view type = rest.substr(name_end + 1, type_end - name_end - 1);
+    std::uint32_t length = 0;
+    std::memcpy(&length, rest.data() + type_end + 1, 4);
+    rest.remove_prefix(type_end + 5);
+    std::string_view value;
+    if (length == 0) {
+      if (type != "string") return;
+      value = std::string_view("\0", 1);  // tinyexr's empty string
+    } else {
+      if (rest.size() < length) return;
+      value = rest.substr(0, length);
+      rest.remove_prefix(length);
+    }
+    if (!visit(name, type, value)) return;
+  }
+}
+
 // Debian's tinyexr 1.0.1 keeps its asserts, and two malformed attributes end
 // the process in one instead of an error (found by tests/fuzz/fuzz_image.cpp
 // in a CI run): a "tiles" attribute of other than 9 bytes in a file whose
 // version says tiled, multipart or non-image, and a "type" attribute other
 // than scanlineimage, tiledimage, deepscanline or deeptile, or one that
 // contradicts whether the header has tiles. tinyexr converts the header it
-// has read so far even when reading it fails, so the attributes are read
-// first as its ParseEXRHeader reads them (name, type, little-endian size,
-// value; an empty name ends the list), up to where it would stop, and those
-// two are checked; anything else malformed is left to tinyexr's own errors.
+// has read so far even when reading it fails, so those two are checked
+// first, on the attributes it would have read (for_each_exr_attribute);
+// anything else malformed is left to tinyexr's own errors.
 template <typename Invalid>
 void check_exr_asserts(const Bytes& bytes, const EXRVersion& version, const Invalid& invalid) {
   const auto printable = [](std::string_view text) {
@@ -249,42 +283,22 @@ void check_exr_asserts(const Bytes& bytes, const EXRVersion& version, const Inva
     for (char c : text.substr(0, 40)) out += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
     return out + (text.size() > 40 ? "..." : "");
   };
-  constexpr size_t kVersionSize = 8;
-  if (bytes.size() <= kVersionSize) return;
-  std::string_view rest(reinterpret_cast<const char*>(bytes.data()) + kVersionSize, bytes.size() - kVersionSize);
   bool tiled = false;
   std::string type;
-  for (int n = 0; n < TINYEXR_MAX_HEADER_ATTRIBUTES && !rest.empty() && rest[0] != '\0'; ++n) {
-    const size_t name_end = rest.find('\0');
-    if (name_end == std::string_view::npos) break;
-    const std::string_view name = rest.substr(0, name_end);
-    const size_t type_end = rest.find('\0', name_end + 1);
-    if (type_end == std::string_view::npos || rest.size() - (type_end + 1) < 4) break;
-    const std::string_view attribute_type = rest.substr(name_end + 1, type_end - name_end - 1);
-    std::uint32_t length = 0;
-    std::memcpy(&length, rest.data() + type_end + 1, 4);
-    rest.remove_prefix(type_end + 5);
-    std::string_view value;
-    if (length == 0) {
-      if (attribute_type != "string") break;
-      value = std::string_view("\0", 1);  // tinyexr's empty string
-    } else {
-      if (rest.size() < length) break;
-      value = rest.substr(0, length);
-      rest.remove_prefix(length);
-    }
+  for_each_exr_attribute(bytes, [&](std::string_view name, std::string_view, std::string_view value) {
     if ((version.tiled || version.multipart || version.non_image) && name == "tiles") {
       if (value.size() != 9)
         throw invalid("its \"tiles\" attribute has " + std::to_string(value.size()) + " bytes, not 9");
       std::int32_t size_x = 0, size_y = 0;
       std::memcpy(&size_x, value.data(), 4);
       std::memcpy(&size_y, value.data() + 4, 4);
-      if (size_x < 0 || size_y < 0) break;  // tinyexr stops here with an error of its own
+      if (size_x < 0 || size_y < 0) return false;  // tinyexr stops here with an error of its own
       tiled = true;
     } else if (name == "type" && value[0] != '\0') {
       type = std::string(value.substr(0, value.find('\0')));
     }
-  }
+    return true;
+  });
   if (type.empty()) return;
   const bool known = type == "scanlineimage" || type == "tiledimage" || type == "deepscanline" || type == "deeptile";
   if (!known)
@@ -336,19 +350,19 @@ void check_exr_tables(const EXRHeader& header, size_t size, const Invalid& inval
 }
 
 // The name of the compression an EXR header declares (OpenEXR file layout:
-// attribute "compression", type "compression", size 4, one byte: 0 none ...
-// 9 DWAB), or "" if the bytes hold no such attribute. For the message when
+// attribute "compression", type "compression", one byte: 0 none ... 9 DWAB),
+// or "" if it declares none that tinyexr would read. For the message when
 // tinyexr refuses a method (Blender's HDRIs are DWAB).
 std::string exr_compression_name(const Bytes& bytes) {
-  static constexpr char kAttribute[] = "compression\0compression\0\x01\0\0\0";
-  constexpr size_t kLength = sizeof kAttribute - 1;
   static constexpr const char* kNames[] = {"none", "RLE", "ZIPS", "ZIP", "PIZ", "PXR24", "B44", "B44A", "DWAA", "DWAB"};
-  const auto* begin = reinterpret_cast<const char*>(bytes.data());
-  const std::string_view text(begin, bytes.size());
-  const size_t at = text.find(std::string_view(kAttribute, kLength));
-  if (at == std::string_view::npos || at + kLength >= text.size()) return "";
-  const unsigned value = static_cast<unsigned char>(text[at + kLength]);
-  return value < std::size(kNames) ? kNames[value] : "number " + std::to_string(value);
+  std::string name;
+  for_each_exr_attribute(bytes, [&](std::string_view attribute, std::string_view type, std::string_view value) {
+    if (attribute != "compression" || type != "compression" || value.size() != 1) return true;
+    const unsigned method = static_cast<unsigned char>(value[0]);
+    name = method < std::size(kNames) ? kNames[method] : "number " + std::to_string(method);
+    return false;
+  });
+  return name;
 }
 
 // Read in tinyexr's steps (version, header, image) rather than with its
