@@ -104,6 +104,7 @@ while (bvh_have) {
   bool hit_left = hit_box(left.lo, left.hi, sr, hit.t, t_left);
   bool hit_right = hit_box(right.lo, right.hi, sr, hit.t, t_right);
   if (hit_left && hit_right) {
+    // The farther pushed; equal entries keep the left child nearer.
     bool right_first = t_right < t_left;
     bvh_stack[bvh_sp] = right_first ? uvec2(left.first, left.count_or_mask) : uvec2(right.first, right.count_or_mask);
     ++bvh_sp;

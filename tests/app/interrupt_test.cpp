@@ -64,7 +64,6 @@ bool wait_for(const std::string& path, double seconds = 120) {
   return false;
 }
 
-
 const std::string kScene = "--size 40x24 --spheres 200 --seed 4 ";
 
 void remove_state(const std::string& prefix) {

@@ -60,7 +60,6 @@ RunResult run_shell(const std::string& cmd) {
 RunResult mpirun(int ranks, const std::string& args) {
   return run_shell(mpirun_prefix() + "-np " + std::to_string(ranks) + " " + OCTRACE_BIN + " " + args);
 }
-
 #endif
 
 // Equal to float rounding: 1e-5 relative per value, the bound of the
