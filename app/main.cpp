@@ -130,6 +130,7 @@ struct RenderOptions {
   std::string nee = "on";
   std::string octant_culling = "on";
   std::string tail_depth = "auto";
+  std::string bvh_sphere_order = "auto";
   RenderSettings settings;
   std::string device = "auto";
   bool validation = false;
@@ -154,6 +155,11 @@ struct RenderOptions {
     cmd.add_option("--bvh-width", settings.octree.bvh_width,
                    "BVH (--accel bvh): children per node, 2 or 4 (0: auto, four-wide over meshes on a GPU, "
                    "binary over spheres and on a CPU device); same image, other speed")
+        ->capture_default_str();
+    cmd.add_option("--bvh-sphere-order", bvh_sphere_order,
+                   "BVH (--accel bvh) over spheres alone: the device holds the spheres in the tree's order (a leaf "
+                   "tests its spheres without reading its references) or the scene's; auto: the tree's on a GPU, "
+                   "the scene's on a CPU device; same image, other speed")
         ->capture_default_str();
     cmd.add_option("--size", size, "Image size WIDTHxHEIGHT")->capture_default_str();
     cmd.add_option("--spp", settings.spp, "Samples (passes) per pixel")->capture_default_str();
@@ -202,6 +208,7 @@ struct RenderOptions {
     if (effects != "auto" && effects != "all")
       throw SettingError("effects", ": expected auto or all, got \"" + effects + "\"");
     s.all_effects = effects == "all";
+    s.octree.bvh_sphere_order = parse_sphere_order(bvh_sphere_order);
     if (nee != "on" && nee != "off") throw SettingError("nee", ": expected on or off, got \"" + nee + "\"");
     s.nee = nee == "on";
     if (octant_culling != "on" && octant_culling != "off")
@@ -240,6 +247,7 @@ std::string message_for_cli(const SettingError& e) {
       {"octree.max_depth", "--octree-depth"},
       {"octree.max_refs", "--octree-refs"},
       {"octree.bvh_width", "--bvh-width"},
+      {"octree.bvh_sphere_order", "--bvh-sphere-order"},
       {"precision", "--precision"},
       {"accel", "--accel"},
       {"effects", "--effects"},
@@ -674,7 +682,8 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
                   {"depth_reached", o.max_depth_reached},                  {"refs", o.refs},
                   {"bytes", o.bytes},       {"refs_per_primitive", o.refs_per_primitive},
                   {"bytes_per_primitive", o.bytes_per_primitive},
-                  {"width", {{"top", o.bvh_top_width}, {"meshes", o.bvh_mesh_width}}}};
+                  {"width", {{"top", o.bvh_top_width}, {"meshes", o.bvh_mesh_width}}},
+                  {"sphere_order", o.bvh_sphere_order ? "tree" : "scene"}};
     }
     if (settings.accel == Accel::Octree) {
       const OctreeStats& o = result.octree;
@@ -711,9 +720,10 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       std::printf("buffers   the scene's arrays split over %u buffers of at most %s (larger than one storage buffer)\n",
                   result.buffer_parts, mib_string(result.buffer_part_bytes).c_str());
     if (settings.accel == Accel::Bvh)
-      std::printf("bvh       %u nodes, %u leaves, depth %u, %.1f bytes/primitive, %u-wide top level, %u-wide meshes\n",
+      std::printf("bvh       %u nodes, %u leaves, depth %u, %.1f bytes/primitive, %u-wide top level, %u-wide meshes%s\n",
                   result.octree.nodes, result.octree.leaves, result.octree.max_depth_reached,
-                  result.octree.bytes_per_primitive, result.octree.bvh_top_width, result.octree.bvh_mesh_width);
+                  result.octree.bytes_per_primitive, result.octree.bvh_top_width, result.octree.bvh_mesh_width,
+                  result.octree.bvh_sphere_order ? ", spheres in its order" : "");
     std::printf("times     scene %.1f ms, %s build %.1f ms, upload %.1f ms, pipeline %.1f ms, render %.1f ms (device)\n",
                 scene_ms, accel_name(settings.accel), t.accel_build_ms, t.upload_ms, t.pipeline_ms,
                 t.render_device_ms);
@@ -957,6 +967,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bench_cmd->add_option("--bvh-width", bench.settings.octree.bvh_width, "BVH children per node: 2, 4 or 0 (auto)")
       ->capture_default_str();
+  std::string bench_sphere_order = "auto";
+  bench_cmd->add_option("--bvh-sphere-order", bench_sphere_order,
+                        "BVH over spheres alone: the spheres in the tree's order or the scene's: auto | tree | scene")
+      ->capture_default_str();
   bench_cmd->add_option("--repeat", bench.repeat, "Timed runs per configuration, after the warm-up")
       ->capture_default_str();
   bench_cmd->add_option("--warmup", bench.warmup_s,
@@ -1028,6 +1042,7 @@ int main(int argc, char** argv) {
       bench.radii = bench_radii;
       for (const auto& a : bench_accels) bench.accels.push_back(parse_accel(a));
       for (const auto& p : bench_precisions) bench.precisions.push_back(parse_precision(p));
+      bench.settings.octree.bvh_sphere_order = parse_sphere_order(bench_sphere_order);
       if (!bench_size.empty()) {
         parse_size(bench_size, bench.settings);
         bench.size_given = true;

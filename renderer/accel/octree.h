@@ -19,6 +19,12 @@ namespace octrace {
 // Defaults: tools/sweep_octree.sh found leaf sizes 1-16 within 4% of each
 // other on spheres; on clipped triangle meshes 10 is as fast as 8 on the H100
 // and keeps the octree under 48 bytes per triangle (docs/performance.md).
+// Where a BVH over spheres alone has the device hold the spheres
+// (OctreeParams::bvh_sphere_order, render/gpu_scene.cpp device_sphere_order):
+// in the tree's reference order or the scene's; Auto, the tree's on a GPU and
+// the scene's on a CPU device (optimisation log 61). The image is the same.
+enum class SphereOrder { Auto, Tree, Scene };
+
 struct OctreeParams {
   uint32_t leaf_size = 10;  // a node with more references than this splits ...
   uint32_t max_depth = 16;  // ... while its tree depth (root = 0) is below this, 1..20
@@ -32,6 +38,9 @@ struct OctreeParams {
   // triangle (issue 11); 16 took the engine's octree 13% faster at 81 bytes
   // (optimisation log 57), a trade left to the user (`--octree-refs`).
   uint32_t max_refs = 8;
+  // The order a BVH over spheres alone has the device hold the spheres in
+  // (`--bvh-sphere-order`).
+  SphereOrder bvh_sphere_order = SphereOrder::Auto;
 };
 
 struct OctreeStats {
@@ -47,6 +56,9 @@ struct OctreeStats {
   // A scene's BVH (render/gpu_scene.cpp): the most children a node of its
   // top level, and of its meshes' trees, may have (2 or 4); 0 otherwise.
   uint32_t bvh_top_width = 0, bvh_mesh_width = 0;
+  // A BVH over spheres alone: whether the device holds the spheres in its
+  // reference order (render/gpu_scene.cpp device_sphere_order).
+  bool bvh_sphere_order = false;
 };
 
 // ---------------------------------------------------------------------------

@@ -169,6 +169,78 @@ static std::string octree_what(const Scene& scene, const char* array) {
          " primitives (a larger leaf size needs fewer)";
 }
 
+// The spheres as the device holds them, with their materials' indices.
+struct SphereArrays {
+  std::vector<gpu::GpuSphere> spheres;
+  std::vector<uint32_t> materials;
+};
+
+static SphereArrays sphere_arrays(const Scene& scene) {
+  SphereArrays a{std::vector<gpu::GpuSphere>(scene.spheres.size()), std::vector<uint32_t>(scene.spheres.size())};
+  for (size_t i = 0; i < scene.spheres.size(); ++i) {
+    a.spheres[i] = {scene.spheres[i].center, scene.spheres[i].radius};
+    a.materials[i] = scene.spheres[i].material;
+  }
+  return a;
+}
+
+// The order the device holds the spheres in: the scene index of the sphere
+// at each position, or empty for the scene's own order. Where the top level
+// is a BVH over spheres alone (no instances), its references are a
+// permutation of the spheres, and the spheres go in that order, so that a
+// leaf's references [first, first + count) are the positions of its spheres
+// themselves: the walk tests sphere k without reading refs[k] first (one
+// dependent load fewer per leaf), and the spheres of neighbouring leaves are
+// neighbours in memory (SPEC_SPHERES_IN_TREE_ORDER; optimisation log 61).
+// refs, unchanged, then gives each position's scene index, which exact ties
+// go by (test_sphere), so the image is the one of the scene's order. Not for
+// a scene split into parts (scene_buffers.glsl): switching structures
+// (reconfigure) uploads the spheres again, into the buffers they have.
+static std::vector<uint32_t> device_sphere_order(const GpuScene& g, const VulkanContext& ctx, const Scene& scene,
+                                                 Accel accel, const OctreeParams& params, const Octree& tree) {
+  const bool tree_order = params.bvh_sphere_order == SphereOrder::Auto ? !ctx.info.software
+                                                                        : params.bvh_sphere_order == SphereOrder::Tree;
+  if (accel != Accel::Bvh || !tree_order || scene.spheres.empty() || !scene.instances.empty() || g.part_log2 != 0)
+    return {};
+  return {tree.refs.begin(), tree.refs.begin() + scene.spheres.size()};
+}
+
+// Puts the sphere arrays and the lights in `order` (device_sphere_order):
+// position k holds scene sphere order[k], and a sphere's light names its position.
+static void put_spheres_in_order(const std::vector<uint32_t>& order, SphereArrays& a, LightList& lights) {
+  if (order.empty()) return;
+  std::vector<uint32_t> position(order.size());
+  SphereArrays b{std::vector<gpu::GpuSphere>(order.size()), std::vector<uint32_t>(order.size())};
+  std::vector<uint32_t> sphere_lights(lights.sphere_lights.size());
+  for (size_t k = 0; k < order.size(); ++k) {
+    position[order[k]] = uint32_t(k);
+    b.spheres[k] = a.spheres[order[k]];
+    b.materials[k] = a.materials[order[k]];
+    if (!sphere_lights.empty()) sphere_lights[k] = lights.sphere_lights[order[k]];
+  }
+  a = std::move(b);
+  lights.sphere_lights = std::move(sphere_lights);
+  for (gpu::GpuLight& l : lights.lights)
+    if (l.sphere != gpu::NO_LIGHT) l.sphere = position[l.sphere];
+}
+
+// After a tree was built for a scene already on the device (reconfigure):
+// the spheres, their materials and the lights again, where the new tree
+// wants them in another order than the device holds them in.
+static void order_spheres_for(GpuScene& g, const VulkanContext& ctx, const Scene& scene,
+                              const std::vector<uint32_t>& order) {
+  if (order.empty() && !g.spheres_in_tree_order) return;  // (g.octree is the new tree's: its bvh_sphere_order false)
+  SphereArrays a = sphere_arrays(scene);
+  LightList lights = build_light_list(scene);
+  put_spheres_in_order(order, a, lights);
+  upload_buffer(ctx, g.spheres, a.spheres.data(), a.spheres.size() * sizeof(gpu::GpuSphere));
+  upload_buffer(ctx, g.sphere_materials, a.materials.data(), a.materials.size() * sizeof(uint32_t));
+  upload_buffer(ctx, g.lights, lights.lights.data(), lights.lights.size() * sizeof(gpu::GpuLight));
+  upload_buffer(ctx, g.sphere_lights, lights.sphere_lights.data(), lights.sphere_lights.size() * 4);
+  g.spheres_in_tree_order = !order.empty();
+  g.octree.bvh_sphere_order = g.spheres_in_tree_order;
+}
+
 static void upload_scene_octree(GpuScene& g, const VulkanContext& ctx, SceneOctree&& t, Accel accel) {
   const auto start = Clock::now();
   Octree& octree = t.octree;
@@ -185,6 +257,7 @@ static void upload_scene_octree(GpuScene& g, const VulkanContext& ctx, SceneOctr
 static void upload_octree_of(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel,
                              const OctreeParams& params) {
   SceneOctree t = build_scene_octree(g, ctx, scene, accel, params);
+  order_spheres_for(g, ctx, scene, device_sphere_order(g, ctx, scene, accel, params, t.octree));
   if (g.part_log2 == 0) {
     // Uploaded whole, the scene's pipeline reads one buffer per array.
     check_fits(max_buffer_bytes(ctx), t.octree.nodes.size() * sizeof(gpu::GpuOctreeNode), octree_what(scene, "nodes"),
@@ -354,12 +427,9 @@ std::vector<Aabb> primitive_boxes(const Scene& scene) {
 static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel,
                             const OctreeParams& params, uint64_t reserved_bytes) {
   auto start = Clock::now();
-  std::vector<gpu::GpuSphere> spheres(scene.spheres.size());
-  std::vector<uint32_t> sphere_materials(scene.spheres.size());
-  for (size_t i = 0; i < scene.spheres.size(); ++i) {
-    spheres[i] = {scene.spheres[i].center, scene.spheres[i].radius};
-    sphere_materials[i] = scene.spheres[i].material;
-  }
+  SphereArrays sphere_data = sphere_arrays(scene);
+  std::vector<gpu::GpuSphere>& spheres = sphere_data.spheres;
+  std::vector<uint32_t>& sphere_materials = sphere_data.materials;
   std::vector<gpu::GpuMaterial> materials(scene.materials.size());
   std::vector<gpu::GpuMaterialHalf> materials_half(scene.materials.size());
   for (size_t i = 0; i < scene.materials.size(); ++i) {
@@ -461,7 +531,7 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   p.vertex_normals = any_normals ? 1u : 0u;
   p.instance_count = uint32_t(instances.size());
   p.triangle_uvs = uvs.empty() ? 0u : 1u;
-  const LightList lights = build_light_list(scene);
+  LightList lights = build_light_list(scene);
   check_fits(ctx.limits.maxStorageBufferRange, lights.lights.size() * sizeof(gpu::GpuLight), std::to_string(lights.lights.size()) + " lights");
   check_fits(ctx.limits.maxStorageBufferRange, lights.sphere_lights.size() * 4, "the light indices of " + std::to_string(scene.spheres.size()) + " spheres");
   check_fits(ctx.limits.maxStorageBufferRange, lights.triangle_lights.size() * 4, "the light indices of the emissive triangles");
@@ -562,6 +632,14 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
                          ")");
   }
 
+  // The hash above has the spheres in the scene's order; the device may hold them in the tree's.
+  g.spheres_in_tree_order = false;
+  if (tree) {
+    const std::vector<uint32_t> order = device_sphere_order(g, ctx, scene, accel, params, tree->octree);
+    put_spheres_in_order(order, sphere_data, lights);
+    g.spheres_in_tree_order = !order.empty();
+    g.octree.bvh_sphere_order = g.spheres_in_tree_order;
+  }
   create_buffer(g.params, ctx, sizeof p, false, "scene parameters");
   upload_array(g, ctx, gpu::SPLIT_TRIANGLES, g.triangles, std::move(triangles), "triangle buffer");
   upload_array(g, ctx, gpu::SPLIT_TRIANGLE_NORMALS, g.triangle_normals, std::move(normals), "triangle normal buffer");

@@ -50,10 +50,13 @@ struct GpuScene {
   std::vector<glm::uvec2> part_addresses;
   Buffer part_table;
   // A hash of every array above but the octree, as uploaded (spheres,
-  // materials, triangles, instances, textures, sky, lights): the scene a checkpoint
-  // belongs to.
+  // materials, triangles, instances, textures, sky, lights; the spheres in
+  // the scene's order): the scene a checkpoint belongs to.
   uint64_t content_hash = 0;
   Accel tree = Accel::Brute;  // what nodes and refs hold: Brute = placeholders, an octree or a BVH
+  // Whether spheres, their materials and lights are in the top-level BVH's
+  // reference order instead of the scene's (gpu_scene.cpp device_sphere_order).
+  bool spheres_in_tree_order = false;
   OctreeStats octree;  // of the octree or the BVH in nodes and refs
   double accel_build_ms = 0;  // octree or BVH build on the CPU (wall)
   double upload_ms = 0;       // packing, buffer creation and copies (wall)

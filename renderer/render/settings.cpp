@@ -20,6 +20,21 @@ Accel parse_accel(const std::string& name) {
   throw SettingError("accel", ": expected octree, bvh or brute, got \"" + name + "\"");
 }
 
+const char* sphere_order_name(SphereOrder o) {
+  switch (o) {
+    case SphereOrder::Tree: return "tree";
+    case SphereOrder::Scene: return "scene";
+    case SphereOrder::Auto: break;
+  }
+  return "auto";
+}
+
+SphereOrder parse_sphere_order(const std::string& name) {
+  for (SphereOrder o : {SphereOrder::Auto, SphereOrder::Tree, SphereOrder::Scene})
+    if (name == sphere_order_name(o)) return o;
+  throw SettingError("octree.bvh_sphere_order", ": expected auto, tree or scene, got \"" + name + "\"");
+}
+
 const char* precision_name(Precision p) {
   switch (p) {
     case Precision::FP16: return "fp16";

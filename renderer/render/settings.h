@@ -14,6 +14,10 @@ enum class Accel { Brute, Octree, Bvh };
 const char* accel_name(Accel a);
 // "octree" | "bvh" | "brute"; throws SettingError("accel").
 Accel parse_accel(const std::string& name);
+// "auto" | "tree" | "scene" (OctreeParams::bvh_sphere_order); parse throws
+// SettingError("octree.bvh_sphere_order").
+const char* sphere_order_name(SphereOrder o);
+SphereOrder parse_sphere_order(const std::string& name);
 
 // Which quantities the shading code keeps in half (shaders/shading/precision.glsl).
 enum class Precision { FP32, FP16, FP16All };

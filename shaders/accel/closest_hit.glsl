@@ -51,12 +51,24 @@ struct InstanceRef {
 // Whether top-level id i is a sphere (spheres come first).
 bool is_sphere(uint i) { return !HAS_TRIANGLES || (HAS_SPHERES && i < scene.sphere_count); }
 
+// Whether the spheres are in the top-level BVH's order (shared.h): only in
+// scenes of spheres alone, so every top-level id is a sphere.
+layout(constant_id = SPEC_SPHERES_IN_TREE_ORDER) const bool SPHERES_IN_TREE_ORDER = false;
+
+// The top-level id that reference k of a leaf names: k itself where the
+// spheres are in the tree's order.
+uint top_ref_at(uint k) { return SPHERES_IN_TREE_ORDER ? k : ref_at(k); }
+
+// Sphere i's index in the scene, the order exact ties go by: read only on a tie.
+uint scene_sphere_index(uint i) { return SPHERES_IN_TREE_ORDER ? ref_at(i) : i; }
+
 // t_max for a test: hit.t widened by one ulp so that a primitive at exactly
 // the same distance is seen; the tie then goes to the lower id. The result
 // is independent of the order primitives are tested in (octree == brute force).
 float widened(float t) { return uintBitsToFloat(floatBitsToUint(t) + 1u); }
 
-// Tests sphere i and keeps it in `hit` if it is the nearest so far.
+// Tests sphere i and keeps it in `hit` if it is the nearest so far (an
+// exact tie: the lower index in the scene).
 // `from_prim`: the primitive the ray was spawned on (NO_PRIM for camera
 // rays); `into_from`: whether the ray enters it (see intersect_sphere).
 void test_sphere(Ray ray, uint i, uint from_prim, bool into_from, inout Hit hit) {
@@ -64,7 +76,7 @@ void test_sphere(Ray ray, uint i, uint from_prim, bool into_from, inout Hit hit)
   bool self = i == from_prim;
   GpuSphere s = sphere_at(i);
   float t = intersect_sphere(ray, s.center, s.radius, widened(hit.t), self && into_from, self && !into_from);
-  if (t < hit.t || (t == hit.t && t != INF && i < hit.prim)) {
+  if (t < hit.t || (t == hit.t && t != INF && scene_sphere_index(i) < scene_sphere_index(hit.prim))) {
     hit.t = t;
     hit.prim = i;
     hit.kind = PRIM_SPHERE;
@@ -196,7 +208,7 @@ bool skip_instance(SlabRay sr, uint k, uint i, float t_max) {
 }
 
 void test_primitive_at(Ray ray, SlabRay sr, uint k, uint from_prim, bool into_from, inout Hit hit) {
-  uint i = ref_at(k);
+  uint i = top_ref_at(k);
   if (!skip_instance(sr, k, i, hit.t)) test_primitive(ray, i, from_prim, into_from, hit);
 }
 
@@ -259,7 +271,7 @@ void test_primitive_any(Ray ray, uint i, uint from_prim, bool into_from, inout H
 }
 
 void test_primitive_any_at(Ray ray, SlabRay sr, uint k, uint from_prim, bool into_from, inout Hit hit) {
-  uint i = ref_at(k);
+  uint i = top_ref_at(k);
   if (!skip_instance(sr, k, i, hit.t)) test_primitive_any(ray, i, from_prim, into_from, hit);
 }
 

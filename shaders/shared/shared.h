@@ -225,6 +225,11 @@ OCT_CONST(uint, SPEC_OCTREE_HOLD_NEAREST, 32u);
 // walk is accel/bvh_walk.glsl's four-wide form, else its binary one.
 OCT_CONST(uint, SPEC_BVH_TOP_WIDE, 30u);
 OCT_CONST(uint, SPEC_BVH_MESH_WIDE, 31u);
+// Whether the device holds the spheres in the order the top-level BVH's
+// leaves reference them (render/gpu_scene.cpp device_sphere_order): a leaf's
+// reference k is then sphere k itself, and refs[k] that sphere's index in
+// the scene. The image is the same either way.
+OCT_CONST(uint, SPEC_SPHERES_IN_TREE_ORDER, 33u);
 // Whether the walks count what they do (RenderSettings::walk_stats,
 // RenderStats.walk); off, the counting compiles out.
 OCT_CONST(uint, SPEC_WALK_STATS, 28u);

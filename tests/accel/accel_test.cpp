@@ -3,7 +3,9 @@
 // on the same spheres and keep the nearest; a tree only changes which
 // spheres are tested and in which order. Exact ties (two spheres at the same
 // t: coincident spheres, the wedge where a small sphere touches the ground)
-// go to the lower sphere index in both (test_sphere in scene_hit.glsl).
+// go to the lower sphere index in the scene in both (test_sphere in
+// accel/closest_hit.glsl; with the spheres in a BVH's order on the device,
+// the index that refs keeps for each position).
 //
 // Tolerance. Up to depth 8 the images must be bit-identical. At depth 50 a
 // few pixel-channels may differ: brute force and octree are two pipelines
@@ -56,9 +58,36 @@ Scene coincident() {
   return s;
 }
 
+// Twelve copies of one sphere, each of its own colour: every ray that meets
+// them ties among all twelve, and the first in the scene wins. More than
+// kBvhMaxLeaf, so the BVH splits them at their median id (nth_element), which
+// leaves its halves in another order than the scene's: a BVH that holds the
+// spheres in its own order must still break ties by the scene's.
+Scene coincident_many() {
+  Scene s = test::furnace_scene();
+  s.sky.type = SkyType::Gradient;
+  for (int i = 0; i < 12; ++i) {
+    s.materials.push_back({MaterialType::Lambertian, {0.08f * float(i), 0.9f - 0.07f * float(i), 0.5f}});
+    s.spheres.push_back({{0.0f, 0.0f, 0.0f}, 1.5f, uint32_t(i)});
+  }
+  s.spheres.push_back({{0.0f, -101.5f, 0.0f}, 100.0f, 0});
+  return s;
+}
+
 Scene one_huge_sphere() {
   Scene s = split_planes();
   s.spheres.push_back({{0, -1e5f, 0}, 1e5f - 4.0f, 1});
+  return s;
+}
+
+// Spheres alone, some of them lights (sampled by next-event estimation):
+// with the spheres in a BVH's order, a sphere light names its new position.
+Scene emissive_spheres() {
+  Scene s = rtiow(300, 0.2f, 6);
+  s.sky.type = SkyType::Uniform;
+  s.sky.radiance = glm::vec3(0.05f);
+  s.materials.push_back(test::emitter(glm::vec3(4.0f, 3.0f, 2.0f)));
+  for (size_t i = 0; i < s.spheres.size(); i += 7) s.spheres[i].material = uint32_t(s.materials.size() - 1);
   return s;
 }
 
@@ -173,6 +202,8 @@ const AccelCase CASES[] = {
     {"rtiow_50_r04", [] { return rtiow(50, 0.4f, 4); }},
     {"split_planes", split_planes},
     {"coincident", coincident},
+    {"coincident_many", coincident_many},
+    {"emissive_spheres", emissive_spheres},
     {"one_huge_sphere", one_huge_sphere},
     {"camera_inside_root", camera_inside},
     {"camera_outside_root", [] { return rtiow(488, 0.2f, 1); }},
@@ -205,7 +236,9 @@ std::pair<double, double> agreement(const RenderResult& a, const RenderResult& b
 // and with the other form of its loop than the device's own
 // (RenderSettings::nearest_child: held on a CPU device, pushed on a GPU);
 // the BVH binary, four-wide, and in the device's default widths
-// (OctreeParams::bvh_width).
+// (OctreeParams::bvh_width), and binary with the spheres in the other order
+// than the device's own (OctreeParams::bvh_sphere_order: the tree's on a
+// GPU, the scene's on a CPU device).
 TEST_P(AccelTest, TreeImagesMatchBruteForce) {
   Scene scene = GetParam().make();
   for (uint32_t depth : {8u, 50u}) {
@@ -224,14 +257,17 @@ TEST_P(AccelTest, TreeImagesMatchBruteForce) {
       uint32_t bvh_width = 0;
       uint32_t max_refs = 8;
       NearestChild nearest = NearestChild::Auto;
+      SphereOrder order = SphereOrder::Auto;
     };
     const NearestChild other_form =
         test::shared_context().info.software ? NearestChild::Pushed : NearestChild::Held;
+    const SphereOrder other_order = test::shared_context().info.software ? SphereOrder::Tree : SphereOrder::Scene;
     for (Variant v : {Variant{Accel::Octree, true, BigList::FirstLeaf}, Variant{Accel::Octree, false, BigList::FirstLeaf},
                       Variant{Accel::Octree, true, BigList::OwnLoop}, Variant{Accel::Octree, true, BigList::FirstLeaf, 0, 32},
                       Variant{Accel::Octree, true, BigList::FirstLeaf, 0, 8, other_form},
                       Variant{Accel::Bvh, false, BigList::Auto, 0},
-                      Variant{Accel::Bvh, false, BigList::Auto, 2}, Variant{Accel::Bvh, false, BigList::Auto, 4}}) {
+                      Variant{Accel::Bvh, false, BigList::Auto, 2}, Variant{Accel::Bvh, false, BigList::Auto, 4},
+                      Variant{Accel::Bvh, false, BigList::Auto, 2, 8, NearestChild::Auto, other_order}}) {
       if (v.big_list == BigList::OwnLoop && scene.instances.empty()) continue;
       // The BVH's auto widths on a CPU device are all binary (accel/bvh.h): width 2 again.
       if (v.accel == Accel::Bvh && v.bvh_width == 0 && test::shared_context().info.software) continue;
@@ -242,6 +278,7 @@ TEST_P(AccelTest, TreeImagesMatchBruteForce) {
       s.octree.leaf_size = 2;  // octree: a deep tree, many cells, many straddling spheres
       s.octree.bvh_width = v.bvh_width;
       s.octree.max_refs = v.max_refs;
+      s.octree.bvh_sphere_order = v.order;
       RenderResult tree = render(test::shared_context(), scene, s);
       ASSERT_EQ(tree.nonfinite_samples, 0u);
       auto [identical, mean_diff] = agreement(tree, brute);
@@ -252,6 +289,9 @@ TEST_P(AccelTest, TreeImagesMatchBruteForce) {
                                (v.nearest == NearestChild::Held     ? " (nearest child held)"
                                 : v.nearest == NearestChild::Pushed ? " (nearest child pushed)"
                                                                     : "") +
+                               (v.order != SphereOrder::Auto
+                                    ? std::string(" (spheres in the ") + sphere_order_name(v.order) + "'s order)"
+                                    : "") +
                                ", depth " + std::to_string(depth);
       if (depth <= 8) {
         EXPECT_EQ(identical, 1.0) << what << ": only " << identical * 100 << "% bit-identical";

@@ -105,6 +105,8 @@ const BadInput BAD_INPUTS[] = {
     {"sample_lanes_sixteen", "--sample-lanes 16", "--sample-lanes: must be 0 (auto), 1, 2, 4 or 8, got 16"},
     {"bvh_width_three", "--accel bvh --bvh-width 3", "--bvh-width: must be 0 (auto), 2 or 4, got 3"},
     {"bvh_width_eight", "--bvh-width 8", "--bvh-width: must be 0 (auto), 2 or 4, got 8"},
+    {"bvh_sphere_order_unknown", "--accel bvh --bvh-sphere-order random",
+     "--bvh-sphere-order: expected auto, tree or scene, got \"random\""},
     {"octree_refs_zero", "--octree-refs 0", "--octree-refs: must be in 1..64, got 0"},
     {"octree_refs_large", "--octree-refs 100", "--octree-refs: must be in 1..64, got 100"},
     {"fp16_radiance_overflow", "--precision fp16", "materials[0]: radiance above 65504",
@@ -216,6 +218,19 @@ TEST(Cli, JsonSummaryHasBvhStats) {
   EXPECT_EQ(w["bvh"]["width"]["top"], 4) << wide.output;
   EXPECT_EQ(w["bvh"]["width"]["meshes"], 4) << wide.output;
   EXPECT_LT(w["bvh"]["nodes"].get<int>(), j["bvh"]["nodes"].get<int>()) << "four-wide: fewer nodes";
+  // Where the device holds the spheres (render/gpu_scene.cpp
+  // device_sphere_order): by default the tree's order on a GPU and the
+  // scene's on a CPU device; asked for, either; the image is the same.
+  EXPECT_EQ(j["bvh"]["sphere_order"], j["device"]["software"].get<bool>() ? "scene" : "tree") << r.output;
+  for (const char* order : {"tree", "scene"}) {
+    RunResult o = run_octrace(std::string("render --size 16x8 --spp 1 --spheres 10 --accel bvh --json --bvh-sphere-order ") +
+                              order + " --out " + tmp(std::string("bvh_") + order + ".pfm"));
+    ASSERT_EQ(o.code, 0) << o.output;
+    EXPECT_EQ(json_of(o.output)["bvh"]["sphere_order"], order) << o.output;
+  }
+  RunResult c = run_octrace("compare " + tmp("bvh_tree.pfm") + " " + tmp("bvh_scene.pfm") + " --json");
+  ASSERT_EQ(c.code, 0) << c.output;
+  EXPECT_NE(c.output.find("\"rmse\": 0.0"), std::string::npos) << c.output;
 }
 
 // glTF scenes: bad files, and the flags that only glTF scenes take.
