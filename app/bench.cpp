@@ -81,16 +81,17 @@ double median(std::vector<double> v) {
 
 // The line above a bench table: device, settings and what the times are.
 void print_header(const VulkanContext& ctx, const RenderSettings& settings, const BenchOptions& o, const char* more) {
-  std::string bvh_width =
+  // The BVH's settings, where not the defaults.
+  std::string bvh =
       settings.octree.bvh_width ? "; BVH width " + std::to_string(settings.octree.bvh_width) : std::string();
   if (settings.octree.bvh_sphere_order != SphereOrder::Auto)
-    bvh_width += std::string("; BVH spheres in the ") + sphere_order_name(settings.octree.bvh_sphere_order) + "'s order";
+    bvh += std::string("; BVH spheres in the ") + sphere_order_name(settings.octree.bvh_sphere_order) + "'s order";
   // ContextOptions::robust_buffers: said only where the checks are off.
   const char* robust = ctx.robust_buffers ? "" : "; buffer bounds checks off";
   std::printf("Device: %s (%s, %s). Image %dx%d, %u spp, depth %u%s%s; render = device time of the passes "
               "(timestamp queries), median of %u runs after a warm-up of %gs%s.\n\n",
               ctx.info.name.c_str(), ctx.info.type.c_str(), ctx.info.driver.c_str(), settings.width,
-              settings.height, settings.spp, settings.bounce_limit, bvh_width.c_str(), robust, o.repeat, o.warmup_s,
+              settings.height, settings.spp, settings.bounce_limit, bvh.c_str(), robust, o.repeat, o.warmup_s,
               more);
 }
 

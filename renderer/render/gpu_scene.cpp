@@ -99,7 +99,8 @@ uint64_t texel_count(const Scene& scene) {
 
 // The octree or BVH (`accel`: both fill the same arrays) of the device's
 // view of the scene (bake_single_use_meshes applied), with the meshes' roots
-// filled in; records its statistics and build time in `g`.
+// filled in and its statistics and build time in octree.stats, which
+// upload_scene_octree puts in `g` with the arrays.
 struct SceneOctree {
   Octree octree;
   std::vector<gpu::GpuMesh> meshes;
@@ -112,7 +113,7 @@ static BvhWidths bvh_widths(const VulkanContext& ctx, const Scene& scene, const 
   return default_bvh_widths(ctx.info.software, !scene.spheres.empty());
 }
 
-static SceneOctree build_scene_octree(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel,
+static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& scene, Accel accel,
                                       const OctreeParams& params) {
   auto start = Clock::now();
   // The top level over spheres and instances, then one tree per mesh in
@@ -156,8 +157,6 @@ static SceneOctree build_scene_octree(GpuScene& g, const VulkanContext& ctx, con
     st.bvh_top_width = widths.top;
     st.bvh_mesh_width = widths.meshes;
   }
-  g.accel_build_ms = st.build_ms;
-  g.octree = st;
   return t;
 }
 
@@ -224,12 +223,13 @@ static void put_spheres_in_order(const std::vector<uint32_t>& order, SphereArray
     if (l.sphere != gpu::NO_LIGHT) l.sphere = position[l.sphere];
 }
 
-// After a tree was built for a scene already on the device (reconfigure):
-// the spheres, their materials and the lights again, where the new tree
-// wants them in another order than the device holds them in.
+// After a tree was built for a scene already on the device (reconfigure),
+// before it replaces the one there (g.octree): the spheres, their materials
+// and the lights again, where the new tree wants them in another order than
+// the device holds them in.
 static void order_spheres_for(GpuScene& g, const VulkanContext& ctx, const Scene& scene,
                               const std::vector<uint32_t>& order) {
-  if (order.empty() && !g.spheres_in_tree_order) return;  // (g.octree is the new tree's: its bvh_sphere_order false)
+  if (order.empty() && !g.octree.bvh_sphere_order) return;
   SphereArrays a = sphere_arrays(scene);
   LightList lights = build_light_list(scene);
   put_spheres_in_order(order, a, lights);
@@ -237,8 +237,6 @@ static void order_spheres_for(GpuScene& g, const VulkanContext& ctx, const Scene
   upload_buffer(ctx, g.sphere_materials, a.materials.data(), a.materials.size() * sizeof(uint32_t));
   upload_buffer(ctx, g.lights, lights.lights.data(), lights.lights.size() * sizeof(gpu::GpuLight));
   upload_buffer(ctx, g.sphere_lights, lights.sphere_lights.data(), lights.sphere_lights.size() * 4);
-  g.spheres_in_tree_order = !order.empty();
-  g.octree.bvh_sphere_order = g.spheres_in_tree_order;
 }
 
 static void upload_scene_octree(GpuScene& g, const VulkanContext& ctx, SceneOctree&& t, Accel accel) {
@@ -251,13 +249,14 @@ static void upload_scene_octree(GpuScene& g, const VulkanContext& ctx, SceneOctr
   upload_buffer(ctx, g.params, &g.values, sizeof g.values);
   upload_part_table(g, ctx);
   g.tree = accel;
+  g.octree = octree.stats;
+  g.accel_build_ms = octree.stats.build_ms;
   g.upload_ms += ms_since(start);
 }
 
 static void upload_octree_of(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel,
                              const OctreeParams& params) {
-  SceneOctree t = build_scene_octree(g, ctx, scene, accel, params);
-  order_spheres_for(g, ctx, scene, device_sphere_order(g, ctx, scene, accel, params, t.octree));
+  SceneOctree t = build_scene_octree(ctx, scene, accel, params);
   if (g.part_log2 == 0) {
     // Uploaded whole, the scene's pipeline reads one buffer per array.
     check_fits(max_buffer_bytes(ctx), t.octree.nodes.size() * sizeof(gpu::GpuOctreeNode), octree_what(scene, "nodes"),
@@ -265,6 +264,10 @@ static void upload_octree_of(GpuScene& g, const VulkanContext& ctx, const Scene&
     check_fits(max_buffer_bytes(ctx), t.octree.refs.size() * sizeof(uint32_t), octree_what(scene, "references"),
                " (render with the octree from the start to split the scene)");
   }
+  // Only once the new tree fits: a refused one leaves the device as it was.
+  const std::vector<uint32_t> order = device_sphere_order(g, ctx, scene, accel, params, t.octree);
+  order_spheres_for(g, ctx, scene, order);
+  t.octree.stats.bvh_sphere_order = !order.empty();
   upload_scene_octree(g, ctx, std::move(t), accel);
 }
 
@@ -561,7 +564,7 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
                       .value();
   const double pack_ms = ms_since(start);
   std::optional<SceneOctree> tree;
-  if (accel != Accel::Brute) tree = build_scene_octree(g, ctx, scene, accel, params);
+  if (accel != Accel::Brute) tree = build_scene_octree(ctx, scene, accel, params);
   start = Clock::now();
 
   // The big arrays, each in one storage buffer, or the whole scene split
@@ -633,12 +636,10 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   }
 
   // The hash above has the spheres in the scene's order; the device may hold them in the tree's.
-  g.spheres_in_tree_order = false;
   if (tree) {
     const std::vector<uint32_t> order = device_sphere_order(g, ctx, scene, accel, params, tree->octree);
     put_spheres_in_order(order, sphere_data, lights);
-    g.spheres_in_tree_order = !order.empty();
-    g.octree.bvh_sphere_order = g.spheres_in_tree_order;
+    tree->octree.stats.bvh_sphere_order = !order.empty();
   }
   create_buffer(g.params, ctx, sizeof p, false, "scene parameters");
   upload_array(g, ctx, gpu::SPLIT_TRIANGLES, g.triangles, std::move(triangles), "triangle buffer");

@@ -54,10 +54,10 @@ struct GpuScene {
   // the scene's order): the scene a checkpoint belongs to.
   uint64_t content_hash = 0;
   Accel tree = Accel::Brute;  // what nodes and refs hold: Brute = placeholders, an octree or a BVH
-  // Whether spheres, their materials and lights are in the top-level BVH's
-  // reference order instead of the scene's (gpu_scene.cpp device_sphere_order).
-  bool spheres_in_tree_order = false;
-  OctreeStats octree;  // of the octree or the BVH in nodes and refs
+  // Of the octree or the BVH in nodes and refs; its bvh_sphere_order: whether
+  // spheres, their materials and lights are in that BVH's reference order
+  // instead of the scene's (gpu_scene.cpp device_sphere_order).
+  OctreeStats octree;
   double accel_build_ms = 0;  // octree or BVH build on the CPU (wall)
   double upload_ms = 0;       // packing, buffer creation and copies (wall)
 };

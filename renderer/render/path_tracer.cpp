@@ -226,7 +226,7 @@ void PathTracer::State::create_stage(ComputePipeline& p, uint32_t stage, const u
                            {gpu::SPEC_OCTREE_HOLD_NEAREST, s.hold_nearest()},
                            {gpu::SPEC_BVH_TOP_WIDE, g.tree == Accel::Bvh && g.octree.bvh_top_width > 2},
                            {gpu::SPEC_BVH_MESH_WIDE, g.tree == Accel::Bvh && g.octree.bvh_mesh_width > 2},
-                           {gpu::SPEC_SPHERES_IN_TREE_ORDER, g.spheres_in_tree_order},
+                           {gpu::SPEC_SPHERES_IN_TREE_ORDER, g.octree.bvh_sphere_order},
                            {gpu::SPEC_WALK_STATS, settings.walk_stats},
                            {gpu::SPEC_SKY, sky},
                            {gpu::SPEC_ANY_LIGHT, f.any_light},

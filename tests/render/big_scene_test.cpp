@@ -6,6 +6,7 @@
 // how the arrays are stored differs: the image must be the same bit for bit.
 // And a scene larger than the device's memory is refused up front, in one
 // line (OCTRACE_TEST_DEVICE_MEMORY_BYTES fakes a small device).
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -107,6 +108,44 @@ TEST_F(BigSceneTest, MorePartsThanTheTableHoldsIsRefused) {
                  "467 materials need 37360 bytes, more than 64 buffers of 128 bytes (the device allows 128 bytes per "
                  "buffer)");
   }
+}
+
+// A switch of structure (reconfigure) to a tree whose arrays do not fit the
+// buffers the scene was uploaded in is refused, and leaves the device as it
+// was: here the BVH with the spheres in its order (render/gpu_scene.cpp
+// device_sphere_order), not to be put back in the scene's order for an
+// octree that never comes. 60 small spheres in a clump: the octree of
+// leaves of one sphere needs 185 nodes (5,920 bytes), more than the 4 KiB
+// allowed; the BVH's scene fits (its largest array, 119 nodes, 3,808 bytes).
+TEST_F(BigSceneTest, RefusedTreeLeavesTheSpheresInTheOrderTheyHave) {
+  VulkanContext& ctx = test::shared_context();
+  Scene scene = test::furnace_scene();
+  scene.materials = {{MaterialType::Lambertian, {0.6f, 0.4f, 0.3f}}};
+  for (int i = 0; i < 60; ++i) {
+    const auto coordinate = [i](double step) { return float(2.0 * std::fmod(i * step, 1.0) - 1.0); };
+    scene.spheres.push_back({{coordinate(0.6180339887), coordinate(0.4142135624), coordinate(0.7320508076)}, 0.15f, 0});
+  }
+  RenderSettings s;
+  s.width = 32;
+  s.height = 24;
+  s.spp = 2;
+  s.bounce_limit = 8;
+  s.accel = Accel::Bvh;
+  s.octree.bvh_sphere_order = SphereOrder::Tree;
+  s.octree.leaf_size = 1;
+  PathTracer tracer(ctx, scene, s);
+  ASSERT_TRUE(tracer.octree_stats().bvh_sphere_order);
+  {
+    ScopedEnv limit("OCTRACE_TEST_MAX_BUFFER_BYTES", "4096");
+    EXPECT_THROW(tracer.reconfigure(scene, Accel::Octree, Precision::FP32, false), SceneSizeError);
+  }
+  EXPECT_EQ(tracer.settings().accel, Accel::Bvh);
+  EXPECT_TRUE(tracer.octree_stats().bvh_sphere_order);
+  tracer.run_passes(pass_settings(scene, s), 0, s.spp);
+  const RenderResult got = tracer.read_result(), want = render(ctx, scene, s);
+  ASSERT_EQ(got.mean.rgb.size(), want.mean.rgb.size());
+  EXPECT_EQ(std::memcmp(got.mean.rgb.data(), want.mean.rgb.data(), got.mean.rgb.size() * sizeof(float)), 0)
+      << "after the refused switch the tracer renders another image than the BVH's";
 }
 
 // Too large for the device's memory: exit 2, one line naming the scene
