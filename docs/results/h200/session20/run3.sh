@@ -6,11 +6,11 @@ source tools/gpu_run.sh
 (cd .peers/karim && ./build.sh > $R/peer_build.log 2>&1) &
 P="--scene tools/scenes/peer_field.json --depth 50 --rr-depth 1 --device gpu --size 1920x1080 --spp 64 --accel bvh"
 V=(--variant "auto=" --variant "t1=-- --tail-depth 1" --variant "t3=-- --tail-depth 3" --variant "toff=-- --tail-depth off")
-ab peer_tail $P
+AB_TIMEOUT=150 ab peer_tail $P
 V=(--variant "auto=" --variant "l1=-- --sample-lanes 1" --variant "l2=-- --sample-lanes 2" --variant "l8=-- --sample-lanes 8")
-ab peer_lanes $P
+AB_TIMEOUT=150 ab peer_lanes $P
 V=(--variant "auto=" --variant "t1=-- --tail-depth 1" --variant "t3=-- --tail-depth 3" --variant "l1=-- --sample-lanes 1" --variant "l8=-- --sample-lanes 8")
-ab s8000_bvh $S --spheres 8000 --radius 0.1 --accel bvh
+AB_TIMEOUT=150 ab s8000_bvh $S --spheres 8000 --radius 0.1 --accel bvh
 wait
 for d in 1 2; do
   timeout 100 python3 tools/peer/compare.py --peer .peers/karim --octrace $B --depth $d --out $R/peer_d$d --octrace-args "--accel bvh" > $R/peer_d$d.log 2>&1
