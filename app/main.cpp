@@ -130,6 +130,7 @@ struct RenderOptions {
   std::string nee = "on";
   std::string octant_culling = "on";
   std::string tail_depth = "auto";
+  std::string tail_step = "auto";
   std::string bvh_sphere_order = "auto";
   RenderSettings settings;
   std::string device = "auto";
@@ -191,6 +192,13 @@ struct RenderOptions {
                    "BOUNCE (auto: " + std::to_string(kTailDepthDefault) +
                        " on a GPU; on a CPU device no queue, one sample per invocation); same image")
         ->capture_default_str();
+    cmd.add_option("--tail-step", tail_step,
+                   "Tail levels: each tail dispatch traces its paths this many bounces on and queues those still "
+                   "going, dense, for the next (at most " + std::to_string(kMaxTailLevels) +
+                       " levels): auto | off | BOUNCES (auto: " +
+                       (kTailStepDefault ? std::to_string(kTailStepDefault) : std::string("off")) +
+                       "; off: one tail finishes every path); same image")
+        ->capture_default_str();
     cmd.add_option("--device", device, "auto | cpu | gpu | INDEX (see `octrace devices`)")->capture_default_str();
     cmd.add_flag("--validation", validation, "Enable the Khronos validation layer (also OCTRACE_VALIDATION=1)");
     cmd.add_flag("--pipeline-stats", pipeline_stats,
@@ -225,6 +233,17 @@ struct RenderOptions {
         throw SettingError("tail_depth", ": expected auto, off or a bounce >= 1, got \"" + tail_depth + "\"");
       s.tail_depth = uint32_t(v);
     }
+    if (tail_step == "auto") {
+      s.tail_step = RenderSettings::kTailAuto;
+    } else if (tail_step == "off") {
+      s.tail_step = 0;
+    } else {
+      char* end = nullptr;
+      const unsigned long v = std::strtoul(tail_step.c_str(), &end, 10);
+      if (tail_step.empty() || *end != '\0' || tail_step[0] == '-' || v < 1 || v > 100000)
+        throw SettingError("tail_step", ": expected auto, off or a bounce count >= 1, got \"" + tail_step + "\"");
+      s.tail_step = uint32_t(v);
+    }
     parse_size(size, s);
     validate_settings(s);
     return s;
@@ -254,6 +273,7 @@ std::string message_for_cli(const SettingError& e) {
       {"nee", "--nee"},
       {"octant_culling", "--octant-culling"},
       {"tail_depth", "--tail-depth"},
+      {"tail_step", "--tail-step"},
       {"device", "--device"},
       {"rtiow.radius", "--radius"},
       {"rtiow.spheres", "--spheres"},
@@ -636,6 +656,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
               {"sample_lanes", settings.sample_lanes},
               {"octant_culling", settings.octant_culling ? "on" : "off"},
               {"tail_depth", result.tail_depth},
+              {"tail_step", result.tail_step},
               {"features", feature_names(result.features)},
               {"times_ms", {{"scene", scene_ms},
                             {"device_init", device_ms},

@@ -60,8 +60,8 @@ void main() {
   pass.sample_lanes = 27;
   pass.tail_depth = 28;
   pass.tail_capacity = 29;
-  pass.pad2 = 30;
-  pass.pad3 = 31;
+  pass.tail_level = 30;
+  pass.tail_end = 31;
   pass.pad4 = 32;
   tail_control.count = 41;
   tail_control.groups_x = 42;

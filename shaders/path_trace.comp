@@ -430,7 +430,7 @@ void whole_pass() {
 layout(constant_id = SPEC_STAGE) const uint STAGE = STAGE_WHOLE;
 layout(std430, binding = BINDING_TAIL_VALUES) buffer TailValueBuf { vec4 tail_values[]; };
 layout(std430, binding = BINDING_TAIL_QUEUE) buffer TailQueueBuf { GpuTailPath tail_queue[]; };
-layout(std430, binding = BINDING_TAIL_CONTROL) buffer TailControlBuf { TailControl tail_control; };
+layout(std430, binding = BINDING_TAIL_CONTROL) buffer TailControlBuf { TailControl tail_control[]; };
 
 const uint TAIL_INTO_FROM = 0x40000000u, TAIL_PREV_NEE = 0x80000000u;
 
@@ -485,11 +485,11 @@ void head_pass() {
   PathState p = path_start(camera_ray(pixel, index, sample_index));
   // A scene with no emitter under a black sky is black: nothing to trace.
   if (ANY_LIGHT && !trace_path(p, index, sample_index, min(pass.tail_depth, pass.bounce_limit))) {
-    uint slot = atomicAdd(tail_control.count, 1u);
+    uint slot = atomicAdd(tail_control[0].count, 1u);
     if (slot < pass.tail_capacity) {
       tail_store(slot, p, index, s);
       // The tail's dispatch size: one workgroup per 64 slots taken.
-      if (slot % (WORKGROUP_SIZE * WORKGROUP_SIZE) == 0u) atomicAdd(tail_control.groups_x, 1u);
+      if (slot % (WORKGROUP_SIZE * WORKGROUP_SIZE) == 0u) atomicAdd(tail_control[0].groups_x, 1u);
       if (WALK_STATS) flush_walk_counts();
       return;
     }
@@ -499,12 +499,25 @@ void head_pass() {
   store_value(s, index, p);
 }
 
+// Tail level l (PassParams.tail_level) takes the paths queued for it, one
+// per invocation, and traces each up to bounce tail_end; those still going
+// on there are queued again, dense, for level l + 1, so that a warp of the
+// tail holds its paths for a few bounces, not until the longest of them
+// ends. The last level (tail_end >= bounce_limit) finishes them. A level
+// queues at most the paths it took, so the next one never overflows.
 void tail_pass() {
+  const uint level = pass.tail_level;
   const uint slot = gl_WorkGroupID.x * (WORKGROUP_SIZE * WORKGROUP_SIZE) + gl_LocalInvocationIndex;
-  if (slot >= min(tail_control.count, pass.tail_capacity)) return;
-  GpuTailPath q = tail_queue[slot];
+  if (slot >= min(tail_control[level].count, pass.tail_capacity)) return;
+  GpuTailPath q = tail_queue[(level & 1u) * pass.tail_capacity + slot];
   PathState p = tail_load(q);
-  trace_path(p, q.pixel, pass.sample_index + q.sample_offset, pass.bounce_limit);
+  if (!trace_path(p, q.pixel, pass.sample_index + q.sample_offset, min(pass.tail_end, pass.bounce_limit))) {
+    uint next = atomicAdd(tail_control[level + 1u].count, 1u);
+    tail_store(((level + 1u) & 1u) * pass.tail_capacity + next, p, q.pixel, q.sample_offset);
+    if (next % (WORKGROUP_SIZE * WORKGROUP_SIZE) == 0u) atomicAdd(tail_control[level + 1u].groups_x, 1u);
+    if (WALK_STATS) flush_walk_counts();
+    return;
+  }
   if (WALK_STATS) flush_walk_counts();
   store_value(q.sample_offset, q.pixel, p);
 }

@@ -147,7 +147,8 @@ static_assert(offsetof(PassParams, sample_count) == 100);
 static_assert(offsetof(PassParams, sample_lanes) == 104);
 static_assert(offsetof(PassParams, tail_depth) == 108);
 static_assert(offsetof(PassParams, tail_capacity) == 112);
-static_assert(offsetof(PassParams, pad3) == 120);
+static_assert(offsetof(PassParams, tail_level) == 116);
+static_assert(offsetof(PassParams, tail_end) == 120);
 static_assert(offsetof(PassParams, pad4) == 124);
 
 static_assert(sizeof(GpuTailPath) == 96);

@@ -1,6 +1,7 @@
 #include "render/path_tracer.h"
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdlib>
 #include <bit>
@@ -58,6 +59,12 @@ struct PathTracer::State {
   uint32_t tail_depth() const {
     if (settings.tail_depth != RenderSettings::kTailAuto) return settings.tail_depth;
     return ctx.info.software ? 0u : kTailDepthDefault;
+  }
+  static_assert(kMaxTailLevels == gpu::MAX_TAIL_LEVELS);
+  // RenderSettings::tail_step resolved (0: one tail level).
+  uint32_t tail_step() const {
+    if (tail_depth() == 0) return 0u;
+    return settings.tail_step == RenderSettings::kTailAuto ? kTailStepDefault : settings.tail_step;
   }
   // Whether a dispatch runs as head and sum (and tail, with a queue): one
   // sample per invocation and each pixel's values added after. Auto on a
@@ -141,8 +148,11 @@ void PathTracer::State::create_accumulation() {
   }
   create_buffer(s.tail_values, s.ctx, uint64_t(s.tail_samples) * s.pixels() * sizeof(glm::vec4), false,
                 "tail queue's values");
-  create_buffer(s.tail_queue, s.ctx, uint64_t(s.tail_capacity) * sizeof(gpu::GpuTailPath), false, "tail queue");
-  create_buffer(s.tail_control, s.ctx, sizeof(gpu::TailControl), false, "tail queue's control");
+  // With tail levels, two halves: a level reads one and queues into the other.
+  const uint64_t halves = s.tail_step() > 0 ? 2 : 1;
+  create_buffer(s.tail_queue, s.ctx, halves * s.tail_capacity * sizeof(gpu::GpuTailPath), false, "tail queue");
+  create_buffer(s.tail_control, s.ctx, gpu::MAX_TAIL_LEVELS * sizeof(gpu::TailControl), false,
+                "tail queue's control");
 }
 
 void PathTracer::State::bind_accumulation() {
@@ -303,6 +313,7 @@ uint64_t PathTracer::buffer_part_bytes() const {
 }
 const SceneFeatures& PathTracer::features() const { return state_->features; }
 uint32_t PathTracer::tail_depth() const { return state_->tail_depth(); }
+uint32_t PathTracer::tail_step() const { return state_->tail_step(); }
 const Buffer& PathTracer::accum_sum() const { return state_->accum_sum; }
 const Buffer& PathTracer::accum_comp() const { return state_->accum_comp; }
 const RenderSettings& PathTracer::settings() const { return state_->settings; }
@@ -374,7 +385,8 @@ static uint32_t sample_lanes(uint32_t setting, bool triangles, uint32_t count, u
 // The staged passes (path_trace.comp, accumulate.comp): per dispatch of
 // samples the head (one invocation per sample, in rounds of lanes along z),
 // with a queue the tail over the paths it queued (an indirect dispatch the
-// head sized), and the sum of the values in sample order.
+// head sized; with RenderSettings::tail_step one per tail level, each sized
+// by the level before), and the sum of the values in sample order.
 void PathTracer::State::record_staged_passes(VkCommandBuffer cmd, gpu::PassParams pc, uint32_t first_sample,
                                              uint32_t count, uint32_t per_dispatch) const {
   const State& s = *this;
@@ -389,7 +401,15 @@ void PathTracer::State::record_staged_passes(VkCommandBuffer cmd, gpu::PassParam
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &p.set, 0, nullptr);
     vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
   };
-  const gpu::TailControl empty{0u, 0u, 1u, 1u};
+  // Tail levels: the first takes the head's queue; with a step, each level
+  // traces `step` bounces on and queues the rest for the next, the last
+  // (at most MAX_TAIL_LEVELS) finishes them.
+  const uint32_t step = s.tail_step();
+  const uint32_t after_head = pc.bounce_limit > pc.tail_depth ? pc.bounce_limit - pc.tail_depth : 0u;
+  const uint32_t levels =
+      queue && step > 0 ? std::clamp((after_head + step - 1) / step, 1u, gpu::MAX_TAIL_LEVELS) : 1u;
+  std::array<gpu::TailControl, gpu::MAX_TAIL_LEVELS> empty;
+  empty.fill(gpu::TailControl{0u, 0u, 1u, 1u});
   for (uint32_t done = 0; done < count; done += pc.sample_count) {
     pc.sample_index = first_sample + done;
     pc.sample_count = std::min(per_dispatch, count - done);
@@ -400,18 +420,21 @@ void PathTracer::State::record_staged_passes(VkCommandBuffer cmd, gpu::PassParam
     // The previous dispatch's tail and sum read the queue and the values.
     compute_barrier(cmd);
     if (queue) {
-      vkCmdUpdateBuffer(cmd, s.tail_control.buffer, 0, sizeof(empty), &empty);
+      vkCmdUpdateBuffer(cmd, s.tail_control.buffer, 0, levels * sizeof(gpu::TailControl), empty.data());
       compute_barrier(cmd);
     }
     bind(s.pipeline);
     vkCmdDispatch(cmd, groups_x, (height + tile_height - 1) / tile_height,
                   (pc.sample_count + pc.sample_lanes - 1) / pc.sample_lanes);
-    if (queue) {
+    for (uint32_t level = 0; queue && level < levels; ++level) {
       compute_barrier(cmd);
+      pc.tail_level = level;
+      pc.tail_end = level + 1 < levels ? pc.tail_depth + (level + 1) * step : UINT32_MAX;
       bind(s.tail_pipeline);
-      // TailControl's groups_x, groups_y, groups_z (after its count) are the
-      // VkDispatchIndirectCommand.
-      vkCmdDispatchIndirect(cmd, s.tail_control.buffer, offsetof(gpu::TailControl, groups_x));
+      // A level's TailControl: groups_x, groups_y, groups_z (after its
+      // count) are the VkDispatchIndirectCommand.
+      vkCmdDispatchIndirect(cmd, s.tail_control.buffer,
+                            level * sizeof(gpu::TailControl) + offsetof(gpu::TailControl, groups_x));
     }
     compute_barrier(cmd);
     bind(s.accumulate_pipeline);
@@ -593,6 +616,7 @@ RenderResult PathTracer::read_result(const Accumulation& acc) {
   r.buffer_part_bytes = buffer_part_bytes();
   r.features = s.features;
   r.tail_depth = s.tail_depth();
+  r.tail_step = s.tail_step();
   r.pipeline_statistics = s.pipeline.statistics;
   return r;
 }

@@ -74,6 +74,7 @@ struct RenderResult {
   uint32_t buffer_parts = 0;
   uint64_t buffer_part_bytes = 0;
   uint32_t tail_depth = 0;   // the tail queue's bounce in force (RenderSettings::tail_depth; 0: off)
+  uint32_t tail_step = 0;    // bounces per tail level in force (RenderSettings::tail_step; 0: one level)
   uint32_t samples = 0;      // samples per pixel the state holds (settings.spp unless interrupted)
   bool interrupted = false;  // render(): RenderControl::stop ended it early
 };
@@ -149,6 +150,8 @@ class PathTracer {
   // The tail queue's bounce in force (RenderSettings::tail_depth resolved
   // for the device; 0: off).
   uint32_t tail_depth() const;
+  // Bounces per tail level in force (RenderSettings::tail_step resolved; 0: one level).
+  uint32_t tail_step() const;
 
  private:
   struct State;

@@ -125,8 +125,11 @@ OCT_CONST(uint, BINDING_BUFFER_PARTS, 24u);
 OCT_CONST(uint, BINDING_TRANSMISSION, 26u);
 // The tail queue (PassParams.tail_depth; path_trace.comp): each sample's
 // value (vec4: rgb, segments as uint bits) per [sample of the dispatch][pixel],
-// the paths that go on after the head (GpuTailPath), and TailControl. 16-byte
+// the paths that go on after the head (GpuTailPath; with tail levels two
+// halves of PassParams.tail_capacity entries, level l reading half l % 2 and
+// queueing into the other), and a TailControl per level. 16-byte
 // placeholders when the queue is off.
+OCT_CONST(uint, MAX_TAIL_LEVELS, 16u);
 OCT_CONST(uint, BINDING_TAIL_VALUES, 27u);
 OCT_CONST(uint, BINDING_TAIL_QUEUE, 28u);
 OCT_CONST(uint, BINDING_TAIL_CONTROL, 29u);
@@ -579,8 +582,8 @@ struct PassParams {
   uint sample_lanes;  // invocations per pixel (1, 2, 4 or 8): a workgroup covers an 8 x (8 / lanes) tile
   uint tail_depth;    // staged (head): paths still going at this bounce go to the tail queue (>= bounce_limit: none)
   uint tail_capacity; // the queue's entries (GpuTailPath); a head past them finishes its path itself
-  uint pad2;
-  uint pad3;
+  uint tail_level;    // staged (tail): the level this tail dispatch runs (0: the paths the head queued)
+  uint tail_end;      // staged (tail): paths still going at this bounce go to the next level's queue (>= bounce_limit: none)
   uint pad4;
 };
 
@@ -601,8 +604,10 @@ struct GpuTailPath {
   float prev_pdf;
 };
 
-// 16 bytes: the tail queue's fill and, from byte 4, the tail's indirect
-// dispatch (a VkDispatchIndirectCommand), reset before each head.
+// 16 bytes: a tail queue's fill and, from byte 4, the indirect dispatch of
+// the tail level that takes it (a VkDispatchIndirectCommand); one per level
+// (PassParams.tail_level: the head fills level 0's, each level but the last
+// the next one's), all reset before each head.
 struct TailControl {
   uint count;     // paths the heads asked to queue (those past tail_capacity were not)
   uint groups_x;  // workgroups of 64 the tail needs: one per 64 slots taken

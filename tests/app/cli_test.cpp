@@ -100,6 +100,8 @@ const BadInput BAD_INPUTS[] = {
     {"octant_culling_unknown", "--octant-culling maybe", "--octant-culling: expected on or off, got \"maybe\""},
     {"tail_depth_unknown", "--tail-depth soon", "--tail-depth: expected auto, off or a bounce >= 1, got \"soon\""},
     {"tail_depth_zero", "--tail-depth 0", "--tail-depth: expected auto, off or a bounce >= 1, got \"0\""},
+    {"tail_step_zero", "--tail-step 0", "--tail-step: expected auto, off or a bounce count >= 1, got \"0\""},
+    {"tail_step_unknown", "--tail-step many", "--tail-step: expected auto, off or a bounce count >= 1, got \"many\""},
     {"first_sample_overflow", "--first-sample 4294967295 --spp 2", "--first-sample"},
     {"sample_lanes_three", "--sample-lanes 3", "--sample-lanes: must be 0 (auto), 1, 2, 4 or 8, got 3"},
     {"sample_lanes_sixteen", "--sample-lanes 16", "--sample-lanes: must be 0 (auto), 1, 2, 4 or 8, got 16"},

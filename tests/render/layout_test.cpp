@@ -90,8 +90,8 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   EXPECT_EQ(f.sample_lanes, 27u);
   EXPECT_EQ(f.tail_depth, 28u);
   EXPECT_EQ(f.tail_capacity, 29u);
-  EXPECT_EQ(f.pad2, 30u);
-  EXPECT_EQ(f.pad3, 31u);
+  EXPECT_EQ(f.tail_level, 30u);
+  EXPECT_EQ(f.tail_end, 31u);
   EXPECT_EQ(f.pad4, 32u);
 
   gpu::TailControl tc{};

@@ -129,8 +129,10 @@ TEST_F(RenderTest, BatchingAndSampleLanesDoNotChangeTheResult) {
 // tail and sum; the paths' arithmetic and the sum's order are those of the
 // whole paths: every bit of the result is the same, whatever bounce the
 // queue takes paths at, however the samples are batched, in fp32 and fp16,
-// with roulette, and with a queue too small for the paths (the head then
-// finishes the rest itself).
+// with roulette, with a queue too small for the paths (the head then
+// finishes the rest itself), and with tail levels (RenderSettings::tail_step:
+// a level's survivors queued again for the next; with step 1 from bounce 1
+// more levels than MAX_TAIL_LEVELS, so the last finishes the rest).
 TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
   Scene scene = make_rtiow_scene({40, 0.2f, 3});
   test::place(scene, test::icosphere(2, 1, true), glm::translate(glm::mat4(1.0f), glm::vec3(2, 1, 2)));
@@ -150,18 +152,22 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
       s.tail_depth = 0;
       const RenderResult want = render(test::shared_context(), scene, s);
       ASSERT_EQ(want.tail_depth, 0u);
-      for (auto [depth, per_dispatch, lanes, entries] :
-           {std::tuple{1u, 0u, 0u, 0u}, {2u, 0u, 0u, 0u}, {5u, 3u, 4u, 0u}, {2u, 5u, 8u, 0u}, {1u, 0u, 2u, 64u},
-            {3u, 0u, 0u, 1u}, {60u, 0u, 0u, 0u}}) {
+      for (auto [depth, per_dispatch, lanes, entries, step] :
+           {std::tuple{1u, 0u, 0u, 0u, 0u}, {2u, 0u, 0u, 0u, 0u}, {5u, 3u, 4u, 0u, 0u}, {2u, 5u, 8u, 0u, 0u},
+            {1u, 0u, 2u, 64u, 0u}, {3u, 0u, 0u, 1u, 0u}, {60u, 0u, 0u, 0u, 0u}, {1u, 0u, 0u, 0u, 1u},
+            {2u, 5u, 4u, 0u, 2u}, {1u, 0u, 2u, 64u, 1u}, {2u, 0u, 0u, 1u, 3u}}) {
         s.tail_depth = depth;
         s.samples_per_dispatch = per_dispatch;
         s.sample_lanes = lanes;
         s.tail_queue_entries = entries;
+        s.tail_step = step;
         SCOPED_TRACE(std::string(precision_name(precision)) + ", rr " + std::to_string(rr) + ", tail depth " +
                      std::to_string(depth) + ", per dispatch " + std::to_string(per_dispatch) + ", lanes " +
-                     std::to_string(lanes) + ", queue " + std::to_string(entries));
+                     std::to_string(lanes) + ", queue " + std::to_string(entries) + ", step " +
+                     std::to_string(step));
         const RenderResult got = render(test::shared_context(), scene, s);
         EXPECT_EQ(got.tail_depth, depth);
+        EXPECT_EQ(got.tail_step, step);
         expect_same_result(got, want);
       }
     }
