@@ -193,11 +193,12 @@ struct RenderOptions {
                        " on a GPU; on a CPU device no queue, one sample per invocation); same image")
         ->capture_default_str();
     cmd.add_option("--tail-step", tail_step,
-                   "Tail levels: each tail dispatch traces its paths this many bounces on and queues those still "
-                   "going, dense, for the next (at most " + std::to_string(kMaxTailLevels) +
-                       " levels): auto | off | BOUNCES (auto: " +
-                       (kTailStepDefault ? std::to_string(kTailStepDefault) : std::string("off")) +
-                       "; off: one tail finishes every path); same image")
+                   "Tail levels: the first tail dispatch traces its paths this many bounces on, each next twice "
+                   "as many, and each queues those still going, dense, for the next (at most " +
+                       std::to_string(kMaxTailLevels) + " levels): auto | off | BOUNCES (auto: " +
+                       std::to_string(kTailStepDefault) +
+                       " for scenes of spheres alone, off with triangles; off: one tail finishes every path); "
+                       "same image")
         ->capture_default_str();
     cmd.add_option("--device", device, "auto | cpu | gpu | INDEX (see `octrace devices`)")->capture_default_str();
     cmd.add_flag("--validation", validation, "Enable the Khronos validation layer (also OCTRACE_VALIDATION=1)");

@@ -106,12 +106,14 @@ struct RenderSettings {
   // dispatch's samples, in at most a quarter GiB); a path past it finishes
   // in the head. The image is the same; tests use a small one.
   uint32_t tail_queue_entries = 0;
-  // Tail levels (shaders/path_trace.comp tail_pass): each tail dispatch
-  // traces its paths this many bounces on and queues those still going for
-  // the next one (at most gpu::MAX_TAIL_LEVELS levels; the last finishes
-  // them), so that a warp of the tail holds its paths for a few bounces, not
-  // until the longest ends. 0: one tail finishes them all. kTailAuto:
-  // kTailStepDefault. The image is the same, bit for bit.
+  // Tail levels (shaders/path_trace.comp tail_pass): the first tail
+  // dispatch traces its paths this many bounces on, each next one twice as
+  // many as the one before, and each queues the paths still going for the
+  // next (at most kMaxTailLevels levels; the last finishes them), so that a
+  // warp of the tail holds its paths for a few bounces, not until the
+  // longest ends. 0: one tail finishes them all. kTailAuto: kTailStepDefault
+  // for scenes of spheres alone, 0 with triangles. The image is the same,
+  // bit for bit.
   uint32_t tail_step = kTailAuto;
 };
 
@@ -121,7 +123,7 @@ struct RenderSettings {
 constexpr uint32_t kTailDepthDefault = 2;
 // RenderSettings::tail_step's auto, and the most tail levels a dispatch
 // runs (gpu::MAX_TAIL_LEVELS).
-constexpr uint32_t kTailStepDefault = 0;
+constexpr uint32_t kTailStepDefault = 1;
 constexpr uint32_t kMaxTailLevels = 16;
 
 // Checks sizes and counts; throws SettingError naming the setting

@@ -172,6 +172,25 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
       }
     }
   }
+  // The tail levels' auto: one tail with triangles (this scene), levels of
+  // a step of 1 for spheres alone; the same image either way.
+  {
+    RenderSettings s;
+    s.width = 37;
+    s.height = 23;
+    s.spp = 3;
+    s.tail_depth = 2;
+    EXPECT_EQ(render(test::shared_context(), scene, s).tail_step, 0u);
+    Scene spheres = scene;
+    spheres.meshes.clear();
+    spheres.instances.clear();
+    s.tail_step = 0;
+    const RenderResult want = render(test::shared_context(), spheres, s);
+    s.tail_step = RenderSettings::kTailAuto;
+    const RenderResult got = render(test::shared_context(), spheres, s);
+    EXPECT_EQ(got.tail_step, kTailStepDefault);
+    expect_same_result(got, want);
+  }
   // The other structures' walks run in the same head and tail.
   for (Accel accel : {Accel::Bvh, Accel::Brute}) {
     RenderSettings s;
