@@ -210,6 +210,18 @@ struct RenderOptions {
                  "them where the device has VK_EXT_pipeline_robustness; same image)");
   }
 
+  // --tail-depth and --tail-step: auto (RenderSettings::kTailAuto), off (0)
+  // or a count from 1 to 100000; `what` names the count in the message.
+  static uint32_t parse_tail_count(const std::string& text, const std::string& setting, const std::string& what) {
+    if (text == "auto") return RenderSettings::kTailAuto;
+    if (text == "off") return 0;
+    char* end = nullptr;
+    const unsigned long v = std::strtoul(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || text[0] == '-' || v < 1 || v > 100000)
+      throw SettingError(setting, ": expected auto, off or " + what + " >= 1, got \"" + text + "\"");
+    return uint32_t(v);
+  }
+
   RenderSettings parsed() const {
     RenderSettings s = settings;
     s.accel = parse_accel(accel);
@@ -223,28 +235,8 @@ struct RenderOptions {
     if (octant_culling != "on" && octant_culling != "off")
       throw SettingError("octant_culling", ": expected on or off, got \"" + octant_culling + "\"");
     s.octant_culling = octant_culling == "on";
-    if (tail_depth == "auto") {
-      s.tail_depth = RenderSettings::kTailAuto;
-    } else if (tail_depth == "off") {
-      s.tail_depth = 0;
-    } else {
-      char* end = nullptr;
-      const unsigned long v = std::strtoul(tail_depth.c_str(), &end, 10);
-      if (tail_depth.empty() || *end != '\0' || tail_depth[0] == '-' || v < 1 || v > 100000)
-        throw SettingError("tail_depth", ": expected auto, off or a bounce >= 1, got \"" + tail_depth + "\"");
-      s.tail_depth = uint32_t(v);
-    }
-    if (tail_step == "auto") {
-      s.tail_step = RenderSettings::kTailAuto;
-    } else if (tail_step == "off") {
-      s.tail_step = 0;
-    } else {
-      char* end = nullptr;
-      const unsigned long v = std::strtoul(tail_step.c_str(), &end, 10);
-      if (tail_step.empty() || *end != '\0' || tail_step[0] == '-' || v < 1 || v > 100000)
-        throw SettingError("tail_step", ": expected auto, off or a bounce count >= 1, got \"" + tail_step + "\"");
-      s.tail_step = uint32_t(v);
-    }
+    s.tail_depth = parse_tail_count(tail_depth, "tail_depth", "a bounce");
+    s.tail_step = parse_tail_count(tail_step, "tail_step", "a bounce count");
     parse_size(size, s);
     validate_settings(s);
     return s;
