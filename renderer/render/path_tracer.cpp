@@ -134,6 +134,8 @@ void PathTracer::State::create_accumulation() {
   // finds the queue full finishes its path itself: the size is a matter of
   // speed, not of the image.
   s.tail_samples = s.tail_capacity = 0;
+  // With tail levels, two halves: a level reads one and queues into the other.
+  const uint64_t halves = s.tail_step() > 0 ? 2 : 1;
   if (s.staged()) {
     const uint64_t budget = tail_buffer_bytes(s.ctx);
     const uint64_t value_bytes = s.pixels() * sizeof(glm::vec4);
@@ -145,15 +147,16 @@ void PathTracer::State::create_accumulation() {
     // No more than a dispatch takes.
     if (s.samples_per_dispatch()) s.tail_samples = std::min(s.tail_samples, s.samples_per_dispatch());
     const uint64_t group = gpu::WORKGROUP_SIZE * gpu::WORKGROUP_SIZE;
+    // With tail levels the queue is two halves of this many entries, and
+    // both fit one buffer.
     if (s.tail_depth() > 0)
       s.tail_capacity = uint32_t(std::min<uint64_t>({std::max<uint64_t>(s.pixels() * s.tail_samples / 4, group),
-                                                     65535 * group, budget / sizeof(gpu::GpuTailPath)}));
+                                                     65535 * group, budget / sizeof(gpu::GpuTailPath),
+                                                     limit / (halves * sizeof(gpu::GpuTailPath))}));
     if (s.settings.tail_queue_entries) s.tail_capacity = std::min(s.tail_capacity, s.settings.tail_queue_entries);
   }
   create_buffer(s.tail_values, s.ctx, uint64_t(s.tail_samples) * s.pixels() * sizeof(glm::vec4), false,
                 "tail queue's values");
-  // With tail levels, two halves: a level reads one and queues into the other.
-  const uint64_t halves = s.tail_step() > 0 ? 2 : 1;
   create_buffer(s.tail_queue, s.ctx, halves * s.tail_capacity * sizeof(gpu::GpuTailPath), false, "tail queue");
   create_buffer(s.tail_control, s.ctx, gpu::MAX_TAIL_LEVELS * sizeof(gpu::TailControl), false,
                 "tail queue's control");
@@ -436,7 +439,8 @@ void PathTracer::State::record_staged_passes(VkCommandBuffer cmd, gpu::PassParam
     for (uint32_t level = 0; queue && level < levels; ++level) {
       compute_barrier(cmd);
       pc.tail_level = level;
-      pc.tail_end = level + 1 < levels ? uint32_t(std::min<uint64_t>(pc.tail_depth + ((2ull << level) - 1) * step, UINT32_MAX)) : UINT32_MAX;
+      const uint64_t end = pc.tail_depth + ((2ull << level) - 1) * step;  // after 2^(l+1) - 1 steps
+      pc.tail_end = level + 1 < levels ? uint32_t(std::min<uint64_t>(end, UINT32_MAX)) : UINT32_MAX;
       bind(s.tail_pipeline);
       // A level's TailControl: groups_x, groups_y, groups_z (after its
       // count) are the VkDispatchIndirectCommand.
