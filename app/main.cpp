@@ -697,7 +697,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
                   {"bytes", o.bytes},       {"refs_per_primitive", o.refs_per_primitive},
                   {"bytes_per_primitive", o.bytes_per_primitive},
                   {"width", {{"top", o.bvh_top_width}, {"meshes", o.bvh_mesh_width}}},
-                  {"sphere_order", o.bvh_sphere_order ? "tree" : "scene"}};
+                  {"sphere_order", sphere_order_name(o.bvh_sphere_order ? SphereOrder::Tree : SphereOrder::Scene)}};
     }
     if (settings.accel == Accel::Octree) {
       const OctreeStats& o = result.octree;
