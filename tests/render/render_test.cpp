@@ -131,8 +131,8 @@ TEST_F(RenderTest, BatchingAndSampleLanesDoNotChangeTheResult) {
 // queue takes paths at, however the samples are batched, in fp32 and fp16,
 // with roulette, with a queue too small for the paths (the head then
 // finishes the rest itself), and with tail levels (RenderSettings::tail_step:
-// a level's survivors queued again for the next; with step 1 from bounce 1
-// more levels than MAX_TAIL_LEVELS, so the last finishes the rest).
+// a level's survivors queued again for the next, the last finishing them;
+// at the bounce limit of 50 the levels stay below MAX_TAIL_LEVELS).
 TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
   Scene scene = make_rtiow_scene({40, 0.2f, 3});
   test::place(scene, test::icosphere(2, 1, true), glm::translate(glm::mat4(1.0f), glm::vec3(2, 1, 2)));
