@@ -131,6 +131,7 @@ struct RenderOptions {
   std::string octant_culling = "on";
   std::string tail_depth = "auto";
   std::string tail_step = "auto";
+  std::string tail_fill = "auto";
   std::string bvh_sphere_order = "auto";
   RenderSettings settings;
   std::string device = "auto";
@@ -200,6 +201,11 @@ struct RenderOptions {
                        " for scenes of spheres alone, off with triangles; off: one tail finishes every path); "
                        "same image")
         ->capture_default_str();
+    cmd.add_option("--tail-fill", tail_fill,
+                   "Tail levels: a level that takes fewer paths than this finishes them rather than queuing "
+                   "those still going for the next: auto | off | PATHS (auto: the threads the GPU holds at once, "
+                   "where its driver says; off: every level but the last queues them); same image")
+        ->capture_default_str();
     cmd.add_option("--device", device, "auto | cpu | gpu | INDEX (see `octrace devices`)")->capture_default_str();
     cmd.add_flag("--validation", validation, "Enable the Khronos validation layer (also OCTRACE_VALIDATION=1)");
     cmd.add_flag("--pipeline-stats", pipeline_stats,
@@ -210,15 +216,18 @@ struct RenderOptions {
                  "them where the device has VK_EXT_pipeline_robustness; same image)");
   }
 
-  // --tail-depth and --tail-step: auto (RenderSettings::kTailAuto), off (0)
-  // or a count from 1 to 100000; `what` names the count in the message.
-  static uint32_t parse_tail_count(const std::string& text, const std::string& setting, const std::string& what) {
+  // --tail-depth, --tail-step and --tail-fill: auto
+  // (RenderSettings::kTailAuto), off (0) or a count from 1 to `max`;
+  // `what` names the count in the message.
+  static uint32_t parse_tail_count(const std::string& text, const std::string& setting, const std::string& what,
+                                   unsigned long max = 100000) {
     if (text == "auto") return RenderSettings::kTailAuto;
     if (text == "off") return 0;
     char* end = nullptr;
     const unsigned long v = std::strtoul(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || text[0] == '-' || v < 1 || v > 100000)
-      throw SettingError(setting, ": expected auto, off or " + what + " >= 1, got \"" + text + "\"");
+    if (text.empty() || *end != '\0' || text[0] == '-' || v < 1 || v > max)
+      throw SettingError(setting, ": expected auto, off or " + what + " from 1 to " + std::to_string(max) +
+                                      ", got \"" + text + "\"");
     return uint32_t(v);
   }
 
@@ -237,6 +246,7 @@ struct RenderOptions {
     s.octant_culling = octant_culling == "on";
     s.tail_depth = parse_tail_count(tail_depth, "tail_depth", "a bounce");
     s.tail_step = parse_tail_count(tail_step, "tail_step", "a bounce count");
+    s.tail_fill = parse_tail_count(tail_fill, "tail_fill", "a path count", 1000000000);
     parse_size(size, s);
     validate_settings(s);
     return s;
@@ -267,6 +277,7 @@ std::string message_for_cli(const SettingError& e) {
       {"octant_culling", "--octant-culling"},
       {"tail_depth", "--tail-depth"},
       {"tail_step", "--tail-step"},
+      {"tail_fill", "--tail-fill"},
       {"device", "--device"},
       {"rtiow.radius", "--radius"},
       {"rtiow.spheres", "--spheres"},
@@ -650,6 +661,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
               {"octant_culling", settings.octant_culling ? "on" : "off"},
               {"tail_depth", result.tail_depth},
               {"tail_step", result.tail_step},
+              {"tail_fill", result.tail_fill},
               {"features", feature_names(result.features)},
               {"times_ms", {{"scene", scene_ms},
                             {"device_init", device_ms},

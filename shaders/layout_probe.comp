@@ -62,7 +62,7 @@ void main() {
   pass.tail_capacity = 29;
   pass.tail_level = 30;
   pass.tail_end = 31;
-  pass.pad4 = 32;
+  pass.tail_fill = 32;
   tail_control.count = 41;
   tail_control.groups_x = 42;
   tail_control.groups_y = 43;

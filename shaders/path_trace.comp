@@ -503,15 +503,20 @@ void head_pass() {
 // per invocation, and traces each up to bounce tail_end; those still going
 // on there are queued again, dense, for level l + 1, so that a warp of the
 // tail holds its paths for a few bounces, not until the longest of them
-// ends. The last level (tail_end >= bounce_limit) finishes them. A level
+// ends. The last level (tail_end >= bounce_limit) finishes them, and so
+// does a level that takes fewer than tail_fill paths: packed into fewer
+// warps than the GPU holds, its survivors would run each bounce at the
+// pace of the slowest of 32 where, left in place, most run alone. A level
 // queues at most the paths it took, so the next one never overflows.
 void tail_pass() {
   const uint level = pass.tail_level;
   const uint slot = gl_WorkGroupID.x * (WORKGROUP_SIZE * WORKGROUP_SIZE) + gl_LocalInvocationIndex;
-  if (slot >= min(tail_control[level].count, pass.tail_capacity)) return;
+  const uint taken = min(tail_control[level].count, pass.tail_capacity);
+  if (slot >= taken) return;
   GpuTailPath q = tail_queue[(level & 1u) * pass.tail_capacity + slot];
   PathState p = tail_load(q);
-  if (!trace_path(p, q.pixel, pass.sample_index + q.sample_offset, min(pass.tail_end, pass.bounce_limit))) {
+  const uint end = taken < pass.tail_fill ? pass.bounce_limit : min(pass.tail_end, pass.bounce_limit);
+  if (!trace_path(p, q.pixel, pass.sample_index + q.sample_offset, end)) {
     uint next = atomicAdd(tail_control[level + 1u].count, 1u);
     tail_store(((level + 1u) & 1u) * pass.tail_capacity + next, p, q.pixel, q.sample_offset);
     if (next % (WORKGROUP_SIZE * WORKGROUP_SIZE) == 0u) atomicAdd(tail_control[level + 1u].groups_x, 1u);

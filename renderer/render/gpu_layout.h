@@ -149,7 +149,7 @@ static_assert(offsetof(PassParams, tail_depth) == 108);
 static_assert(offsetof(PassParams, tail_capacity) == 112);
 static_assert(offsetof(PassParams, tail_level) == 116);
 static_assert(offsetof(PassParams, tail_end) == 120);
-static_assert(offsetof(PassParams, pad4) == 124);
+static_assert(offsetof(PassParams, tail_fill) == 124);
 
 static_assert(sizeof(GpuTailPath) == 96);
 static_assert(offsetof(GpuTailPath, pixel) == 12);

@@ -70,6 +70,12 @@ struct PathTracer::State {
     if (settings.tail_step != RenderSettings::kTailAuto) return settings.tail_step;
     return scene_features.triangles ? 0u : kTailStepDefault;
   }
+  // RenderSettings::tail_fill resolved (0: every level queues its survivors).
+  uint32_t tail_fill() const {
+    if (tail_step() == 0) return 0u;
+    if (settings.tail_fill != RenderSettings::kTailAuto) return settings.tail_fill;
+    return uint32_t(std::min<uint64_t>(ctx.info.resident_threads, UINT32_MAX));
+  }
   // Whether a dispatch runs as head and sum (and tail, with a queue): one
   // sample per invocation and each pixel's values added after. Auto on a
   // software device has it without a queue: its compiler (llvmpipe 22.3)
@@ -321,6 +327,7 @@ uint64_t PathTracer::buffer_part_bytes() const {
 const SceneFeatures& PathTracer::features() const { return state_->features; }
 uint32_t PathTracer::tail_depth() const { return state_->tail_depth(); }
 uint32_t PathTracer::tail_step() const { return state_->tail_step(); }
+uint32_t PathTracer::tail_fill() const { return state_->tail_fill(); }
 const Buffer& PathTracer::accum_sum() const { return state_->accum_sum; }
 const Buffer& PathTracer::accum_comp() const { return state_->accum_comp; }
 const RenderSettings& PathTracer::settings() const { return state_->settings; }
@@ -403,6 +410,7 @@ void PathTracer::State::record_staged_passes(VkCommandBuffer cmd, gpu::PassParam
   const bool queue = s.tail_depth() > 0;
   pc.tail_depth = queue ? s.tail_depth() : UINT32_MAX;
   pc.tail_capacity = s.tail_capacity;
+  pc.tail_fill = s.tail_fill();
   const auto bind = [&](const ComputePipeline& p) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &p.set, 0, nullptr);
@@ -628,6 +636,7 @@ RenderResult PathTracer::read_result(const Accumulation& acc) {
   r.features = s.features;
   r.tail_depth = s.tail_depth();
   r.tail_step = s.tail_step();
+  r.tail_fill = s.tail_fill();
   r.pipeline_statistics = s.pipeline.statistics;
   return r;
 }

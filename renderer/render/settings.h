@@ -115,6 +115,14 @@ struct RenderSettings {
   // for scenes of spheres alone, 0 with triangles. The image is the same,
   // bit for bit.
   uint32_t tail_step = kTailAuto;
+  // With tail levels: a level that takes fewer paths than this finishes
+  // them instead of queuing its survivors for the next, because packed
+  // into fewer warps than the GPU holds a few long paths run each bounce at
+  // the pace of the slowest of 32 (optimisation log 64). 0: every level but
+  // the last queues its survivors. kTailAuto: the threads the device holds
+  // resident at once where its driver says (DeviceInfo::resident_threads),
+  // else 0. The image is the same, bit for bit.
+  uint32_t tail_fill = kTailAuto;
 };
 
 // The bounce at which RenderSettings::tail_depth's auto queues paths on a

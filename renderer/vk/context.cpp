@@ -138,6 +138,25 @@ bool has_device_extension(VkPhysicalDevice physical, const char* name) {
   return false;
 }
 
+// Threads resident at once, from the vendor's properties (0: unknown).
+uint64_t resident_threads(VkPhysicalDevice physical) {
+  VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  if (has_device_extension(physical, VK_NV_SHADER_SM_BUILTINS_EXTENSION_NAME)) {
+    VkPhysicalDeviceShaderSMBuiltinsPropertiesNV sm{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_SM_BUILTINS_PROPERTIES_NV};
+    props2.pNext = &sm;
+    vkGetPhysicalDeviceProperties2(physical, &props2);
+    return uint64_t(sm.shaderSMCount) * sm.shaderWarpsPerSM * 32;
+  }
+  if (has_device_extension(physical, VK_AMD_SHADER_CORE_PROPERTIES_EXTENSION_NAME)) {
+    VkPhysicalDeviceShaderCorePropertiesAMD core{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_CORE_PROPERTIES_AMD};
+    props2.pNext = &core;
+    vkGetPhysicalDeviceProperties2(physical, &props2);
+    return uint64_t(core.shaderEngineCount) * core.shaderArraysPerEngineCount * core.computeUnitsPerShaderArray *
+           core.simdPerComputeUnit * core.wavefrontsPerSimd * core.wavefrontSize;
+  }
+  return 0;
+}
+
 // `presents` (a window's test of a queue family), when given, fills info.presents.
 DeviceInfo describe(VkPhysicalDevice physical, uint32_t index, const std::function<bool(uint32_t)>& presents) {
   VkPhysicalDeviceProperties props;
@@ -179,6 +198,7 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index, const std::functi
     info.shader_float16 = f12.shaderFloat16;
     info.storage_16bit = f11.storageBuffer16BitAccess;
     info.pipeline_robustness = has_robustness && robustness.pipelineRobustness;
+    info.resident_threads = resident_threads(physical);
   }
 
   uint32_t family = 0, timestamp_bits = 0;

@@ -45,6 +45,10 @@ struct DeviceInfo {
   // VK_EXT_pipeline_robustness with its pipelineRobustness feature: buffer
   // bounds checks can be turned off per pipeline (ContextOptions::robust_buffers).
   bool pipeline_robustness = false;
+  // Threads the device holds resident at once (its multiprocessors times
+  // their warps or wavefronts), where the driver says (VK_NV_shader_sm_builtins,
+  // VK_AMD_shader_core_properties); 0 when unknown.
+  uint64_t resident_threads = 0;
   bool presents = false;         // a compute queue family presents to the window; known only when
                                  // selecting for a window (ContextOptions::can_present)
 

@@ -584,7 +584,7 @@ struct PassParams {
   uint tail_capacity; // the queue's entries (GpuTailPath); a head past them finishes its path itself
   uint tail_level;    // staged (tail): the level this tail dispatch runs (0: the paths the head queued)
   uint tail_end;      // staged (tail): paths still going at this bounce go to the next level's queue (>= bounce_limit: none)
-  uint pad4;
+  uint tail_fill;     // staged (tail): a level that takes fewer paths finishes them (RenderSettings::tail_fill)
 };
 
 // 96 bytes: a path in the tail queue (path_trace.comp PathState), in fp32

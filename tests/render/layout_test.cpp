@@ -92,7 +92,7 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   EXPECT_EQ(f.tail_capacity, 29u);
   EXPECT_EQ(f.tail_level, 30u);
   EXPECT_EQ(f.tail_end, 31u);
-  EXPECT_EQ(f.pad4, 32u);
+  EXPECT_EQ(f.tail_fill, 32u);
 
   gpu::TailControl tc{};
   download_buffer(ctx, tail_control_buf, &tc, sizeof tc);

@@ -132,7 +132,9 @@ TEST_F(RenderTest, BatchingAndSampleLanesDoNotChangeTheResult) {
 // with roulette, with a queue too small for the paths (the head then
 // finishes the rest itself), and with tail levels (RenderSettings::tail_step:
 // a level's survivors queued again for the next, the last finishing them;
-// at the bounce limit of 50 the levels stay below MAX_TAIL_LEVELS).
+// at the bounce limit of 50 the levels stay below MAX_TAIL_LEVELS), and
+// with a fill (RenderSettings::tail_fill) that has a level of few paths
+// finish them.
 TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
   Scene scene = make_rtiow_scene({40, 0.2f, 3});
   test::place(scene, test::icosphere(2, 1, true), glm::translate(glm::mat4(1.0f), glm::vec3(2, 1, 2)));
@@ -152,22 +154,28 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
       s.tail_depth = 0;
       const RenderResult want = render(test::shared_context(), scene, s);
       ASSERT_EQ(want.tail_depth, 0u);
-      for (auto [depth, per_dispatch, lanes, entries, step] :
-           {std::tuple{1u, 0u, 0u, 0u, 0u}, {2u, 0u, 0u, 0u, 0u}, {5u, 3u, 4u, 0u, 0u}, {2u, 5u, 8u, 0u, 0u},
-            {1u, 0u, 2u, 64u, 0u}, {3u, 0u, 0u, 1u, 0u}, {60u, 0u, 0u, 0u, 0u}, {1u, 0u, 0u, 0u, 1u},
-            {2u, 5u, 4u, 0u, 2u}, {1u, 0u, 2u, 64u, 1u}, {2u, 0u, 0u, 1u, 3u}}) {
+      // A fill of 300 paths finishes them in the level where fewer
+      // than 300 are left (with 37 x 23 pixels, some levels on); 10^9 in
+      // the first level.
+      for (auto [depth, per_dispatch, lanes, entries, step, fill] :
+           {std::tuple{1u, 0u, 0u, 0u, 0u, 0u}, {2u, 0u, 0u, 0u, 0u, 0u}, {5u, 3u, 4u, 0u, 0u, 0u},
+            {2u, 5u, 8u, 0u, 0u, 0u}, {1u, 0u, 2u, 64u, 0u, 0u}, {3u, 0u, 0u, 1u, 0u, 0u}, {60u, 0u, 0u, 0u, 0u, 0u},
+            {1u, 0u, 0u, 0u, 1u, 0u}, {2u, 5u, 4u, 0u, 2u, 0u}, {1u, 0u, 2u, 64u, 1u, 0u}, {2u, 0u, 0u, 1u, 3u, 0u},
+            {1u, 0u, 0u, 0u, 1u, 300u}, {2u, 5u, 4u, 0u, 1u, 1000000000u}, {1u, 0u, 2u, 64u, 1u, 40u}}) {
         s.tail_depth = depth;
         s.samples_per_dispatch = per_dispatch;
         s.sample_lanes = lanes;
         s.tail_queue_entries = entries;
         s.tail_step = step;
+        s.tail_fill = fill;
         SCOPED_TRACE(std::string(precision_name(precision)) + ", rr " + std::to_string(rr) + ", tail depth " +
                      std::to_string(depth) + ", per dispatch " + std::to_string(per_dispatch) + ", lanes " +
                      std::to_string(lanes) + ", queue " + std::to_string(entries) + ", step " +
-                     std::to_string(step));
+                     std::to_string(step) + ", fill " + std::to_string(fill));
         const RenderResult got = render(test::shared_context(), scene, s);
         EXPECT_EQ(got.tail_depth, depth);
         EXPECT_EQ(got.tail_step, step);
+        EXPECT_EQ(got.tail_fill, step ? fill : 0u);
         expect_same_result(got, want);
       }
     }
