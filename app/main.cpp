@@ -198,7 +198,8 @@ struct RenderOptions {
                    "as many, and each queues those still going, dense, for the next (at most " +
                        std::to_string(kMaxTailLevels) + " levels): auto | off | BOUNCES (auto: " +
                        std::to_string(kTailStepDefault) +
-                       " for scenes of spheres alone, off with triangles; off: one tail finishes every path); "
+                       ", with triangles only where a fill applies (--tail-fill); off: one tail finishes every "
+                       "path); "
                        "same image")
         ->capture_default_str();
     cmd.add_option("--tail-fill", tail_fill,

@@ -112,8 +112,8 @@ struct RenderSettings {
   // next (at most kMaxTailLevels levels; the last finishes them), so that a
   // warp of the tail holds its paths for a few bounces, not until the
   // longest ends. 0: one tail finishes them all. kTailAuto: kTailStepDefault
-  // for scenes of spheres alone, 0 with triangles. The image is the same,
-  // bit for bit.
+  // for scenes of spheres alone, and with triangles where a fill applies
+  // (tail_fill, below), else 0. The image is the same, bit for bit.
   uint32_t tail_step = kTailAuto;
   // With tail levels: a level that takes fewer paths than this finishes
   // them instead of queuing its survivors for the next, because packed

@@ -180,15 +180,27 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
       }
     }
   }
-  // The tail levels' auto: one tail with triangles (this scene), levels of
-  // a step of 1 for spheres alone; the same image either way.
+  // The tail levels' auto: with triangles (this scene) levels of a step
+  // of 1 where a fill applies (the device's resident threads, or one set),
+  // one tail where none does; levels of a step of 1 for spheres alone; the
+  // same image either way.
   {
     RenderSettings s;
     s.width = 37;
     s.height = 23;
     s.spp = 3;
     s.tail_depth = 2;
+    const RenderResult device_fill = render(test::shared_context(), scene, s);
+    const uint64_t resident = test::shared_context().info.resident_threads;
+    EXPECT_EQ(device_fill.tail_step, resident > 0 ? kTailStepDefault : 0u);
+    EXPECT_EQ(device_fill.tail_fill, resident > 0 ? std::min<uint64_t>(resident, UINT32_MAX) : 0u);
+    s.tail_fill = 0;
     EXPECT_EQ(render(test::shared_context(), scene, s).tail_step, 0u);
+    s.tail_fill = 500;
+    const RenderResult set_fill = render(test::shared_context(), scene, s);
+    EXPECT_EQ(set_fill.tail_step, kTailStepDefault);
+    EXPECT_EQ(set_fill.tail_fill, 500u);
+    s.tail_fill = RenderSettings::kTailAuto;
     Scene spheres = scene;
     spheres.meshes.clear();
     spheres.instances.clear();
