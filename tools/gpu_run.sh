@@ -1,8 +1,9 @@
 # Sourced by the GPU run scripts (docs/results/h200/*/run*.sh), on the GPU
 # machine, in the checkout's copy there, with the carried folders .gl (the
 # amd64 debs of the Vulkan loader and GL libraries: docs/reliability.md) and
-# .gpub (bin.tgz: build-gpu's binaries and a COMMIT file):
-#   - unpacks .gpub/bin.tgz into build-gpu and installs .gl's debs;
+# .gpub (bin.txz or bin.tgz: build-gpu's binaries and a COMMIT file; xz -9
+# keeps several near-identical variant binaries small):
+#   - unpacks it into build-gpu and installs .gl's debs;
 #   - A=build-gpu/octrace-base, B=build-gpu/app/octrace; points the Vulkan
 #     loader at the NVIDIA ICD if B does not find a device without it;
 #   - links /work/main to the checkout (the tests' data paths);
@@ -15,7 +16,7 @@
 #     seconds, into $R/NAME.txt, its rc and gtest's PASSED/FAILED lines in $T;
 #   - gpu_finish: $R tarred into $OUT/results.tgz, $T printed.
 set -u
-rm -rf build-gpu; mkdir build-gpu; tar xzf .gpub/bin.tgz -C build-gpu
+rm -rf build-gpu; mkdir build-gpu; tar xf "$(ls .gpub/bin.txz .gpub/bin.tgz 2>/dev/null | head -1)" -C build-gpu
 for f in .gl/*.deb; do dpkg -x "$f" /; done; ldconfig
 export XDG_RUNTIME_DIR=/tmp
 A=build-gpu/octrace-base; B=build-gpu/app/octrace
