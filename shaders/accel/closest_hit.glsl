@@ -68,14 +68,17 @@ uint scene_sphere_index(uint i) { return SPHERES_IN_TREE_ORDER ? ref_at(i) : i; 
 float widened(float t) { return uintBitsToFloat(floatBitsToUint(t) + 1u); }
 
 // Tests sphere i and keeps it in `hit` if it is the nearest so far (an
-// exact tie: the lower index in the scene).
+// exact tie: the lower index in the scene). A miss (a negative
+// discriminant) leaves before anything else.
 // `from_prim`: the primitive the ray was spawned on (NO_PRIM for camera
-// rays); `into_from`: whether the ray enters it (see intersect_sphere).
+// rays); `into_from`: whether the ray enters it (see sphere_root).
 void test_sphere(Ray ray, uint i, uint from_prim, bool into_from, inout Hit hit) {
   if (WALK_STATS) ++walk_primitives;
-  bool self = i == from_prim;
   GpuSphere s = sphere_at(i);
-  float t = intersect_sphere(ray, s.center, s.radius, widened(hit.t), self && into_from, self && !into_from);
+  SphereQuadratic sq = sphere_quadratic(ray, s.center, s.radius);
+  if (sq.disc < 0.0) return;
+  bool self = i == from_prim;
+  float t = sphere_root(sq, widened(hit.t), self && into_from, self && !into_from);
   if (t < hit.t || (t == hit.t && t != INF && scene_sphere_index(i) < scene_sphere_index(hit.prim))) {
     hit.t = t;
     hit.prim = i;

@@ -26,7 +26,7 @@ struct Ray {
 // from the origin (at 1e5 the offset is 16 * 1.2e-7 * 1e5 = 0.2 units where
 // W&B's 256 ulps per coordinate jumped 2 units, across the contact gaps the
 // translated scenes have). Self-hits need no offset at all: each primitive's own rule removes
-// them exactly (for spheres the skip_near / skip_all rule of intersect_sphere).
+// them exactly (for spheres the skip_near / skip_all rule of sphere_root).
 vec3 offset_ray_origin(vec3 p, vec3 n, float t) {
   const float OFFSET_ULPS = 8.0;
   float scale = max(max(abs(p.x), abs(p.y)), abs(p.z)) + t;

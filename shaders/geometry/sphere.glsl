@@ -12,21 +12,38 @@
 // roots come from q = b + sign(b) sqrt(disc) as c/q and q (no cancellation
 // of b against sqrt(disc)). `dir` is unit length, so a = 1.
 //
-// Returns the nearest root in (0, t_max), or INF. `skip_near` drops the near
-// root: the ray starts on this sphere's surface (it was spawned there), so
-// the near root is the start point itself and only the far one, if the ray
-// goes inward, is a real hit. `skip_all` drops both: the ray leaves the
-// sphere outward and, a sphere being convex, cannot meet it again.
-float intersect_sphere(Ray ray, vec3 center, float radius, float t_max, bool skip_near, bool skip_all) {
+// In two halves, so that a test can leave on a miss (disc < 0) before
+// anything else (optimisation log 65: on the H200 the octree's walk 4-7%
+// faster, the BVH's 1%, a missed sphere no longer running the hit's update
+// and tie tests): sphere_quadratic gives the discriminant, sphere_root the
+// root.
+struct SphereQuadratic {
+  vec3 f;
+  float b;
+  float r2;
+  float disc;
+};
+
+SphereQuadratic sphere_quadratic(Ray ray, vec3 center, float radius) {
+  SphereQuadratic s;
+  s.f = ray.origin - center;
+  s.b = -dot(s.f, ray.dir);
+  vec3 l = s.f + s.b * ray.dir;
+  s.r2 = radius * radius;
+  s.disc = s.r2 - dot(l, l);
+  return s;
+}
+
+// For a quadratic whose disc >= 0: the nearest root in (0, t_max), or
+// INF. `skip_near` drops the near root: the ray starts on this sphere's
+// surface (it was spawned there), so the near root is the start point
+// itself and only the far one, if the ray goes inward, is a real hit.
+// `skip_all` drops both: the ray leaves the sphere outward and, a sphere
+// being convex, cannot meet it again.
+float sphere_root(SphereQuadratic s, float t_max, bool skip_near, bool skip_all) {
   if (skip_all) return INF;
-  vec3 f = ray.origin - center;
-  float b = -dot(f, ray.dir);
-  vec3 l = f + b * ray.dir;
-  float r2 = radius * radius;
-  float disc = r2 - dot(l, l);
-  if (disc < 0.0) return INF;
-  float c = dot(f, f) - r2;
-  float q = b + (b >= 0.0 ? sqrt(disc) : -sqrt(disc));
+  float c = dot(s.f, s.f) - s.r2;
+  float q = s.b + (s.b >= 0.0 ? sqrt(s.disc) : -sqrt(s.disc));
   float t0 = c / q;  // c/q and q are the two roots, in either order
   float t1 = q;
   float near_t = min(t0, t1);
