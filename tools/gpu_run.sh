@@ -14,6 +14,11 @@
 #     rounds, into $R/ab_NAME.md, one line per variant in $T;
 #   - suite NAME LIMIT: build-gpu/tests/NAME with a time limit of LIMIT
 #     seconds, into $R/NAME.txt, its rc and gtest's PASSED/FAILED lines in $T;
+#   - gpu_suites: the GPU suites at once (the hard cases in four shards,
+#     accel_test, render_test's tail-queue case; 240 s each at most) while
+#     the peer builds (.peers/karim, when carried), one line each in $T;
+#   - peer NAME [RENDER FLAGS]: tools/peer/compare.py side by side into
+#     $R/NAME, its two rows in $T;
 #   - gpu_finish: $R tarred into $OUT/results.tgz, $T printed.
 set -u
 rm -rf build-gpu; mkdir build-gpu; tar xf "$(ls .gpub/bin.txz .gpub/bin.tgz 2>/dev/null | head -1)" -C build-gpu
@@ -34,5 +39,26 @@ ab() {
 suite() {
   timeout "$2" "build-gpu/tests/$1" > "$R/$1.txt" 2>&1
   echo "$1 rc=$? $(grep -E '^\[  (PASSED|FAILED)' "$R/$1.txt" | tr '\n' ' ')" >> "$T"
+}
+gpu_suites() {
+  export OCTRACE_TEST_DEVICE=gpu
+  mkdir -p build-gpu/tests/tmp
+  local k
+  for k in 0 1 2 3; do
+    GTEST_TOTAL_SHARDS=4 GTEST_SHARD_INDEX=$k timeout 240 build-gpu/tests/hardcases_test > "$R/hardcases_$k.txt" 2>&1 &
+  done
+  timeout 240 build-gpu/tests/accel_test > "$R/accel_test.txt" 2>&1 &
+  timeout 240 build-gpu/tests/render_test --gtest_filter='*TailQueue*' > "$R/render_test.txt" 2>&1 &
+  [ -d .peers/karim ] && (cd .peers/karim && ./build.sh > "$R/peer_build.log" 2>&1) &
+  wait
+  for k in 0 1 2 3; do echo "hardcases shard $k: $(grep -E '^\[  (PASSED|FAILED)' "$R/hardcases_$k.txt" | tr '\n' ' ')" >> "$T"; done
+  echo "accel_test: $(grep -E '^\[  (PASSED|FAILED)' "$R/accel_test.txt" | tr '\n' ' ')" >> "$T"
+  echo "render_test tail: $(grep -E '^\[  (PASSED|FAILED)' "$R/render_test.txt" | tr '\n' ' ')" >> "$T"
+  echo "suites done at $(date -u +%T)" >> "$T"
+}
+peer() {
+  local name=$1; shift
+  timeout 70 python3 tools/peer/compare.py --peer .peers/karim --octrace "$B" --out "$R/$name" ${1:+--octrace-args "$*"} > "$R/$name.log" 2>&1
+  echo "$name rc=$?: $(grep -E '\| (CUDA|octrace)' "$R/$name/peer_compare.md" | tr '\n' ' ')" >> "$T"
 }
 gpu_finish() { tar czf "$OUT/results.tgz" -C /tmp res; cat "$T"; }
