@@ -302,7 +302,8 @@ json device_json(const DeviceInfo& d) {
             {"type", d.type},             {"driver", d.driver},
             {"api_version", d.api_version}, {"software", d.software},
             {"shader_float16", d.shader_float16}, {"storage_buffer_16bit_access", d.storage_16bit},
-            {"fp16_variant", d.supports_fp16()}, {"pipeline_robustness", d.pipeline_robustness}};
+            {"fp16_variant", d.supports_fp16()}, {"pipeline_robustness", d.pipeline_robustness},
+            {"resident_threads", d.resident_threads}};
   for (Precision p : kPrecisions) {
     auto unmet = unmet_requirements(d, requirements_of(p));
     j["variants"][precision_name(p)] = unmet.empty();
@@ -835,6 +836,10 @@ int cmd_devices(bool as_json) {
     std::printf("   driver    %s, Vulkan %s\n", d.driver.c_str(), d.api_version.c_str());
     std::printf("   features  shaderFloat16 %s, storageBuffer16BitAccess %s\n", d.shader_float16 ? "yes" : "no",
                 d.storage_16bit ? "yes" : "no");
+    if (d.resident_threads > 0)
+      std::printf("   resident  %llu threads at once (--tail-fill's auto)\n", (unsigned long long)d.resident_threads);
+    else
+      std::printf("   resident  threads at once unknown (--tail-fill's auto: off)\n");
     const auto& picks = auto_picks[d.index];
     for (Precision p : kPrecisions) {
       auto unmet = unmet_requirements(d, requirements_of(p));

@@ -470,7 +470,7 @@ TEST(Cli, DevicesListsLavapipeWithFp16Support) {
 TEST(Cli, DevicesSaysWhichVariantsEachDeviceRuns) {
   RunResult r = run_octrace("devices");
   ASSERT_EQ(r.code, 0) << r.output;
-  for (const char* line : {"   fp32      ", "   fp16      ", "   fp16-all  "})
+  for (const char* line : {"   fp32      ", "   fp16      ", "   fp16-all  ", "   resident  "})
     EXPECT_NE(r.output.find(line), std::string::npos) << line << " missing in " << r.output;
   const std::string picked = "fp32      yes, picked by --device auto";
   auto first = r.output.find(picked);
@@ -478,7 +478,8 @@ TEST(Cli, DevicesSaysWhichVariantsEachDeviceRuns) {
   EXPECT_EQ(r.output.find(picked, first + 1), std::string::npos) << r.output;
   r = run_octrace("devices --json");
   ASSERT_EQ(r.code, 0) << r.output;
-  for (const char* key : {"\"variants\"", "\"unmet\"", "\"auto_picks\"", "\"fp16-all\"", "\"fp16_variant\""})
+  for (const char* key : {"\"variants\"", "\"unmet\"", "\"auto_picks\"", "\"fp16-all\"", "\"fp16_variant\"",
+                          "\"resident_threads\""})
     EXPECT_NE(r.output.find(key), std::string::npos) << key << " missing in " << r.output;
 }
 
