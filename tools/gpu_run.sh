@@ -36,9 +36,11 @@ ab() {
   timeout ${AB_TIMEOUT:-90} python3 tools/ab_render.py --octrace "$B" --rounds 5 --render "$*" "${V[@]}" --out "$R/ab_$name.md" > "$R/ab_$name.log" 2>&1
   echo "$name rc=$?: $(grep -E "^\| ($labels) " "$R/ab_$name.md" | cut -d'|' -f2,5,6,7,9 | tr '\n' ' ')" >> "$T"
 }
+# gtest's PASSED/FAILED lines of a test's output FILE, on one line.
+gtest_result() { grep -E '^\[  (PASSED|FAILED)' "$1" | tr '\n' ' '; }
 suite() {
   timeout "$2" "build-gpu/tests/$1" > "$R/$1.txt" 2>&1
-  echo "$1 rc=$? $(grep -E '^\[  (PASSED|FAILED)' "$R/$1.txt" | tr '\n' ' ')" >> "$T"
+  echo "$1 rc=$? $(gtest_result "$R/$1.txt")" >> "$T"
 }
 gpu_suites() {
   export OCTRACE_TEST_DEVICE=gpu
@@ -51,9 +53,9 @@ gpu_suites() {
   timeout 240 build-gpu/tests/render_test --gtest_filter='*TailQueue*' > "$R/render_test.txt" 2>&1 &
   [ -d .peers/karim ] && (cd .peers/karim && ./build.sh > "$R/peer_build.log" 2>&1) &
   wait
-  for k in 0 1 2 3; do echo "hardcases shard $k: $(grep -E '^\[  (PASSED|FAILED)' "$R/hardcases_$k.txt" | tr '\n' ' ')" >> "$T"; done
-  echo "accel_test: $(grep -E '^\[  (PASSED|FAILED)' "$R/accel_test.txt" | tr '\n' ' ')" >> "$T"
-  echo "render_test tail: $(grep -E '^\[  (PASSED|FAILED)' "$R/render_test.txt" | tr '\n' ' ')" >> "$T"
+  for k in 0 1 2 3; do echo "hardcases shard $k: $(gtest_result "$R/hardcases_$k.txt")" >> "$T"; done
+  echo "accel_test: $(gtest_result "$R/accel_test.txt")" >> "$T"
+  echo "render_test tail: $(gtest_result "$R/render_test.txt")" >> "$T"
   echo "suites done at $(date -u +%T)" >> "$T"
 }
 peer() {
