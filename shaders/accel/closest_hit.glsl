@@ -126,8 +126,22 @@ void test_instance_triangle(Ray oray, RayShear osh, InstanceRef ir, uint local, 
   uint i = ir.first_triangle + local;
   if (WALK_STATS) ++walk_primitives;
   GpuTriangle tri = triangle_at(i);
-  vec3 b;
-  float t = intersect_triangle(oray.origin, osh, tri, widened(hit.t), id == from_prim, b);
+  // Both faces are hit here (the material decides what a back face does,
+  // below). Each miss returns at once: a ray spawned on the triangle cannot
+  // meet the plane it leaves again; the watertight edge test; t = T / det
+  // outside (0, t_max), compared without dividing where the sign of det
+  // flips the inequalities. The division and the update and tie tests run
+  // for hits only (optimisation log 66: the engine 3-5% faster on the H200,
+  // the meshes 13-16% on lavapipe; the same test as a function returning a
+  // bool was not faster on the engine there).
+  if (id == from_prim) return;
+  vec3 uvw;
+  float T, det;
+  if (!triangle_edges(oray.origin, osh, tri.v0, tri.v1, tri.v2, uvw, T, det)) return;
+  float t_max = widened(hit.t);
+  if (det > 0.0 ? (T <= 0.0 || T >= t_max * det) : (T >= 0.0 || T <= t_max * det)) return;
+  vec3 b = uvw / det;
+  float t = T / det;
   if (t < hit.t || (t == hit.t && t != INF && id < hit.prim)) {
     // glTF's single-sided materials (doubleSided false): the back face (the
     // side the winding's normal points away from; the same side shading

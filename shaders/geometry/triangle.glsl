@@ -64,24 +64,6 @@ bool triangle_edges(vec3 origin, RayShear sh, vec3 v0, vec3 v1, vec3 v2, out vec
   return true;
 }
 
-// The nearest hit in (0, t_max), or INF. Both faces are hit (the material
-// decides what a back face does). A ray spawned on the triangle (`skip`)
-// cannot meet the plane it leaves again.
-// `b`: the hit's barycentrics of v0, v1, v2 (what triangle_surface works
-// out again), for the alpha test.
-float intersect_triangle(vec3 origin, RayShear sh, GpuTriangle tri, float t_max, bool skip, out vec3 b) {
-  b = vec3(0.0);
-  if (skip) return INF;
-  vec3 uvw;
-  float T, det;
-  if (!triangle_edges(origin, sh, tri.v0, tri.v1, tri.v2, uvw, T, det)) return INF;
-  // t = T / det in (0, t_max), compared without dividing where the sign of
-  // det flips the inequalities.
-  if (det > 0.0 ? (T <= 0.0 || T >= t_max * det) : (T >= 0.0 || T <= t_max * det)) return INF;
-  b = uvw / det;
-  return T / det;
-}
-
 // Object-space normal n of instance g in world space: the transpose of the
 // world-to-object 3x3 (the inverse transpose of the placement), unnormalised.
 vec3 normal_to_world(GpuInstance g, vec3 n) {
