@@ -10,8 +10,11 @@
 #   - R=/tmp/res for raw results, T=$OUT/summary.txt started with the date,
 #     build-gpu/COMMIT and the GPU; S = the goals' render settings;
 #   - ab NAME FLAGS...: tools/ab_render.py of the variants in the array V
-#     (set by the script: V=(--variant base=BIN=$A --variant new=)), 5
-#     rounds, into $R/ab_NAME.md, one line per variant in $T;
+#     (set by the script: V=(--variant base=BIN=$A --variant new=)),
+#     AB_ROUNDS rounds (5 unless set), into $R/ab_NAME.md, one line per
+#     variant in $T;
+#   - same_image LABEL BIN1 BIN2 FLAGS...: renders FLAGS with both
+#     binaries and says in $T whether the two PFM files are identical;
 #   - suite NAME LIMIT: build-gpu/tests/NAME with a time limit of LIMIT
 #     seconds, into $R/NAME.txt, its rc and gtest's PASSED/FAILED lines in $T;
 #   - gpu_suites: the GPU suites at once (the hard cases in four shards,
@@ -33,8 +36,14 @@ S="--size 1200x800 --spp 10 --depth 50 --device gpu"
 ab() {
   local name=$1; shift
   local labels; labels=$(printf '%s\n' "${V[@]}" | grep -v '^--variant$' | sed 's/=.*//' | paste -sd'|')
-  timeout ${AB_TIMEOUT:-90} python3 tools/ab_render.py --octrace "$B" --rounds 5 --render "$*" "${V[@]}" --out "$R/ab_$name.md" > "$R/ab_$name.log" 2>&1
+  timeout ${AB_TIMEOUT:-90} python3 tools/ab_render.py --octrace "$B" --rounds ${AB_ROUNDS:-5} --render "$*" "${V[@]}" --out "$R/ab_$name.md" > "$R/ab_$name.log" 2>&1
   echo "$name rc=$?: $(grep -E "^\| ($labels) " "$R/ab_$name.md" | cut -d'|' -f2,5,6,7,9 | tr '\n' ' ')" >> "$T"
+}
+same_image() {
+  local label=$1 one=$2 two=$3; shift 3
+  "$one" render "$@" -q -o "$R/same_1.pfm"; "$two" render "$@" -q -o "$R/same_2.pfm"
+  cmp -s "$R/same_1.pfm" "$R/same_2.pfm" && echo "$label identical: $*" >> "$T" || echo "$label DIFFERENT: $*" >> "$T"
+  rm -f "$R/same_1.pfm" "$R/same_2.pfm"
 }
 # gtest's PASSED/FAILED lines of a test's output FILE, on one line.
 gtest_result() { grep -E '^\[  (PASSED|FAILED)' "$1" | tr '\n' ' '; }
