@@ -110,6 +110,17 @@ std::string scene_summary(const Scene& scene) {
   return out;
 }
 
+// Whether some mesh is placed more than once (--instancing decides what the device stores of it).
+bool shares_meshes(const Scene& scene) { return instanced_triangle_count(scene) > unique_triangle_count(scene); }
+
+// What --instancing comes to for this scene: bake (every instance in world
+// space) or keep (shared meshes stored once).
+Instancing resolved_instancing(const Scene& scene, const RenderSettings& settings) {
+  return bakes_every_instance(settings.octree.instancing, unique_triangle_count(scene), instanced_triangle_count(scene))
+             ? Instancing::Bake
+             : Instancing::Keep;
+}
+
 // Parses "WxH": two decimal integers; values beyond int range are reported
 // as too large rather than wrapped.
 void parse_size(const std::string& text, RenderSettings& s) {
@@ -133,6 +144,7 @@ struct RenderOptions {
   std::string tail_step = "auto";
   std::string tail_fill = "auto";
   std::string bvh_sphere_order = "auto";
+  std::string instancing = "auto";
   RenderSettings settings;
   std::string device = "auto";
   bool validation = false;
@@ -162,6 +174,11 @@ struct RenderOptions {
                    "BVH (--accel bvh) over spheres alone: the device holds the spheres in the tree's order (a leaf "
                    "tests its spheres without reading its references) or the scene's; auto: the tree's on a GPU, "
                    "the scene's on a CPU device; same image, other speed")
+        ->capture_default_str();
+    cmd.add_option("--instancing", instancing,
+                   "Meshes placed several times: keep (stored once, walked in object space), bake (a world-space "
+                   "copy per placement: faster with the octree, more memory), auto (bake where that at most "
+                   "doubles the stored triangles and adds at most 2^20)")
         ->capture_default_str();
     cmd.add_option("--size", size, "Image size WIDTHxHEIGHT")->capture_default_str();
     cmd.add_option("--spp", settings.spp, "Samples (passes) per pixel")->capture_default_str();
@@ -240,6 +257,7 @@ struct RenderOptions {
       throw SettingError("effects", ": expected auto or all, got \"" + effects + "\"");
     s.all_effects = effects == "all";
     s.octree.bvh_sphere_order = parse_sphere_order(bvh_sphere_order);
+    s.octree.instancing = parse_instancing(instancing);
     if (nee != "on" && nee != "off") throw SettingError("nee", ": expected on or off, got \"" + nee + "\"");
     s.nee = nee == "on";
     if (octant_culling != "on" && octant_culling != "off")
@@ -271,6 +289,7 @@ std::string message_for_cli(const SettingError& e) {
       {"octree.max_refs", "--octree-refs"},
       {"octree.bvh_width", "--bvh-width"},
       {"octree.bvh_sphere_order", "--bvh-sphere-order"},
+      {"octree.instancing", "--instancing"},
       {"precision", "--precision"},
       {"accel", "--accel"},
       {"effects", "--effects"},
@@ -643,6 +662,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
                          {"instances", scene.instances.size()},
                          {"triangles_unique", unique_triangle_count(scene)},
                          {"triangles_instanced", instanced_triangle_count(scene)},
+                         {"instancing", instancing_name(resolved_instancing(scene, settings))},
                          {"materials", scene.materials.size()},
                          {"textures", scene.textures.size()}}},
               {"width", settings.width},
@@ -737,7 +757,11 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
     std::cout << j.dump(2) << "\n";
   } else if (!quiet) {
     std::printf("device    %s (%s)\n", ctx.info.name.c_str(), ctx.info.type.c_str());
-    std::printf("scene     %s: %s\n", scene_opts.describe().c_str(), scene_summary(scene).c_str());
+    std::printf("scene     %s: %s%s\n", scene_opts.describe().c_str(), scene_summary(scene).c_str(),
+                shares_meshes(scene) ? (resolved_instancing(scene, settings) == Instancing::Bake
+                                            ? "; every instance baked into world space (--instancing)"
+                                            : "; shared meshes stored once (--instancing)")
+                                     : "");
     std::printf("image     %dx%d, %u spp, depth %u, sample seed %u, %s\n", settings.width, settings.height,
                 settings.spp, settings.bounce_limit, settings.sample_seed, precision_name(settings.precision));
     if (settings.accel == Accel::Octree)
@@ -898,7 +922,7 @@ int main(int argc, char** argv) {
     return code;
   };
 #endif
-  CLI::App app{"octrace: a Vulkan compute path tracer for sphere scenes"};
+  CLI::App app{"octrace: a Vulkan compute path tracer (spheres, glTF meshes, JSON scenes)"};
   app.require_subcommand(1);
   // A flag given twice takes its last value, as scripts that append flags expect.
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
@@ -980,7 +1004,7 @@ int main(int argc, char** argv) {
   std::vector<float> bench_radii{0.1f};
   std::vector<std::string> bench_accels{"octree", "brute"}, bench_precisions{"fp32"};
   std::string bench_size;
-  auto* bench_cmd = app.add_subcommand("bench", "Render time against sphere count per accel (the study's experiment)");
+  auto* bench_cmd = app.add_subcommand("bench", "Render time per accel against sphere count (the study's experiment) or of scene files (--scene)");
   bench_cmd->add_option("--spheres", bench_spheres, "Sphere counts (comma-separated)")->delimiter(',')
       ->capture_default_str();
   bench_cmd->add_option("--radius", bench_radii, "Radii of the small spheres (comma-separated)")->delimiter(',')
@@ -1002,6 +1026,11 @@ int main(int argc, char** argv) {
   std::string bench_sphere_order = "auto";
   bench_cmd->add_option("--bvh-sphere-order", bench_sphere_order,
                         "BVH over spheres alone: the spheres in the tree's order or the scene's: auto | tree | scene")
+      ->capture_default_str();
+  std::string bench_instancing = "auto";
+  bench_cmd->add_option("--instancing", bench_instancing,
+                        "Meshes placed several times: keep | bake | auto (bake where that at most doubles the "
+                        "stored triangles)")
       ->capture_default_str();
   bench_cmd->add_option("--repeat", bench.repeat, "Timed runs per configuration, after the warm-up")
       ->capture_default_str();
@@ -1075,6 +1104,7 @@ int main(int argc, char** argv) {
       for (const auto& a : bench_accels) bench.accels.push_back(parse_accel(a));
       for (const auto& p : bench_precisions) bench.precisions.push_back(parse_precision(p));
       bench.settings.octree.bvh_sphere_order = parse_sphere_order(bench_sphere_order);
+      bench.settings.octree.instancing = parse_instancing(bench_instancing);
       if (!bench_size.empty()) {
         parse_size(bench_size, bench.settings);
         bench.size_given = true;

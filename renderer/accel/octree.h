@@ -24,6 +24,13 @@ namespace octrace {
 // in the tree's reference order or the scene's; Auto, the tree's on a GPU and
 // the scene's on a CPU device (optimisation log 61). The image is the same.
 enum class SphereOrder { Auto, Tree, Scene };
+// Which placements of a scene's meshes the device bakes into one
+// world-space mesh (OctreeParams::instancing; render/gpu_scene.h
+// bake_meshes): Keep, those of meshes placed once (the others stay
+// instanced: stored once, walked in object space); Bake, every one; Auto,
+// every one where that at most doubles the triangles stored and adds at
+// most kAutoBakeExtraTriangles, else Keep (optimisation log 68).
+enum class Instancing { Auto, Keep, Bake };
 
 struct OctreeParams {
   uint32_t leaf_size = 10;  // a node with more references than this splits ...
@@ -41,6 +48,10 @@ struct OctreeParams {
   // The order a BVH over spheres alone has the device hold the spheres in
   // (`--bvh-sphere-order`).
   SphereOrder bvh_sphere_order = SphereOrder::Auto;
+  // What the device stores of shared meshes (`--instancing`). Not a
+  // property of the tree: it decides which triangles the trees are built
+  // over, the same for every structure.
+  Instancing instancing = Instancing::Auto;
 };
 
 struct OctreeStats {

@@ -98,7 +98,7 @@ uint64_t texel_count(const Scene& scene) {
 }  // namespace
 
 // The octree or BVH (`accel`: both fill the same arrays) of the device's
-// view of the scene (bake_single_use_meshes applied), with the meshes' roots
+// view of the scene (device_meshes applied), with the meshes' roots
 // filled in and its statistics and build time in octree.stats, which
 // upload_scene_octree puts in `g` with the arrays.
 struct SceneOctree {
@@ -684,9 +684,16 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   if (tree) upload_scene_octree(g, ctx, std::move(*tree), accel);
 }
 
-Scene bake_single_use_meshes(const Scene& scene) {
+Scene device_meshes(const Scene& scene, Instancing instancing) {
+  return bake_single_use_meshes(
+      scene, bakes_every_instance(instancing, unique_triangle_count(scene), instanced_triangle_count(scene)));
+}
+
+Scene bake_single_use_meshes(const Scene& scene, bool every_instance) {
   std::vector<uint32_t> uses(scene.meshes.size(), 0);
   for (const Instance& inst : scene.instances) ++uses[inst.mesh];
+  // Baking every instance: each counts as the one use of its own copy.
+  if (every_instance) std::fill(uses.begin(), uses.end(), 1u);
   Scene out;
   out.camera = scene.camera;
   out.sky = scene.sky;
@@ -767,13 +774,13 @@ Scene bake_single_use_meshes(const Scene& scene) {
 void upload_octree(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel,
                    const OctreeParams& params) {
   if (scene.meshes.empty()) upload_octree_of(g, ctx, scene, accel, params);
-  else upload_octree_of(g, ctx, bake_single_use_meshes(scene), accel, params);
+  else upload_octree_of(g, ctx, device_meshes(scene, params.instancing), accel, params);
 }
 
 void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel, const OctreeParams& params,
                   uint64_t reserved_bytes) {
   if (scene.meshes.empty()) upload_scene_of(g, ctx, scene, accel, params, reserved_bytes);
-  else upload_scene_of(g, ctx, bake_single_use_meshes(scene), accel, params, reserved_bytes);
+  else upload_scene_of(g, ctx, device_meshes(scene, params.instancing), accel, params, reserved_bytes);
 }
 
 void check_precision(const Scene& scene, Precision precision) {

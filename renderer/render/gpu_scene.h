@@ -66,8 +66,15 @@ struct GpuScene {
 // gains nothing from its own octree (and costs a transform and a second
 // walk), so all of those are transformed into world space and baked into one
 // mesh, placed once with no transform; meshes placed several times stay
-// instanced. upload_scene and upload_octree apply it.
-Scene bake_single_use_meshes(const Scene& scene);
+// instanced. With `every_instance`, the placements of shared meshes are
+// baked too (a copy of the mesh for each), and the scene has no instance
+// left but the baked mesh's.
+Scene bake_single_use_meshes(const Scene& scene, bool every_instance = false);
+
+// The device's view of the scene's meshes (upload_scene and upload_octree
+// apply it): bake_single_use_meshes, every instance baked where
+// bakes_every_instance says so.
+Scene device_meshes(const Scene& scene, Instancing instancing);
 
 // Meshes are stored once, in object space (mesh order, then triangle order);
 // instances refer to them. Two levels of octree: the top over spheres and

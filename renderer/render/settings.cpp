@@ -35,6 +35,27 @@ SphereOrder parse_sphere_order(const std::string& name) {
   throw SettingError("octree.bvh_sphere_order", ": expected auto, tree or scene, got \"" + name + "\"");
 }
 
+const char* instancing_name(Instancing i) {
+  switch (i) {
+    case Instancing::Keep: return "keep";
+    case Instancing::Bake: return "bake";
+    case Instancing::Auto: break;
+  }
+  return "auto";
+}
+
+Instancing parse_instancing(const std::string& name) {
+  for (Instancing i : {Instancing::Auto, Instancing::Keep, Instancing::Bake})
+    if (name == instancing_name(i)) return i;
+  throw SettingError("octree.instancing", ": expected auto, keep or bake, got \"" + name + "\"");
+}
+
+bool bakes_every_instance(Instancing instancing, uint64_t stored, uint64_t placed) {
+  if (instancing != Instancing::Auto) return instancing == Instancing::Bake;
+  const uint64_t extra = placed > stored ? placed - stored : 0;
+  return extra <= stored && extra <= kAutoBakeExtraTriangles;
+}
+
 const char* precision_name(Precision p) {
   switch (p) {
     case Precision::FP16: return "fp16";

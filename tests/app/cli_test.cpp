@@ -111,6 +111,7 @@ const BadInput BAD_INPUTS[] = {
     {"bvh_width_eight", "--bvh-width 8", "--bvh-width: must be 0 (auto), 2 or 4, got 8"},
     {"bvh_sphere_order_unknown", "--accel bvh --bvh-sphere-order random",
      "--bvh-sphere-order: expected auto, tree or scene, got \"random\""},
+    {"instancing_unknown", "--instancing copy", "--instancing: expected auto, keep or bake, got \"copy\""},
     {"octree_refs_zero", "--octree-refs 0", "--octree-refs: must be in 1..64, got 0"},
     {"octree_refs_large", "--octree-refs 100", "--octree-refs: must be in 1..64, got 100"},
     {"fp16_radiance_overflow", "--precision fp16", "materials[0]: radiance above 65504",
@@ -313,20 +314,31 @@ TEST(Cli, TexturedGltfRenders) {
 }
 
 // `render --scene model.glb` loads the file and reports what it holds.
+// The summary says what the device stores of a shared mesh (--instancing):
+// auto bakes one placed twice (twice the stored triangles), keep does not.
 TEST(Cli, GltfSceneSummary) {
   octrace::test::GltfBuilder b = octrace::test::quad_gltf();
   b.add("nodes", {{"mesh", 0}, {"translation", {2, 0, 0}}});
   b.set_scene({0, 1});
   const std::string path = b.write(tmp("gltf/Two Quads.GLB"));
+  const std::string summary = "scene     " + path + ": 0 spheres, 1 meshes, 2 instances, 4 triangles (2 unique), 1 materials";
   RunResult r = run_octrace("render --size 8x8 --spp 1 --scene '" + path + "' --out " + tmp("gltf_summary.png"));
   ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find("scene     " + path + ": 0 spheres, 1 meshes, 2 instances, 4 triangles (2 unique), 1 materials\n"),
-            std::string::npos) << r.output;
-  r = run_octrace("render --size 8x8 --spp 1 --json --scene '" + path + "' --out " + tmp("gltf_summary.png"));
+  EXPECT_NE(r.output.find(summary + "; every instance baked into world space (--instancing)\n"), std::string::npos)
+      << r.output;
+  r = run_octrace("render --size 8x8 --spp 1 --instancing keep --scene '" + path + "' --out " + tmp("gltf_summary.png"));
   ASSERT_EQ(r.code, 0) << r.output;
-  for (const char* key : {"\"meshes\": 1", "\"instances\": 2", "\"triangles_unique\": 2", "\"triangles_instanced\": 4",
-                          "\"spheres\": 0"})
-    EXPECT_NE(r.output.find(key), std::string::npos) << key << " missing in " << r.output;
+  EXPECT_NE(r.output.find(summary + "; shared meshes stored once (--instancing)\n"), std::string::npos) << r.output;
+  for (const char* instancing : {"auto", "keep", "bake"}) {
+    r = run_octrace(std::string("render --size 8x8 --spp 1 --json --instancing ") + instancing + " --scene '" + path +
+                    "' --out " + tmp("gltf_summary.png"));
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (const char* key : {"\"meshes\": 1", "\"instances\": 2", "\"triangles_unique\": 2",
+                            "\"triangles_instanced\": 4", "\"spheres\": 0"})
+      EXPECT_NE(r.output.find(key), std::string::npos) << key << " missing in " << r.output;
+    EXPECT_EQ(json_of(r.output)["scene"]["instancing"], std::string(instancing) == "keep" ? "keep" : "bake")
+        << instancing << ": " << r.output;
+  }
 }
 
 // `bench --scene` times scene files (a glTF and a JSON one) per accel.

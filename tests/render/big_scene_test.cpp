@@ -33,8 +33,10 @@ class ScopedEnv {
   const char* name_;
 };
 
-RenderResult render_small(const Scene& scene, Accel accel, Precision precision) {
+RenderResult render_small(const Scene& scene, Accel accel, Precision precision,
+                          Instancing instancing = Instancing::Auto) {
   RenderSettings s;
+  s.octree.instancing = instancing;
   s.width = 32;
   s.height = 24;
   s.spp = 2;
@@ -47,13 +49,13 @@ RenderResult render_small(const Scene& scene, Accel accel, Precision precision) 
 // Renders `scene` whole and split into parts of at most `max_bytes`, and
 // expects the same image, bit for bit, and `parts` parts.
 void expect_split_renders_the_same(const Scene& scene, Accel accel, Precision precision, uint64_t max_bytes,
-                                   uint32_t parts) {
+                                   uint32_t parts, Instancing instancing = Instancing::Auto) {
   SCOPED_TRACE(std::string(accel_name(accel)) + " " + precision_name(precision));
-  const RenderResult whole = render_small(scene, accel, precision);
+  const RenderResult whole = render_small(scene, accel, precision, instancing);
   RenderResult split;
   {
     ScopedEnv limit("OCTRACE_TEST_MAX_BUFFER_BYTES", std::to_string(max_bytes));
-    split = render_small(scene, accel, precision);
+    split = render_small(scene, accel, precision, instancing);
   }
   EXPECT_EQ(whole.buffer_parts, 0u);
   EXPECT_EQ(split.buffer_parts, parts);
@@ -79,7 +81,8 @@ TEST_F(BigSceneTest, SplitSpheresRenderAsInOneBuffer) {
 }
 
 // Meshes: the 2CylinderEngine (Debian's assimp-testmodels) has instanced
-// meshes with their own octrees and vertex normals: in parts of 1 MiB, its
+// meshes (kept so: --instancing keep) with their own octrees and vertex
+// normals: in parts of 1 MiB, its
 // 75,730 triangles and their normals take 5 parts each (16,384 of 48 bytes
 // a part), its 63,158 nodes and 392,906 references 2 each, its 34
 // materials one in each precision. BoxTextured has texture coordinates: in
@@ -89,7 +92,8 @@ TEST_F(BigSceneTest, SplitSpheresRenderAsInOneBuffer) {
 TEST_F(BigSceneTest, SplitMeshesRenderAsInOneBuffer) {
   const Scene engine =
       load_gltf_scene("/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb");
-  expect_split_renders_the_same(engine, Accel::Octree, Precision::FP32, 1 << 20, 5 + 5 + 2 + 2 + 1 + 1);
+  expect_split_renders_the_same(engine, Accel::Octree, Precision::FP32, 1 << 20, 5 + 5 + 2 + 2 + 1 + 1,
+                                Instancing::Keep);
   const Scene box = load_gltf_scene("/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf");
   expect_split_renders_the_same(box, Accel::Octree, Precision::FP32, 256, 3 + 3 + 2 + 1 + 1 + 1 + 1);
   expect_split_renders_the_same(box, Accel::Brute, Precision::FP32, 256, 3 + 3 + 2 + 1 + 1);

@@ -112,6 +112,49 @@ TEST(GpuScene, MeshesPlacedOnceAreBakedIntoWorldSpace) {
   }
 }
 
+// Baking every instance: each placement of the shared mesh becomes a
+// world-space copy in the one baked mesh, in instance order (mirrored ones
+// turned outward), and nothing stays instanced.
+TEST(GpuScene, EveryInstanceBakedIsACopyPerPlacement) {
+  Scene s = two_placements();  // mesh 0 placed twice
+  test::place(s, test::icosphere(1, 0), glm::translate(glm::mat4(1.0f), glm::vec3(0, 5, 0)));
+  const Scene b = bake_single_use_meshes(s, true);
+  ASSERT_EQ(b.meshes.size(), 1u);
+  ASSERT_EQ(b.instances.size(), 1u);
+  EXPECT_EQ(b.instances[0].transform, glm::mat4(1.0f));
+  EXPECT_EQ(unique_triangle_count(b), instanced_triangle_count(s));
+  EXPECT_EQ(instanced_triangle_count(b), instanced_triangle_count(s));
+  const Mesh& baked = b.meshes[0];
+  const size_t per_copy = s.meshes[0].triangle_count();
+  for (size_t i = 0; i < 2; ++i) {
+    const glm::vec3 center(s.instances[i].transform[3]);
+    for (size_t k = 0; k < per_copy; ++k) {
+      const uint32_t* v = &baked.indices[3 * (i * per_copy + k)];
+      const glm::vec3 a = baked.positions[v[0]], c1 = baked.positions[v[1]], c2 = baked.positions[v[2]];
+      ASSERT_GT(glm::dot(glm::cross(c1 - a, c2 - a), (a + c1 + c2) / 3.0f - center), 0.0f)
+          << "copy " << i << ", triangle " << k << " faces inward";
+    }
+  }
+}
+
+// Instancing::Auto bakes every instance where the copies at most double the
+// stored triangles and add at most kAutoBakeExtraTriangles; Keep and Bake
+// do as they say; a scene without shared meshes has nothing to decide.
+TEST(GpuScene, AutoInstancingBakesWhereTheCopiesAreFew) {
+  EXPECT_TRUE(bakes_every_instance(Instancing::Auto, 75730, 121496));  // the engine: 1.6x
+  EXPECT_TRUE(bakes_every_instance(Instancing::Auto, 100, 200));       // twice: at the limit
+  EXPECT_FALSE(bakes_every_instance(Instancing::Auto, 100, 201));
+  EXPECT_FALSE(bakes_every_instance(Instancing::Auto, 70000, 400 * 70000));  // issue 11's 400 instances
+  EXPECT_TRUE(bakes_every_instance(Instancing::Auto, 10'000'000, 10'000'000 + kAutoBakeExtraTriangles));
+  EXPECT_FALSE(bakes_every_instance(Instancing::Auto, 10'000'000, 10'000'001 + kAutoBakeExtraTriangles));
+  EXPECT_TRUE(bakes_every_instance(Instancing::Auto, 0, 0));
+  EXPECT_FALSE(bakes_every_instance(Instancing::Keep, 100, 101));
+  EXPECT_TRUE(bakes_every_instance(Instancing::Bake, 70000, 400 * 70000));
+  const Scene s = two_placements();
+  EXPECT_EQ(device_meshes(s, Instancing::Keep).instances.size(), 2u);
+  EXPECT_EQ(device_meshes(s, Instancing::Auto).instances.size(), 1u);
+}
+
 // Uvs follow their triangles into the baked mesh (mirrored ones too, whose
 // winding flips), and a mesh without uvs gets zeros beside one with them.
 TEST(GpuScene, UvsFollowTheirTrianglesIntoTheBakedMesh) {
