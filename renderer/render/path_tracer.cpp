@@ -46,6 +46,10 @@ struct PathTracer::State {
     if (settings.big_list != BigList::Auto) return settings.big_list == BigList::FirstLeaf;
     return ctx.info.software || !f.triangles;
   }
+  // SPEC_ONE_INSTANCE: the scene on the device is one mesh instance and no sphere.
+  bool one_instance() const {
+    return scene.values.sphere_count == 0 && scene.values.instance_count == 1;
+  }
   // RenderSettings::nearest_child for this device: whether the octree walk holds it.
   bool hold_nearest() const {
     if (settings.nearest_child != NearestChild::Auto) return settings.nearest_child == NearestChild::Held;
@@ -253,6 +257,7 @@ void PathTracer::State::create_stage(ComputePipeline& p, uint32_t stage, const u
                            {gpu::SPEC_BVH_TOP_WIDE, g.tree == Accel::Bvh && g.octree.bvh_top_width > 2},
                            {gpu::SPEC_BVH_MESH_WIDE, g.tree == Accel::Bvh && g.octree.bvh_mesh_width > 2},
                            {gpu::SPEC_SPHERES_IN_TREE_ORDER, g.octree.bvh_sphere_order},
+                           {gpu::SPEC_ONE_INSTANCE, one_instance()},
                            {gpu::SPEC_WALK_STATS, settings.walk_stats},
                            {gpu::SPEC_SKY, sky},
                            {gpu::SPEC_ANY_LIGHT, f.any_light},

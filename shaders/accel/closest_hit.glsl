@@ -241,6 +241,15 @@ void test_primitive_at(Ray ray, SlabRay sr, uint k, uint from_prim, bool into_fr
 #undef OCTREE_SLAB_MAKE
 #undef OCTREE_LEAF
 
+// A scene of one mesh instance and no sphere (SPEC_ONE_INSTANCE; every
+// glTF whose meshes are all baked into one): whatever the structure, the
+// top-level walk can only lead a ray to test_instance(ray, 0), with the
+// nearest hit still t_max (the octree holds the instance in its big list,
+// tested first; the BVH tests its box first, and a ray that misses the box
+// misses the mesh's root box too), so the queries call it at once: the
+// same hits, without the walk's set-up and its box tests.
+layout(constant_id = SPEC_ONE_INSTANCE) const bool ONE_INSTANCE = false;
+
 // The nearest hit before t_max (INF: anywhere). Alpha cut-outs and
 // back-face culling apply as to any ray (and to shadow rays: occluded).
 bool closest_hit_within(Ray ray, uint from_prim, bool into_from, float t_max, out Hit hit) {
@@ -249,6 +258,10 @@ bool closest_hit_within(Ray ray, uint from_prim, bool into_from, float t_max, ou
   hit.kind = PRIM_SPHERE;
   hit.inst = 0u;
   if (WALK_STATS) ++walk_queries;
+  if (ONE_INSTANCE) {
+    test_instance(ray, 0u, from_prim, hit);
+    return hit.prim != NO_PRIM;
+  }
   if (ACCEL == ACCEL_BRUTE) {
     if (HAS_SPHERES)
       for (uint i = 0; i < scene.sphere_count; ++i) test_sphere(ray, i, from_prim, into_from, hit);
@@ -312,6 +325,11 @@ bool occluded(Ray ray, uint from_prim, bool into_from, float t_max, uint skip) {
   hit.inst = 0u;
   shadow_skip = skip;
   if (WALK_STATS) ++walk_queries;
+  // Only a sphere is ever skipped (a sphere light's own), and there is none.
+  if (ONE_INSTANCE) {
+    test_instance(ray, 0u, from_prim, hit);
+    return hit.prim != NO_PRIM;
+  }
   if (ACCEL == ACCEL_BRUTE) {
     if (HAS_SPHERES)
       for (uint i = 0; i < scene.sphere_count && hit.prim == NO_PRIM; ++i)

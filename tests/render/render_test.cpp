@@ -448,6 +448,44 @@ TEST_F(RenderTest, InstancesRenderAsCopies) {
   }
 }
 
+// A scene that is one mesh instance and no sphere on the device (its meshes
+// all baked) is queried without the top-level walk (SPEC_ONE_INSTANCE,
+// accel/closest_hit.glsl): every query, shadow rays too, enters the
+// instance, and the image is the one the walk gives, bit for bit, with
+// either tree: the walk runs again once a tiny sphere far below the
+// scene, which no ray meets, is a second top-level primitive.
+TEST_F(RenderTest, OneInstanceIsQueriedWithoutTheTopLevelWalk) {
+  Scene one = test::furnace_scene();
+  one.sky.type = SkyType::Gradient;
+  one.materials = {test::lambertian({0.7f, 0.4f, 0.3f}), test::glass(1.5f)};
+  for (int i = 0; i < 3; ++i)
+    test::place(one, test::icosphere(2, uint32_t(i & 1), i == 1),
+                glm::translate(glm::mat4(1.0f), glm::vec3(1.2f * float(i - 1), 0.0f, 0.0f)) *
+                    glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)));
+  one.lights = {test::point_light({0.0f, 3.0f, 2.0f}, 20.0f)};
+  Scene walked = one;
+  walked.spheres = {{{0.0f, -1e4f, 0.0f}, 1e-3f, 0}};
+  for (Accel accel : {Accel::Octree, Accel::Bvh}) {
+    SCOPED_TRACE(accel_name(accel));
+    RenderSettings s;
+    s.width = 48;
+    s.height = 32;
+    s.spp = 4;
+    s.accel = accel;
+    s.walk_stats = true;
+    const RenderResult a = render(test::shared_context(), one, s);
+    const RenderResult b = render(test::shared_context(), walked, s);
+    EXPECT_EQ(a.walk.instances, a.walk.queries);  // camera, bounce and shadow rays alike
+    EXPECT_GT(a.walk.queries, a.rays);            // shadow rays were asked
+    if (accel == Accel::Bvh) EXPECT_LT(b.walk.instances, b.walk.queries);  // its walk tests the instance's box first
+    EXPECT_EQ(a.rays, b.rays);
+    ASSERT_EQ(a.mean.rgb.size(), b.mean.rgb.size());
+    EXPECT_EQ(std::memcmp(a.mean.rgb.data(), b.mean.rgb.data(), a.mean.rgb.size() * sizeof(float)), 0)
+        << "one instance: not the image of the top-level walk";
+    EXPECT_EQ(a.nonfinite_samples + b.nonfinite_samples, 0u);
+  }
+}
+
 // Every pixel gets exactly spp samples and none is NaN/Inf on the default scene.
 TEST_F(RenderTest, RtiowSceneIsClean) {
   RenderResult r = render_small(make_rtiow_scene({}), 3);
