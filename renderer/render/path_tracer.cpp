@@ -46,9 +46,12 @@ struct PathTracer::State {
     if (settings.big_list != BigList::Auto) return settings.big_list == BigList::FirstLeaf;
     return ctx.info.software || !f.triangles;
   }
-  // SPEC_ONE_INSTANCE: the scene on the device is one mesh instance and no sphere.
+  // SPEC_ONE_INSTANCE: the scene on the device is one mesh instance and no
+  // sphere. Not in the general pipeline (`--effects all`), which keeps the
+  // top-level walk as it keeps every effect: one pipeline for every scene,
+  // the one the tests compare the specialised ones with.
   bool one_instance() const {
-    return scene.values.sphere_count == 0 && scene.values.instance_count == 1;
+    return !settings.all_effects && scene.values.sphere_count == 0 && scene.values.instance_count == 1;
   }
   // RenderSettings::nearest_child for this device: whether the octree walk holds it.
   bool hold_nearest() const {

@@ -236,7 +236,8 @@ OCT_CONST(uint, SPEC_SPHERES_IN_TREE_ORDER, 33u);
 // Whether the scene on the device is one mesh instance and no sphere (a
 // glTF whose meshes were all baked: render/gpu_scene.h device_meshes): the
 // queries test that instance without the top-level walk
-// (accel/closest_hit.glsl). The image is the same either way.
+// (accel/closest_hit.glsl). The image is the same either way. Off in the
+// general pipeline (`--effects all`).
 OCT_CONST(uint, SPEC_ONE_INSTANCE, 34u);
 // Whether the walks count what they do (RenderSettings::walk_stats,
 // RenderStats.walk); off, the counting compiles out.
