@@ -394,14 +394,18 @@ void PathTracer::reconfigure(const Scene& scene, Accel accel, Precision precisio
 
 // Invocations per pixel for a dispatch of `count` samples (PassParams): the
 // setting, at most `count`, a power of two, and few enough that the workgroup
-// count stays within the guaranteed 65535. Auto (0): 8 for scenes with
-// triangles, 4 for spheres only. Measured on the H100 (docs/performance.md,
-// optimisation log): lanes cut the balloon from 31 ms to 11 ms (8) and 14 ms
-// (4), because light trapped in a closed mesh makes a few pixels' paths run
-// to the bounce limit; on the sphere fields 4 lanes cost nothing and 8 cost
-// 6-14% (a barrier per round for paths of even length).
-static uint32_t sample_lanes(uint32_t setting, bool triangles, uint32_t count, uint32_t height) {
-  uint32_t lanes = setting ? setting : triangles ? 8u : 4u;
+// count stays within the guaranteed 65535. Auto (0): 4, and 8 for scenes
+// with triangles rendered in whole paths (no tail queue: `staged` false).
+// Measured on the H100 (docs/performance.md, optimisation log), in whole
+// paths: lanes cut the balloon from 31 ms to 11 ms (8) and 14 ms (4),
+// because light trapped in a closed mesh makes a few pixels' paths run to
+// the bounce limit; on the sphere fields 4 lanes cost nothing and 8 cost
+// 6-14% (a barrier per round for paths of even length). With the tail
+// queue the long paths finish in the tail, and on the H200 4 lanes were
+// 1.8-5.2% faster than 8 on both meshes with both structures (optimisation
+// log 71).
+static uint32_t sample_lanes(uint32_t setting, bool triangles, bool staged, uint32_t count, uint32_t height) {
+  uint32_t lanes = setting ? setting : triangles && !staged ? 8u : 4u;
   while (lanes > 1 && (lanes > count || (height + gpu::WORKGROUP_SIZE / lanes - 1) / (gpu::WORKGROUP_SIZE / lanes) > 65535))
     lanes /= 2;
   return lanes;
@@ -443,7 +447,7 @@ void PathTracer::State::record_staged_passes(VkCommandBuffer cmd, gpu::PassParam
     pc.sample_index = first_sample + done;
     pc.sample_count = std::min(per_dispatch, count - done);
     pc.sample_lanes = s.sample_lanes_enabled()
-                          ? sample_lanes(s.settings.sample_lanes, s.scene_features.triangles, pc.sample_count, height)
+                          ? sample_lanes(s.settings.sample_lanes, s.scene_features.triangles, true, pc.sample_count, height)
                           : 1u;
     const uint32_t tile_height = gpu::WORKGROUP_SIZE / pc.sample_lanes;
     // The previous dispatch's tail and sum read the queue and the values.
@@ -497,7 +501,7 @@ void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, ui
     pc.sample_index = first_sample + done;
     pc.sample_count = std::min(per_dispatch, count - done);
     pc.sample_lanes = s.sample_lanes_enabled()
-                          ? sample_lanes(s.settings.sample_lanes, s.scene_features.triangles, pc.sample_count, height)
+                          ? sample_lanes(s.settings.sample_lanes, s.scene_features.triangles, false, pc.sample_count, height)
                           : 1u;
     // Spheres only: a dispatch whose samples do not fill its lanes' last
     // round takes the whole rounds, and the rest follows in a dispatch of
@@ -525,7 +529,7 @@ uint32_t PathTracer::first_batch() const {
 uint32_t PathTracer::full_lanes() const {
   const State& s = *state_;
   if (!s.sample_lanes_enabled()) return 1u;
-  return sample_lanes(s.settings.sample_lanes, s.scene_features.triangles, gpu::MAX_SAMPLE_LANES,
+  return sample_lanes(s.settings.sample_lanes, s.scene_features.triangles, s.staged(), gpu::MAX_SAMPLE_LANES,
                       uint32_t(s.settings.height));
 }
 

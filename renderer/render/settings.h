@@ -80,7 +80,8 @@ struct RenderSettings {
   // whatever the value; only the time changes (docs/performance.md).
   uint32_t samples_per_dispatch = 0;
   // Invocations that share a pixel's samples in a dispatch: 1, 2, 4 or 8; 0:
-  // auto (8 with triangles, else 4; render/path_tracer.cpp). The image is the
+  // auto (4; 8 with triangles in whole paths, without the tail queue;
+  // render/path_tracer.cpp). The image is the
   // same whatever the value (shaders/path_trace.comp).
   uint32_t sample_lanes = 0;
   // Octant culling in the octree walk (shaders/accel/octree_walk.glsl): a
