@@ -549,8 +549,17 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
     control.check_resume = [&](uint64_t hash) {
       CheckpointInfo current = now;
       current.scene_hash = hash;
-      if (std::string why = checkpoint_mismatch(resumed, current); !why.empty())
-        throw InputError(resume_prefix + ".accum: cannot resume: " + why);
+      std::string why = checkpoint_mismatch(resumed, current);
+      if (why.empty()) return;
+      // The device's triangles of a scene with shared meshes depend on
+      // --instancing: a state saved the other way has another scene's hash.
+      if (resumed.scene_hash != hash && shares_meshes(scene))
+        why += resolved_instancing(scene, settings) == Instancing::Bake
+                   ? " (its shared meshes are baked into world space now: a state saved with them stored once, "
+                     "or before --instancing existed, resumes with --instancing keep)"
+                   : " (its shared meshes are stored once now: a state saved with them baked resumes with "
+                     "--instancing bake)";
+      throw InputError(resume_prefix + ".accum: cannot resume: " + why);
     };
     resume = std::move(resumed_acc);
   }

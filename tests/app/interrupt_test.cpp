@@ -18,6 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "scene/gltf_builder.h"
 #include "test_util.h"
 
 namespace octrace {
@@ -185,6 +186,32 @@ TEST(Interrupt, StateOfAnotherRenderIsRefused) {
   r = run_octrace("render " + kScene + "--spp 1 --quiet --checkpoint 1 --out " + tmp("refused.png"));
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("--checkpoint: needs --state PREFIX"), std::string::npos) << r.output;
+}
+
+// A scene with a shared mesh holds other triangles on the device with
+// --instancing keep than baked (auto bakes one placed twice): a state saved
+// one way is refused the other way, and the message says which flag
+// resumes it; that flag does.
+TEST(Interrupt, StateOfTheOtherInstancingNamesTheFlag) {
+  test::GltfBuilder b = test::quad_gltf();
+  b.add("nodes", {{"mesh", 0}, {"translation", {2, 0, 0}}});
+  b.set_scene({0, 1});
+  const std::string scene = "--size 16x12 --scene " + b.write(tmp("two_quads.glb")) + " ";
+  const std::string state = tmp("kept");
+  remove_state(state);
+  RunResult r = run_octrace("render " + scene + "--spp 2 --quiet --instancing keep --state " + state);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string out = tmp("instancing.png");
+  fs::remove(out);
+  r = run_octrace("render " + scene + "--spp 4 --quiet --resume " + state + " --out " + out);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("kept.accum: cannot resume: another scene: hash"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("resumes with --instancing keep)"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  r = run_octrace("render " + scene + "--spp 4 --quiet --instancing keep --resume " + state + " --out " + out);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out));
 }
 
 }  // namespace
