@@ -177,8 +177,8 @@ struct RenderOptions {
         ->capture_default_str();
     cmd.add_option("--instancing", instancing,
                    "Meshes placed several times: keep (stored once, walked in object space), bake (a world-space "
-                   "copy per placement: faster with the octree, more memory), auto (bake where that at most "
-                   "doubles the stored triangles and adds at most 2^20)")
+                   "copy per placement: more memory; the octree faster, a GPU's four-wide BVH a little slower), "
+                   "auto (bake where that at most doubles the stored triangles and adds at most 2^20)")
         ->capture_default_str();
     cmd.add_option("--size", size, "Image size WIDTHxHEIGHT")->capture_default_str();
     cmd.add_option("--spp", settings.spp, "Samples (passes) per pixel")->capture_default_str();
@@ -200,7 +200,8 @@ struct RenderOptions {
                    "Samples each GPU dispatch adds per pixel (0: a whole batch in one); same image, other speed")
         ->capture_default_str();
     cmd.add_option("--sample-lanes", settings.sample_lanes,
-                   "Invocations sharing a pixel's samples in a dispatch: 1, 2, 4, 8 (0: auto); same image")
+                   "Invocations sharing a pixel's samples in a dispatch: 1, 2, 4, 8 (0: auto: 4, 8 for "
+                   "triangles without the tail queue, 1 on a CPU device); same image")
         ->capture_default_str();
     cmd.add_option("--octant-culling", octant_culling,
                    "Octree walk: skip children in octants the ray cannot reach: on | off; same image, other speed")
