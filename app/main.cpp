@@ -28,6 +28,7 @@
 #include "io/file.h"
 #include "core/clock.h"
 #include "core/text.h"
+#include "render/gpu_scene.h"
 #include "render/multi_device.h"
 #include "render/path_tracer.h"
 #include "render/render_state.h"
@@ -114,11 +115,9 @@ std::string scene_summary(const Scene& scene) {
 bool shares_meshes(const Scene& scene) { return instanced_triangle_count(scene) > unique_triangle_count(scene); }
 
 // What --instancing comes to for this scene: bake (every instance in world
-// space) or keep (shared meshes stored once).
+// space) or keep (shared meshes stored once), as the upload decides it.
 Instancing resolved_instancing(const Scene& scene, const RenderSettings& settings) {
-  return bakes_every_instance(settings.octree.instancing, unique_triangle_count(scene), instanced_triangle_count(scene))
-             ? Instancing::Bake
-             : Instancing::Keep;
+  return bakes_every_instance(scene, settings.octree.instancing) ? Instancing::Bake : Instancing::Keep;
 }
 
 // Parses "WxH": two decimal integers; values beyond int range are reported

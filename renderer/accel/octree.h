@@ -26,7 +26,7 @@ namespace octrace {
 enum class SphereOrder { Auto, Tree, Scene };
 // Which placements of a scene's meshes the device bakes into one
 // world-space mesh (OctreeParams::instancing; render/gpu_scene.h
-// bake_meshes): Keep, those of meshes placed once (the others stay
+// device_meshes): Keep, those of meshes placed once (the others stay
 // instanced: stored once, walked in object space); Bake, every one; Auto,
 // every one where that at most doubles the triangles stored and adds at
 // most kAutoBakeExtraTriangles, else Keep (optimisation log 68).

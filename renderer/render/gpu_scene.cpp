@@ -684,9 +684,12 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   if (tree) upload_scene_octree(g, ctx, std::move(*tree), accel);
 }
 
+bool bakes_every_instance(const Scene& scene, Instancing instancing) {
+  return bakes_every_instance(instancing, unique_triangle_count(scene), instanced_triangle_count(scene));
+}
+
 Scene device_meshes(const Scene& scene, Instancing instancing) {
-  return bake_single_use_meshes(
-      scene, bakes_every_instance(instancing, unique_triangle_count(scene), instanced_triangle_count(scene)));
+  return bake_single_use_meshes(scene, bakes_every_instance(scene, instancing));
 }
 
 Scene bake_single_use_meshes(const Scene& scene, bool every_instance) {

@@ -71,6 +71,10 @@ struct GpuScene {
 // left but the baked mesh's.
 Scene bake_single_use_meshes(const Scene& scene, bool every_instance = false);
 
+// Whether `instancing` bakes every instance of `scene`: bakes_every_instance
+// (render/settings.h) of its stored and placed triangles.
+bool bakes_every_instance(const Scene& scene, Instancing instancing);
+
 // The device's view of the scene's meshes (upload_scene and upload_octree
 // apply it): bake_single_use_meshes, every instance baked where
 // bakes_every_instance says so.
