@@ -392,19 +392,15 @@ void PathTracer::reconfigure(const Scene& scene, Accel accel, Precision precisio
   reset();
 }
 
-// Invocations per pixel for a dispatch of `count` samples (PassParams): the
-// setting, at most `count`, a power of two, and few enough that the workgroup
-// count stays within the guaranteed 65535. Auto (0): 4, and 8 for scenes
-// with triangles rendered in whole paths (no tail queue: `staged` false).
-// Measured on the H100 (docs/performance.md, optimisation log), in whole
-// paths: lanes cut the balloon from 31 ms to 11 ms (8) and 14 ms (4),
-// because light trapped in a closed mesh makes a few pixels' paths run to
-// the bounce limit; on the sphere fields 4 lanes cost nothing and 8 cost
-// 6-14% (a barrier per round for paths of even length). With the tail
-// queue the long paths finish in the tail, and on the H200 4 lanes were
-// 1.8-5.2% faster than 8 on both meshes with both structures (optimisation
-// log 71).
-static uint32_t sample_lanes(uint32_t setting, bool triangles, bool staged, uint32_t count, uint32_t height) {
+// The measurements behind sample_lanes' auto (path_tracer.h): on the H100
+// (docs/performance.md, optimisation log), in whole paths, lanes cut the
+// balloon from 31 ms to 11 ms (8) and 14 ms (4), because light trapped in a
+// closed mesh makes a few pixels' paths run to the bounce limit; on the
+// sphere fields 4 lanes cost nothing and 8 cost 6-14% (a barrier per round
+// for paths of even length). With the tail queue the long paths finish in
+// the tail, and on the H200 4 lanes were 1.8-5.2% faster than 8 on both
+// meshes with both structures (optimisation log 71).
+uint32_t sample_lanes(uint32_t setting, bool triangles, bool staged, uint32_t count, uint32_t height) {
   uint32_t lanes = setting ? setting : triangles && !staged ? 8u : 4u;
   while (lanes > 1 && (lanes > count || (height + gpu::WORKGROUP_SIZE / lanes - 1) / (gpu::WORKGROUP_SIZE / lanes) > 65535))
     lanes /= 2;

@@ -242,6 +242,22 @@ TEST(NextBatch, TakesWholeRoundsOfLanesAndKeepsAStopPrompt) {
   EXPECT_EQ(next_batch(1.0, 0), 250u);   // no lanes counts as one
 }
 
+// Auto lanes: 4, and 8 only for triangles in whole paths (optimisation log
+// 71); never more than the dispatch's samples, and few enough rows of
+// workgroups for the guaranteed 65535.
+TEST(SampleLanes, AutoIsFourAndEightOnlyForTrianglesInWholePaths) {
+  EXPECT_EQ(sample_lanes(0, false, true, 8, 800), 4u);   // spheres, tail queue
+  EXPECT_EQ(sample_lanes(0, false, false, 8, 800), 4u);  // spheres, whole paths
+  EXPECT_EQ(sample_lanes(0, true, true, 8, 800), 4u);    // triangles, tail queue
+  EXPECT_EQ(sample_lanes(0, true, false, 8, 800), 8u);   // triangles, whole paths
+  EXPECT_EQ(sample_lanes(2, true, false, 8, 800), 2u);   // the setting wins
+  EXPECT_EQ(sample_lanes(0, false, true, 3, 800), 2u);   // at most the samples, a power of two
+  EXPECT_EQ(sample_lanes(8, true, true, 1, 800), 1u);
+  // 8 lanes make workgroups one row high: 70,000 rows would be 70,000 of them.
+  EXPECT_EQ(sample_lanes(8, true, true, 8, 70000), 4u);
+  EXPECT_EQ(sample_lanes(8, true, true, 8, 65535), 8u);
+}
+
 // The seam of the preview window: a tracer made once renders another camera,
 // bounce limit and seed per pass, and gives exactly the image of a tracer
 // made for them from the start. A move rebuilds nothing.
