@@ -14,12 +14,18 @@
 // the winding), and a shear maps the ray onto +z. Vertices are then tested in
 // 2D against the origin with edge functions that agree exactly between two
 // triangles sharing an edge, so no ray slips between them.
-// The permutation is kept as three one-hot vectors, so that picking a
-// component is a dot product (exact: the other terms are 0) rather than a
-// dynamically indexed vector, which GPU compilers may move to local memory.
+// The permutation and the shear are kept as the rows of one matrix, so that
+// a vertex's sheared coordinate is a dot product rather than a dynamically
+// indexed vector (which GPU compilers may move to local memory): with e_k
+// the one-hot vector of component k,
+//   mx = e_kx - Sx e_kz,  my = e_ky - Sy e_kz,  mz = Sz e_kz,
+// each component exact (a product with 0 or 1, or -Sx itself). So dot(A, mx)
+// = A[kx] + (-Sx A[kz]) + 0 rounds once, after the one product: the value
+// of the paper's A[kx] - Sx A[kz] (up to the sign of a zero, which no test
+// below tells apart), in 5 operations where the one-hot form took 7 and the
+// z coordinate besides (optimisation log 72).
 struct RayShear {
-  vec3 ex, ey, ez;  // one-hot: component kx, ky, kz
-  vec3 s;           // Sx, Sy, Sz
+  vec3 mx, my, mz;
 };
 
 RayShear ray_shear(vec3 dir) {
@@ -34,7 +40,19 @@ RayShear ray_shear(vec3 dir) {
   }
   vec3 ex = vec3(kx == 0, kx == 1, kx == 2), ey = vec3(ky == 0, ky == 1, ky == 2), ez = vec3(kz == 0, kz == 1, kz == 2);
   float dz = dot(dir, ez);
-  return RayShear(ex, ey, ez, vec3(dot(dir, ex) / dz, dot(dir, ey) / dz, 1.0 / dz));
+  float sx = dot(dir, ex) / dz, sy = dot(dir, ey) / dz, sz = 1.0 / dz;
+  return RayShear(ex - sx * ez, ey - sy * ez, sz * ez);
+}
+
+// One sheared coordinate of a vertex (relative to the ray's origin), row m
+// of the shear: three products, each rounded on its own, and two sums.
+// Written out rather than as dot(), whose rounding SPIR-V leaves to the
+// driver: NVIDIA's fuses it (one rounding of A[kx] - Sx A[kz] instead of
+// two), which changed the images and would leave watertightness to how the
+// compiler treats each vertex (optimisation log 72).
+float sheared(vec3 a, vec3 m) {
+  precise float r = a.x * m.x + a.y * m.y + a.z * m.z;
+  return r;
 }
 
 // The edge functions U, V, W (unnormalised barycentrics of v0, v1, v2) and
@@ -42,6 +60,8 @@ RayShear ray_shear(vec3 dir) {
 // Returns false when the ray misses the triangle's inside (an edge or vertex
 // counts as inside: a ray through a shared edge hits both triangles at the
 // same t, and the tie goes to the lower id) or the triangle has no area.
+// The z coordinates (Sz A[kz], ...) are needed for T alone, so a miss never
+// works them out.
 bool triangle_edges(vec3 origin, RayShear sh, vec3 v0, vec3 v1, vec3 v2, out vec3 uvw, out float T, out float det) {
   // `precise`: no fused multiply-add. The test is exact only if every
   // product is rounded on its own: with Cx*By - Cy*Bx fused, a triangle whose
@@ -49,17 +69,17 @@ bool triangle_edges(vec3 origin, RayShear sh, vec3 v0, vec3 v1, vec3 v2, out vec
   // non-zero det and a hit (seen on the H100, not on lavapipe), and two
   // triangles sharing an edge could round their edge functions differently.
   precise vec3 A = v0 - origin, B = v1 - origin, C = v2 - origin;
-  precise float Az = dot(A, sh.ez), Bz = dot(B, sh.ez), Cz = dot(C, sh.ez);
-  precise float Ax = dot(A, sh.ex) - sh.s.x * Az, Ay = dot(A, sh.ey) - sh.s.y * Az;
-  precise float Bx = dot(B, sh.ex) - sh.s.x * Bz, By = dot(B, sh.ey) - sh.s.y * Bz;
-  precise float Cx = dot(C, sh.ex) - sh.s.x * Cz, Cy = dot(C, sh.ey) - sh.s.y * Cz;
+  precise float Ax = sheared(A, sh.mx), Ay = sheared(A, sh.my);
+  precise float Bx = sheared(B, sh.mx), By = sheared(B, sh.my);
+  precise float Cx = sheared(C, sh.mx), Cy = sheared(C, sh.my);
   precise float U = Cx * By - Cy * Bx;
   precise float V = Ax * Cy - Ay * Cx;
   precise float W = Bx * Ay - By * Ax;
   if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0)) return false;
   det = U + V + W;  // exactly 0 for a repeated vertex (U = -V) or a point
   if (det == 0.0) return false;  // zero area (or seen exactly edge-on): never hit
-  T = U * (sh.s.z * Az) + V * (sh.s.z * Bz) + W * (sh.s.z * Cz);
+  precise float Az = sheared(A, sh.mz), Bz = sheared(B, sh.mz), Cz = sheared(C, sh.mz);
+  T = U * Az + V * Bz + W * Cz;
   uvw = vec3(U, V, W);
   return true;
 }
