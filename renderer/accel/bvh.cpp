@@ -32,69 +32,126 @@ uint32_t bin_of(float c, float lo, float scale) {
   return k <= 0.0f ? 0u : std::min(kBvhBins - 1, static_cast<uint32_t>(k));
 }
 
+// The best split of one kind found for a node: its SAH cost (A_left N_left +
+// A_right N_right, not yet divided by the node's area), axis (-1: none) and
+// plane (left = bins [0, plane]), and the two sides' boxes.
+struct Candidate {
+  double cost = std::numeric_limits<double>::infinity();
+  int axis = -1;
+  uint32_t plane = 0;
+  Aabb left, right;
+};
+
 class Builder {
  public:
-  Builder(std::vector<Item> items, Octree& tree) : items_(std::move(items)), tree_(tree) {}
+  // `clip` (may be empty): the primitives' shapes, for spatial splits.
+  Builder(Octree& tree, const ClipFn& clip) : tree_(tree), clip_(clip) {}
 
-  // Node `index` over items_[begin, end).
-  void build(uint32_t index, size_t begin, size_t end, uint32_t depth) {
-    const size_t n = end - begin;
+  // Node `index` over `items`, at `depth`; its subtree may add `extra`
+  // references by spatial splits.
+  void build(uint32_t index, std::vector<Item> items, uint32_t depth, double extra) {
+    const size_t n = items.size();
     Aabb box, centroids;
-    for (size_t i = begin; i < end; ++i) {
-      box.extend(items_[i].box);
-      centroids.extend({items_[i].centroid, items_[i].centroid});
+    for (const Item& it : items) {
+      box.extend(it.box);
+      centroids.extend({it.centroid, it.centroid});
     }
     tree_.nodes[index].lo = box.lo;
     tree_.nodes[index].hi = box.hi;
     tree_.stats.max_depth_reached = std::max(tree_.stats.max_depth_reached, depth);
+    if (depth == 0) root_area_ = half_area(box);
 
-    size_t mid = begin;
-    if (n > kBvhMinLeaf && depth < kMaxBvhDepth) mid = split(begin, end, box, centroids);
-    if (mid == begin) {  // a leaf
+    std::vector<Item> left, right;
+    if (n > kBvhMinLeaf && depth < kMaxBvhDepth) split(items, box, centroids, extra, left, right);
+    if (left.empty()) {  // a leaf
       tree_.nodes[index].first = static_cast<uint32_t>(tree_.refs.size());
       tree_.nodes[index].count_or_mask = static_cast<uint32_t>(n);
-      for (size_t i = begin; i < end; ++i) tree_.refs.push_back(items_[i].prim);
+      for (const Item& it : items) tree_.refs.push_back(it.prim);
       ++tree_.stats.leaves;
       return;
     }
+    // What the split added comes out of the budget; the rest is shared in
+    // proportion to the children's references (so that no part of the tree
+    // spends it all, whatever the order the subtrees are built in).
+    const double rest = extra - static_cast<double>(left.size() + right.size() - n);
+    const double to_left = rest * static_cast<double>(left.size()) / static_cast<double>(left.size() + right.size());
+    items = {};
     const uint32_t first = static_cast<uint32_t>(tree_.nodes.size());
     tree_.nodes[index].first = first;
     tree_.nodes[index].count_or_mask = gpu::OCTREE_INTERNAL | 0x3u;
     tree_.nodes.push_back({});
     tree_.nodes.push_back({});
-    build(first, begin, mid, depth + 1);
-    build(first + 1, mid, end, depth + 1);
+    build(first, std::move(left), depth + 1, to_left);
+    build(first + 1, std::move(right), depth + 1, rest - to_left);
   }
 
  private:
-  // Where items_[begin, end) splits (items_ reordered so that the left child
-  // is [begin, result)), or begin for a leaf (bvh.h "How it is built").
-  size_t split(size_t begin, size_t end, const Aabb& box, const Aabb& centroids) {
-    const size_t n = end - begin;
+  // Splits `items` into `left` and `right`, or leaves both empty for a leaf
+  // (bvh.h "How it is built").
+  void split(std::vector<Item>& items, const Aabb& box, const Aabb& centroids, double extra,
+             std::vector<Item>& left, std::vector<Item>& right) {
+    const size_t n = items.size();
     const double area = half_area(box);
-    double best_cost = std::numeric_limits<double>::infinity();
-    int best_axis = -1;
-    uint32_t best_plane = 0;  // left = bins [0, best_plane]
     float scale[3] = {};
+    const Candidate object = object_split(items, centroids, scale);
+    if (object.axis < 0) {
+      // No plane separates the centroids (they coincide): split at the
+      // median primitive id, unless few enough for a leaf.
+      if (n <= kBvhMaxLeaf) return;
+      std::nth_element(items.begin(), items.begin() + static_cast<std::ptrdiff_t>(n / 2), items.end(),
+                       [](const Item& x, const Item& y) { return x.prim < y.prim; });
+      left.assign(items.begin(), items.begin() + static_cast<std::ptrdiff_t>(n / 2));
+      right.assign(items.begin() + static_cast<std::ptrdiff_t>(n / 2), items.end());
+      return;
+    }
+    // A spatial split is looked for only where the object split's children
+    // overlap by more than kBvhSpatialOverlap of the root's area (Stich et
+    // al. 2009's alpha: elsewhere it would rarely win and costs a clip per
+    // bin a primitive spans), and while the references stay within the
+    // budget.
+    Candidate spatial;
+    if (clip_ && extra >= 1.0) {
+      Aabb overlap{glm::max(object.left.lo, object.right.lo), glm::min(object.left.hi, object.right.hi)};
+      const bool overlaps = overlap.lo.x <= overlap.hi.x && overlap.lo.y <= overlap.hi.y && overlap.lo.z <= overlap.hi.z;
+      if (overlaps && half_area(overlap) > kBvhSpatialOverlap * root_area_) spatial = spatial_split(items, box);
+    }
+    const double best = std::min(object.cost, spatial.cost);
+    const double split_cost = kBvhNodeCost + (area > 0.0 ? best / area : 0.0);
+    if (split_cost >= static_cast<double>(n) && n <= kBvhMaxLeaf) return;
+    if (spatial.cost < object.cost && partition_spatial(items, box, spatial, extra, left, right)) return;
+    left.clear();
+    right.clear();
+    const int a = object.axis;
+    const float lo = centroids.lo[a], s = scale[a];
+    for (Item& it : items) (bin_of(it.centroid[a], lo, s) <= object.plane ? left : right).push_back(it);
+  }
+
+  // The binned SAH over the centroids (Wald 2007); scale[a] the bins per
+  // unit of axis a, for the partition.
+  Candidate object_split(const std::vector<Item>& items, const Aabb& centroids, float scale[3]) const {
+    const size_t n = items.size();
+    Candidate best;
     for (int a = 0; a < 3; ++a) {
       const float extent = centroids.hi[a] - centroids.lo[a];
       if (!(extent > 0.0f)) continue;
       scale[a] = static_cast<float>(kBvhBins) / extent;
       uint32_t count[kBvhBins] = {};
       Aabb bins[kBvhBins];
-      for (size_t i = begin; i < end; ++i) {
-        const uint32_t k = bin_of(items_[i].centroid[a], centroids.lo[a], scale[a]);
+      for (const Item& it : items) {
+        const uint32_t k = bin_of(it.centroid[a], centroids.lo[a], scale[a]);
         ++count[k];
-        bins[k].extend(items_[i].box);
+        bins[k].extend(it.box);
       }
-      // Sweep from the right: right_cost[p] = A * N of bins (p, kBvhBins).
-      double right_cost[kBvhBins] = {};
+      // Sweep from the right: right_box[p] and right_n[p] are bins (p, kBvhBins).
+      Aabb right_box[kBvhBins];
+      uint32_t right_n[kBvhBins] = {};
       Aabb right;
-      uint32_t right_n = 0;
+      uint32_t rn = 0;
       for (uint32_t p = kBvhBins - 1; p > 0; --p) {
         right.extend(bins[p]);
-        right_n += count[p];
-        right_cost[p - 1] = half_area(right) * right_n;
+        rn += count[p];
+        right_box[p - 1] = right;
+        right_n[p - 1] = rn;
       }
       Aabb left;
       uint32_t left_n = 0;
@@ -102,35 +159,129 @@ class Builder {
         left.extend(bins[p]);
         left_n += count[p];
         if (left_n == 0 || left_n == n) continue;
-        const double cost = half_area(left) * left_n + right_cost[p];
-        if (cost < best_cost) {
-          best_cost = cost;
-          best_axis = a;
-          best_plane = p;
-        }
+        const double cost = half_area(left) * left_n + half_area(right_box[p]) * right_n[p];
+        if (cost < best.cost) best = {cost, a, p, left, right_box[p]};
       }
     }
-    auto first = items_.begin() + static_cast<std::ptrdiff_t>(begin);
-    auto last = items_.begin() + static_cast<std::ptrdiff_t>(end);
-    if (best_axis < 0) {
-      // No plane separates the centroids (they coincide): split at the
-      // median primitive id, unless few enough for a leaf.
-      if (n <= kBvhMaxLeaf) return begin;
-      auto median = first + static_cast<std::ptrdiff_t>(n / 2);
-      std::nth_element(first, median, last, [](const Item& x, const Item& y) { return x.prim < y.prim; });
-      return begin + n / 2;
-    }
-    const double split_cost = kBvhNodeCost + (area > 0.0 ? best_cost / area : 0.0);
-    if (split_cost >= static_cast<double>(n) && n <= kBvhMaxLeaf) return begin;
-    const int a = best_axis;
-    const float lo = centroids.lo[a], s = scale[a];
-    const auto mid = std::stable_partition(
-        first, last, [&](const Item& it) { return bin_of(it.centroid[a], lo, s) <= best_plane; });
-    return begin + static_cast<size_t>(mid - first);
+    return best;
   }
 
-  std::vector<Item> items_;
+  // Where the spatial bins' planes lie on axis a of `box`: bin k is
+  // [plane(k), plane(k + 1)]; the first and last planes are the box's faces.
+  static float plane(const Aabb& box, int a, uint32_t k) {
+    if (k == 0) return box.lo[a];
+    if (k == kBvhBins) return box.hi[a];
+    return box.lo[a] + (box.hi[a] - box.lo[a]) * (static_cast<float>(k) / kBvhBins);
+  }
+  // The bins [first, last] that [lo, hi] reaches on axis a of `box`.
+  static void bin_range(const Aabb& box, int a, float lo, float hi, uint32_t& first, uint32_t& last) {
+    first = 0;
+    while (first + 1 < kBvhBins && lo >= plane(box, a, first + 1)) ++first;
+    last = first;
+    while (last + 1 < kBvhBins && hi > plane(box, a, last + 1)) ++last;
+  }
+  // Item `it` clipped to [lo, hi] on axis a (its part there), if it reaches it.
+  bool clipped(const Item& it, int a, float lo, float hi, Item& part) const {
+    Aabb cell = it.box;
+    cell.lo[a] = std::max(cell.lo[a], lo);
+    cell.hi[a] = std::min(cell.hi[a], hi);
+    if (cell.lo[a] > cell.hi[a]) return false;
+    Aabb b;
+    if (!clip_(it.prim, cell, b)) return false;
+    part = {b, 0.5f * (b.lo + b.hi), it.prim};
+    return true;
+  }
+
+  // The spatial split (Stich, Friedrich and Dietrich 2009, "Spatial splits
+  // in bounding volume hierarchies"): kBvhBins equal bins along each axis of
+  // the node's box; a primitive is counted in the bin where it enters and in
+  // the one where it leaves, and grows every bin it spans by its box clamped
+  // to that bin (not by its clipped part, as the paper does: that clip per
+  // bin took the engine's build from 0.13 s to 2.1 s on the 2-core machine,
+  // and the trees walked the same to two decimals, optimisation log 75);
+  // the sweep's cost of a plane counts those entering at or left of it on
+  // the left, those leaving right of it on the right. Only the split made
+  // clips (partition_spatial).
+  Candidate spatial_split(const std::vector<Item>& items, const Aabb& box) const {
+    Candidate best;
+    for (int a = 0; a < 3; ++a) {
+      if (!(box.hi[a] > box.lo[a])) continue;
+      uint32_t enter[kBvhBins] = {}, leave[kBvhBins] = {};
+      Aabb bins[kBvhBins];
+      for (const Item& it : items) {
+        uint32_t first, last;
+        bin_range(box, a, it.box.lo[a], it.box.hi[a], first, last);
+        ++enter[first];
+        ++leave[last];
+        if (first == last) {
+          bins[first].extend(it.box);
+          continue;
+        }
+        for (uint32_t k = first; k <= last; ++k) {
+          Aabb cell = it.box;
+          cell.lo[a] = std::max(cell.lo[a], plane(box, a, k));
+          cell.hi[a] = std::min(cell.hi[a], plane(box, a, k + 1));
+          bins[k].extend(cell);
+        }
+      }
+      Aabb right_box[kBvhBins];
+      uint32_t right_n[kBvhBins] = {};
+      Aabb right;
+      uint32_t rn = 0;
+      for (uint32_t p = kBvhBins - 1; p > 0; --p) {
+        right.extend(bins[p]);
+        rn += leave[p];
+        right_box[p - 1] = right;
+        right_n[p - 1] = rn;
+      }
+      Aabb left;
+      uint32_t left_n = 0;
+      for (uint32_t p = 0; p + 1 < kBvhBins; ++p) {
+        left.extend(bins[p]);
+        left_n += enter[p];
+        if (left_n == 0 || right_n[p] == 0) continue;
+        const double cost = half_area(left) * left_n + half_area(right_box[p]) * right_n[p];
+        if (cost < best.cost) best = {cost, a, p, left, right_box[p]};
+      }
+    }
+    return best;
+  }
+
+  // Splits at the spatial candidate's plane: a primitive on one side goes
+  // there whole; one that straddles it is clipped to each side, and each
+  // part goes to its side. False (nothing split) where a side would get
+  // every primitive, or where the references would exceed the budget.
+  bool partition_spatial(const std::vector<Item>& items, const Aabb& box, const Candidate& c, double extra,
+                         std::vector<Item>& left, std::vector<Item>& right) const {
+    const int a = c.axis;
+    const float x = plane(box, a, c.plane + 1);
+    for (const Item& it : items) {
+      uint32_t first, last;
+      bin_range(box, a, it.box.lo[a], it.box.hi[a], first, last);
+      if (last <= c.plane) {
+        left.push_back(it);
+      } else if (first > c.plane) {
+        right.push_back(it);
+      } else {
+        Item l, r;
+        const bool in_left = clipped(it, a, it.box.lo[a], x, l), in_right = clipped(it, a, x, it.box.hi[a], r);
+        if (in_left) left.push_back(l);
+        if (in_right) right.push_back(r);
+        if (!in_left && !in_right) left.push_back(it);  // rounding: keep it whole
+      }
+    }
+    const size_t n = items.size();
+    if (left.size() == n || right.size() == n || static_cast<double>(left.size() + right.size() - n) > extra) {
+      left.clear();
+      right.clear();
+      return false;
+    }
+    return true;
+  }
+
   Octree& tree_;
+  const ClipFn& clip_;
+  double root_area_ = 0.0;  // the root's half area (Stich et al.'s alpha is relative to it)
 };
 
 // The binary tree collapsed into a kBvhWidth-wide one (bvh.h "How it is
@@ -190,7 +341,7 @@ class Collapser {
 
 }  // namespace
 
-Octree build_bvh(std::span<const Aabb> boxes, uint32_t width) {
+Octree build_bvh(std::span<const Aabb> boxes, uint32_t width, const ClipFn& clip) {
   const auto start = Clock::now();
   Octree tree;
   if (width < 2 || width > kBvhWidth)
@@ -211,7 +362,7 @@ Octree build_bvh(std::span<const Aabb> boxes, uint32_t width) {
     binary.nodes.reserve(2 * boxes.size() - 1);
     binary.refs.reserve(boxes.size());
     binary.nodes.push_back({});
-    Builder(std::move(items), binary).build(0, 0, boxes.size(), 0);
+    Builder(binary, clip).build(0, std::move(items), 0, static_cast<double>(boxes.size()) * (kBvhSpatialRefs - 1.0));
     tree.refs = std::move(binary.refs);
     tree.stats.leaves = binary.stats.leaves;
     Collapser(binary, width, tree).collapse(0, 0, 0);

@@ -88,12 +88,18 @@ inline constexpr BvhWidths default_bvh_widths(bool software, bool has_spheres) {
   return software ? BvhWidths{2, 2} : BvhWidths{has_spheres ? 2 : kBvhWidth, kBvhWidth};
 }
 inline constexpr double kBvhNodeCost = 1.0;   // a binary node's visit (two box tests) in primitive tests
+// Spatial splits (with a ClipFn): looked for where the object split's
+// children overlap by more than this fraction of the root's area (Stich et
+// al. 2009's alpha), while the references stay within kBvhSpatialRefs per
+// primitive.
+inline constexpr double kBvhSpatialOverlap = 1e-5;
+inline constexpr double kBvhSpatialRefs = 1.5;
 
 // Builds the BVH over `boxes` (finite; primitive i is boxes[i]). Returns the
 // octree's struct: the same arrays, big_count = 0, and the same statistics
 // (big_primitives 0, refs_per_primitive 1).
 // `width`: children per internal node, at most (2: the binary tree itself;
 // 2 <= width <= kBvhWidth; a scene's levels: default_bvh_widths).
-Octree build_bvh(std::span<const Aabb> boxes, uint32_t width = kBvhWidth);
+Octree build_bvh(std::span<const Aabb> boxes, uint32_t width = kBvhWidth, const ClipFn& clip = {});
 
 }  // namespace octrace

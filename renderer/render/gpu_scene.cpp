@@ -127,12 +127,13 @@ static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& sce
   OctreeStats& st = octree.stats;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const Mesh& mesh = scene.meshes[m];
-    // Triangles are clipped to the cells they reach (octree.h ClipFn).
+    // Triangles are clipped to the cells they reach (octree.h ClipFn), and
+    // to the BVH's spatial splits (bvh.h).
     const auto clip = [&mesh](uint32_t t, const Aabb& cell, Aabb& part) {
       const uint32_t* v = &mesh.indices[3 * size_t(t)];
       return clip_triangle(mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]], cell, part);
     };
-    const Octree mesh_tree = accel == Accel::Bvh ? build_bvh(mesh_triangle_boxes(mesh), widths.meshes)
+    const Octree mesh_tree = accel == Accel::Bvh ? build_bvh(mesh_triangle_boxes(mesh), widths.meshes, clip)
                                                  : build_octree(mesh_triangle_boxes(mesh), params, clip);
     const uint32_t node_base = uint32_t(octree.nodes.size()), ref_base = uint32_t(octree.refs.size());
     for (gpu::GpuOctreeNode n : mesh_tree.nodes) {
