@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <thread>
 #include <vector>
 
 #include "core/clock.h"
@@ -81,11 +82,48 @@ class Builder {
     tree_.nodes[index].count_or_mask = gpu::OCTREE_INTERNAL | 0x3u;
     tree_.nodes.push_back({});
     tree_.nodes.push_back({});
+    if (depth < kBvhParallelDepth && n >= kBvhParallelItems) {
+      // The two subtrees on two threads, each into arrays of its own, then
+      // appended left first: the nodes and references a build on one thread
+      // puts there, in the same order.
+      Octree l, r;
+      {
+        std::jthread helper([&] { l = subtree(std::move(left), depth + 1, to_left); });
+        r = subtree(std::move(right), depth + 1, rest - to_left);
+      }
+      splice(first, l);
+      splice(first + 1, r);
+      return;
+    }
     build(first, std::move(left), depth + 1, to_left);
     build(first + 1, std::move(right), depth + 1, rest - to_left);
   }
 
  private:
+  // The subtree over `items` (build), in arrays of its own whose node 0 is its root.
+  Octree subtree(std::vector<Item> items, uint32_t depth, double extra) const {
+    Octree t;
+    t.nodes.push_back({});
+    Builder b(t, clip_);
+    b.root_area_ = root_area_;
+    b.build(0, std::move(items), depth, extra);
+    return t;
+  }
+  // Puts subtree `t`'s root at node `index` and appends the rest of it.
+  void splice(uint32_t index, const Octree& t) {
+    const uint64_t node_base = tree_.nodes.size() - 1;  // subtree node j >= 1 lands at node_base + j
+    const uint64_t ref_base = tree_.refs.size();
+    const auto fix = [&](gpu::GpuOctreeNode n) {
+      n.first += static_cast<uint32_t>((n.count_or_mask & gpu::OCTREE_INTERNAL) ? node_base : ref_base);
+      return n;
+    };
+    tree_.nodes[index] = fix(t.nodes[0]);
+    for (size_t j = 1; j < t.nodes.size(); ++j) tree_.nodes.push_back(fix(t.nodes[j]));
+    tree_.refs.insert(tree_.refs.end(), t.refs.begin(), t.refs.end());
+    tree_.stats.leaves += t.stats.leaves;
+    tree_.stats.max_depth_reached = std::max(tree_.stats.max_depth_reached, t.stats.max_depth_reached);
+  }
+
   // Splits `items` into `left` and `right`, or leaves both empty for a leaf
   // (bvh.h "How it is built").
   void split(std::vector<Item>& items, const Aabb& box, const Aabb& centroids, double extra,
@@ -174,10 +212,20 @@ class Builder {
     return box.lo[a] + (box.hi[a] - box.lo[a]) * (static_cast<float>(k) / kBvhBins);
   }
   // The bins [first, last] that [lo, hi] reaches on axis a of `box`.
+  // first: the last bin whose lower plane is <= lo; last: the first bin from
+  // there whose upper plane is >= hi (the last bin if none). Guessed from the
+  // bins' width and settled against plane() itself, whose values grow with k.
   static void bin_range(const Aabb& box, int a, float lo, float hi, uint32_t& first, uint32_t& last) {
-    first = 0;
+    const float scale = static_cast<float>(kBvhBins) / (box.hi[a] - box.lo[a]);
+    const auto guess = [&](float c) {
+      const float k = (c - box.lo[a]) * scale;
+      return k <= 0.0f ? 0u : std::min(kBvhBins - 1, static_cast<uint32_t>(k));
+    };
+    first = guess(lo);
+    while (first > 0 && lo < plane(box, a, first)) --first;
     while (first + 1 < kBvhBins && lo >= plane(box, a, first + 1)) ++first;
-    last = first;
+    last = std::max(first, guess(hi));
+    while (last > first && hi <= plane(box, a, last)) --last;
     while (last + 1 < kBvhBins && hi > plane(box, a, last + 1)) ++last;
   }
   // Item `it` clipped to [lo, hi] on axis a (its part there), if it reaches it.

@@ -30,10 +30,13 @@ namespace octrace {
 //
 //     nodes: ... [ node | first = c | INTERNAL|0xf ] ... [ c ][ c+1 ][ c+2 ][ c+3 ] ...
 //
-//   Every primitive is referenced exactly once (no duplicates, no big list:
-//   big_count = 0), so a tree over n primitives has at most 2n - 1 nodes.
-//   Nodes are in depth-first order below each group of siblings, which keeps
-//   four siblings in two 64-byte lines.
+//   No big list (big_count = 0). Built over boxes alone (a top level), every
+//   primitive is referenced exactly once, so a tree over n primitives has at
+//   most 2n - 1 nodes; built with the primitives' shapes (a ClipFn: the
+//   meshes' trees), spatial splits reference a triangle in every leaf that
+//   holds a part of it, at most kBvhSpatialRefs references per triangle in
+//   all. Nodes are in depth-first order below each group of siblings, which
+//   keeps four siblings in two 64-byte lines.
 //
 // How it is built: a binary tree first (Wald 2007, "On fast construction of
 // SAH-based bounding volume hierarchies", binned SAH): a node's primitive
@@ -43,7 +46,18 @@ namespace octrace {
 //   C = kBvhNodeCost + (A_left * N_left + A_right * N_right) / A
 // (MacDonald and Booth 1990; A = half area of a box, a primitive test costs 1)
 // is evaluated by a sweep over the bins, and the cheapest plane over the
-// three axes wins (ties: lower axis, then lower plane). The node is a leaf
+// three axes wins (ties: lower axis, then lower plane). With the shapes
+// (a ClipFn), where the best such split leaves its two sides overlapping by
+// more than kBvhSpatialOverlap of the root's area, a spatial split is
+// weighed too (Stich, Friedrich and Dietrich 2009, "Spatial splits in
+// bounding volume hierarchies"): kBvhBins equal bins of the node's box per
+// axis, a primitive counted where it enters and where it leaves and growing
+// each bin it spans by its box clamped to the bin; the split made clips each
+// triangle that straddles the plane to each side (accel/clip.h), and each
+// part goes to its side with the box of that part. The cheaper of the two
+// wins while the node's budget of added references lasts: the root's is
+// (kBvhSpatialRefs - 1) n, and a split passes what it did not use on to its
+// children in proportion to their references (optimisation log 75). The node is a leaf
 // when it holds at most kBvhMinLeaf primitives, or when the cheapest split
 // costs no less than testing all of them (C >= N) and N <= kBvhMaxLeaf. Where
 // no plane separates the centroids (coincident centroids), the node splits
@@ -58,7 +72,9 @@ namespace octrace {
 // kBvhWidth or all are leaves. Leaves and references are the binary tree's;
 // a wide node's depth is at most its binary depth. A wide walk step tests a
 // node's children together, so a ray takes about half the steps; which
-// level is built how wide: default_bvh_widths below. Single-threaded and deterministic: the
+// level is built how wide: default_bvh_widths below. The top levels'
+// subtrees build on threads of their own (kBvhParallelDepth), each into
+// arrays appended in the order one thread would have written them: the
 // result depends only on the input.
 // ---------------------------------------------------------------------------
 inline constexpr uint32_t kBvhBins = 16;
@@ -94,10 +110,16 @@ inline constexpr double kBvhNodeCost = 1.0;   // a binary node's visit (two box 
 // primitive.
 inline constexpr double kBvhSpatialOverlap = 1e-5;
 inline constexpr double kBvhSpatialRefs = 1.5;
+// Nodes this shallow and this large build their two subtrees on two
+// threads (up to 2^kBvhParallelDepth at once); the result is the same.
+inline constexpr uint32_t kBvhParallelDepth = 4;
+inline constexpr size_t kBvhParallelItems = 4096;
 
 // Builds the BVH over `boxes` (finite; primitive i is boxes[i]). Returns the
 // octree's struct: the same arrays, big_count = 0, and the same statistics
-// (big_primitives 0, refs_per_primitive 1).
+// (big_primitives 0; refs_per_primitive 1 without `clip`).
+// `clip` (octree.h ClipFn; may be empty): the primitives' shapes, which
+// allow spatial splits.
 // `width`: children per internal node, at most (2: the binary tree itself;
 // 2 <= width <= kBvhWidth; a scene's levels: default_bvh_widths).
 Octree build_bvh(std::span<const Aabb> boxes, uint32_t width = kBvhWidth, const ClipFn& clip = {});

@@ -1,10 +1,13 @@
 // The BVH builder's guarantees (renderer/accel/bvh.h), the ones the shader
-// walk relies on: every primitive is referenced exactly once; a node's box
+// walk relies on: without shapes, every primitive is referenced exactly
+// once; with them (spatial splits, the meshes' trees), every point of a
+// triangle lies in a leaf that references it, within the budget; a node's box
 // is the union of its primitives' boxes, so children lie inside parents;
 // the SAH leaf rule; depth within the shader's stack; determinism; the
 // encoding (two to four consecutive children) and the stats. That the walk finds the
 // same closest hit as brute force is accel_test (images on the GPU).
 #include "accel/bvh.h"
+#include "accel/clip.h"
 #include "core/errors.h"
 
 #include <gtest/gtest.h>
@@ -195,6 +198,114 @@ TEST(Bvh, Deterministic) {
   ASSERT_EQ(a.nodes.size(), b.nodes.size());
   ASSERT_EQ(a.refs, b.refs);
   EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(GpuOctreeNode)), 0);
+}
+
+// Spatial splits (a ClipFn: the meshes' trees). Long thin triangles along
+// the diagonal of a box, whose boxes overlap everywhere: the object split
+// alone leaves siblings overlapping, so spatial splits must happen (more
+// references than triangles), within kBvhSpatialRefs per triangle; every
+// point of a triangle (vertices, edge midpoints, random barycentrics) lies
+// in a leaf that references it; boxes nest; deterministic, though the
+// build's subtrees run on several threads.
+struct Soup {
+  std::vector<glm::vec3> v;  // 3 per triangle
+  std::vector<Aabb> boxes;
+  ClipFn clip;
+};
+
+Soup slivers(size_t n, uint32_t seed) {
+  Soup s;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (size_t i = 0; i < n; ++i) {
+    const glm::vec3 a(u(rng) * 10, u(rng) * 10, u(rng) * 10), b(u(rng) * 10, u(rng) * 10, u(rng) * 10);
+    const glm::vec3 c = a + 0.02f * glm::vec3(u(rng), u(rng), u(rng)) + 0.01f * (b - a);
+    s.v.insert(s.v.end(), {a, b, c});
+    Aabb box{glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c))};
+    s.boxes.push_back(box);
+  }
+  s.clip = [v = s.v](uint32_t t, const Aabb& cell, Aabb& part) {
+    return clip_triangle(v[3 * t], v[3 * t + 1], v[3 * t + 2], cell, part);
+  };
+  return s;
+}
+
+bool in_box(const GpuOctreeNode& n, const glm::vec3& p) {
+  for (int a = 0; a < 3; ++a)
+    if (p[a] < n.lo[a] || p[a] > n.hi[a]) return false;
+  return true;
+}
+
+// Whether point p of triangle t lies in some leaf below node i that references t.
+bool covered(const Octree& tree, uint32_t i, uint32_t t, const glm::vec3& p) {
+  const GpuOctreeNode& n = tree.nodes[i];
+  if (!in_box(n, p)) return false;
+  if (n.count_or_mask < OCTREE_INTERNAL) {
+    for (uint32_t k = n.first; k < n.first + n.count_or_mask; ++k)
+      if (tree.refs[k] == t) return true;
+    return false;
+  }
+  const uint32_t count = static_cast<uint32_t>(std::popcount(n.count_or_mask & ~OCTREE_INTERNAL));
+  for (uint32_t c = n.first; c < n.first + count; ++c)
+    if (covered(tree, c, t, p)) return true;
+  return false;
+}
+
+void check_nesting(const Octree& t, uint32_t i) {
+  const GpuOctreeNode& n = t.nodes[i];
+  if (n.count_or_mask < OCTREE_INTERNAL) return;
+  const uint32_t count = static_cast<uint32_t>(std::popcount(n.count_or_mask & ~OCTREE_INTERNAL));
+  for (uint32_t c = n.first; c < n.first + count; ++c) {
+    EXPECT_TRUE(inside(t.nodes[c], n)) << "child " << c << " of node " << i;
+    check_nesting(t, c);
+  }
+}
+
+TEST(Bvh, SpatialSplitsCoverEveryTriangleWithinTheBudget) {
+  const size_t n = 3000;
+  const Soup s = slivers(n, 11);
+  for (uint32_t width : {2u, 4u}) {
+    SCOPED_TRACE(width);
+    const Octree t = build_bvh(s.boxes, width, s.clip);
+    EXPECT_GT(t.refs.size(), n);  // spatial splits happened
+    EXPECT_LE(static_cast<double>(t.refs.size()), static_cast<double>(n) * kBvhSpatialRefs);
+    EXPECT_DOUBLE_EQ(t.stats.refs_per_primitive, static_cast<double>(t.refs.size()) / n);
+    EXPECT_EQ(t.stats.bytes, t.nodes.size() * 32 + t.refs.size() * 4);
+    EXPECT_LE(t.stats.max_depth_reached, kMaxBvhDepth);
+    check_nesting(t, 0);
+    for (const GpuOctreeNode& node : t.nodes) {
+      if (node.count_or_mask < OCTREE_INTERNAL) {
+        EXPECT_GE(node.count_or_mask, 1u);
+      }
+    }
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    size_t missed = 0;
+    for (uint32_t tri = 0; tri < n; ++tri) {
+      const glm::vec3 a = s.v[3 * tri], b = s.v[3 * tri + 1], c = s.v[3 * tri + 2];
+      std::vector<glm::vec3> points{a, b, c, 0.5f * (a + b), 0.5f * (b + c), 0.5f * (c + a)};
+      for (int k = 0; k < 6; ++k) {
+        float x = u(rng), y = u(rng);
+        if (x + y > 1.0f) x = 1.0f - x, y = 1.0f - y;
+        points.push_back(a + x * (b - a) + y * (c - a));
+      }
+      for (const glm::vec3& p : points) missed += !covered(t, 0, tri, p);
+    }
+    EXPECT_EQ(missed, 0u);
+  }
+  // The same input, the same tree, whatever the threads did.
+  const Octree a = build_bvh(s.boxes, 4, s.clip), b = build_bvh(s.boxes, 4, s.clip);
+  ASSERT_EQ(a.nodes.size(), b.nodes.size());
+  ASSERT_EQ(a.refs, b.refs);
+  EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(GpuOctreeNode)), 0);
+}
+
+// Without shapes, spatial splits never happen: a tree over boxes is the
+// plain binned SAH's (one reference each), large enough to build on threads.
+TEST(Bvh, NoShapesNoSpatialSplits) {
+  const std::vector<Aabb> boxes = random_boxes(20000, 13);
+  const Octree t = build_bvh(boxes);
+  check_tree(t, boxes);
 }
 
 }  // namespace
