@@ -164,10 +164,37 @@ class Builder {
     for (Item& it : items) (bin_of(it.centroid[a], lo, s) <= object.plane ? left : right).push_back(it);
   }
 
+  // The sweep over the planes between bins on axis a, for either kind of
+  // split: the plane after bin p puts bins [0, p] on the left, counting
+  // their `to_left`, and the rest on the right, counting their `to_right`;
+  // a plane with an empty side is skipped. Keeps the cheapest in `best`
+  // (ties: the earlier axis, then the lower plane).
+  static void sweep(const Aabb (&bins)[kBvhBins], const uint32_t (&to_left)[kBvhBins],
+                    const uint32_t (&to_right)[kBvhBins], int a, Candidate& best) {
+    Aabb right_box[kBvhBins];  // bins (p, kBvhBins) for the plane after p
+    uint32_t right_n[kBvhBins] = {};
+    Aabb right;
+    uint32_t rn = 0;
+    for (uint32_t p = kBvhBins - 1; p > 0; --p) {
+      right.extend(bins[p]);
+      rn += to_right[p];
+      right_box[p - 1] = right;
+      right_n[p - 1] = rn;
+    }
+    Aabb left;
+    uint32_t left_n = 0;
+    for (uint32_t p = 0; p + 1 < kBvhBins; ++p) {
+      left.extend(bins[p]);
+      left_n += to_left[p];
+      if (left_n == 0 || right_n[p] == 0) continue;
+      const double cost = half_area(left) * left_n + half_area(right_box[p]) * right_n[p];
+      if (cost < best.cost) best = {cost, a, p, left, right_box[p]};
+    }
+  }
+
   // The binned SAH over the centroids (Wald 2007); scale[a] the bins per
   // unit of axis a, for the partition.
-  Candidate object_split(const std::vector<Item>& items, const Aabb& centroids, float scale[3]) const {
-    const size_t n = items.size();
+  static Candidate object_split(const std::vector<Item>& items, const Aabb& centroids, float scale[3]) {
     Candidate best;
     for (int a = 0; a < 3; ++a) {
       const float extent = centroids.hi[a] - centroids.lo[a];
@@ -180,26 +207,7 @@ class Builder {
         ++count[k];
         bins[k].extend(it.box);
       }
-      // Sweep from the right: right_box[p] and right_n[p] are bins (p, kBvhBins).
-      Aabb right_box[kBvhBins];
-      uint32_t right_n[kBvhBins] = {};
-      Aabb right;
-      uint32_t rn = 0;
-      for (uint32_t p = kBvhBins - 1; p > 0; --p) {
-        right.extend(bins[p]);
-        rn += count[p];
-        right_box[p - 1] = right;
-        right_n[p - 1] = rn;
-      }
-      Aabb left;
-      uint32_t left_n = 0;
-      for (uint32_t p = 0; p + 1 < kBvhBins; ++p) {
-        left.extend(bins[p]);
-        left_n += count[p];
-        if (left_n == 0 || left_n == n) continue;
-        const double cost = half_area(left) * left_n + half_area(right_box[p]) * right_n[p];
-        if (cost < best.cost) best = {cost, a, p, left, right_box[p]};
-      }
+      sweep(bins, count, count, a, best);
     }
     return best;
   }
@@ -272,25 +280,7 @@ class Builder {
           bins[k].extend(cell);
         }
       }
-      Aabb right_box[kBvhBins];
-      uint32_t right_n[kBvhBins] = {};
-      Aabb right;
-      uint32_t rn = 0;
-      for (uint32_t p = kBvhBins - 1; p > 0; --p) {
-        right.extend(bins[p]);
-        rn += leave[p];
-        right_box[p - 1] = right;
-        right_n[p - 1] = rn;
-      }
-      Aabb left;
-      uint32_t left_n = 0;
-      for (uint32_t p = 0; p + 1 < kBvhBins; ++p) {
-        left.extend(bins[p]);
-        left_n += enter[p];
-        if (left_n == 0 || right_n[p] == 0) continue;
-        const double cost = half_area(left) * left_n + half_area(right_box[p]) * right_n[p];
-        if (cost < best.cost) best = {cost, a, p, left, right_box[p]};
-      }
+      sweep(bins, enter, leave, a, best);
     }
     return best;
   }
