@@ -91,6 +91,8 @@ class Builder {
         std::jthread helper([&] { l = subtree(std::move(left), depth + 1, to_left); });
         r = subtree(std::move(right), depth + 1, rest - to_left);
       }
+      tree_.nodes.reserve(tree_.nodes.size() + l.nodes.size() + r.nodes.size() - 2);
+      tree_.refs.reserve(tree_.refs.size() + l.refs.size() + r.refs.size());
       splice(first, l);
       splice(first + 1, r);
       return;
@@ -161,7 +163,11 @@ class Builder {
     right.clear();
     const int a = object.axis;
     const float lo = centroids.lo[a], s = scale[a];
-    for (Item& it : items) (bin_of(it.centroid[a], lo, s) <= object.plane ? left : right).push_back(it);
+    const auto goes_left = [&](const Item& it) { return bin_of(it.centroid[a], lo, s) <= object.plane; };
+    const size_t to_left = static_cast<size_t>(std::count_if(items.begin(), items.end(), goes_left));
+    left.reserve(to_left);  // exactly: the sides' vectors are most of the build's memory
+    right.reserve(n - to_left);
+    for (const Item& it : items) (goes_left(it) ? left : right).push_back(it);
   }
 
   // The sweep over the planes between bins on axis a, for either kind of
@@ -397,8 +403,6 @@ Octree build_bvh(std::span<const Aabb> boxes, uint32_t width, const ClipFn& clip
     tree.stats.leaves = 1;
   } else {
     Octree binary;
-    binary.nodes.reserve(2 * boxes.size() - 1);
-    binary.refs.reserve(boxes.size());
     binary.nodes.push_back({});
     Builder(binary, clip).build(0, std::move(items), 0, static_cast<double>(boxes.size()) * (kBvhSpatialRefs - 1.0));
     tree.refs = std::move(binary.refs);
