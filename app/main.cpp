@@ -169,6 +169,11 @@ struct RenderOptions {
                    "BVH (--accel bvh): children per node, 2 or 4 (0: auto, four-wide over meshes on a GPU, "
                    "binary over spheres and on a CPU device); same image, other speed")
         ->capture_default_str();
+    cmd.add_option("--bvh-spatial-refs", settings.octree.bvh_spatial_refs,
+                   "BVH (--accel bvh) over a mesh: references per triangle, at most, that spatial splits may make "
+                   "(1..4; 1: none, the plain binned SAH): more memory and build time for fewer box and triangle "
+                   "tests; same image, other speed")
+        ->capture_default_str();
     cmd.add_option("--bvh-sphere-order", bvh_sphere_order,
                    "BVH (--accel bvh) over spheres alone: the device holds the spheres in the tree's order (a leaf "
                    "tests its spheres without reading its references) or the scene's; auto: the tree's on a GPU, "
@@ -288,6 +293,7 @@ std::string message_for_cli(const SettingError& e) {
       {"octree.max_depth", "--octree-depth"},
       {"octree.max_refs", "--octree-refs"},
       {"octree.bvh_width", "--bvh-width"},
+      {"octree.bvh_spatial_refs", "--bvh-spatial-refs"},
       {"octree.bvh_sphere_order", "--bvh-sphere-order"},
       {"octree.instancing", "--instancing"},
       {"precision", "--precision"},
@@ -740,6 +746,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
                   {"bytes", o.bytes},       {"refs_per_primitive", o.refs_per_primitive},
                   {"bytes_per_primitive", o.bytes_per_primitive},
                   {"width", {{"top", o.bvh_top_width}, {"meshes", o.bvh_mesh_width}}},
+                  {"spatial_refs", settings.octree.bvh_spatial_refs},
                   {"sphere_order", sphere_order_name(o.bvh_sphere_order ? SphereOrder::Tree : SphereOrder::Scene)}};
     }
     if (settings.accel == Accel::Octree) {
@@ -1031,6 +1038,9 @@ int main(int argc, char** argv) {
                         "Octree references per primitive, at most (1..64)")
       ->capture_default_str();
   bench_cmd->add_option("--bvh-width", bench.settings.octree.bvh_width, "BVH children per node: 2, 4 or 0 (auto)")
+      ->capture_default_str();
+  bench_cmd->add_option("--bvh-spatial-refs", bench.settings.octree.bvh_spatial_refs,
+                        "BVH over a mesh: references per triangle spatial splits may make, at most (1..4; 1: none)")
       ->capture_default_str();
   std::string bench_sphere_order = "auto";
   bench_cmd->add_option("--bvh-sphere-order", bench_sphere_order,

@@ -385,7 +385,7 @@ class Collapser {
 
 }  // namespace
 
-Octree build_bvh(std::span<const Aabb> boxes, uint32_t width, const ClipFn& clip) {
+Octree build_bvh(std::span<const Aabb> boxes, uint32_t width, const ClipFn& clip, double spatial_refs) {
   const auto start = Clock::now();
   Octree tree;
   if (width < 2 || width > kBvhWidth)
@@ -404,7 +404,7 @@ Octree build_bvh(std::span<const Aabb> boxes, uint32_t width, const ClipFn& clip
   } else {
     Octree binary;
     binary.nodes.push_back({});
-    Builder(binary, clip).build(0, std::move(items), 0, static_cast<double>(boxes.size()) * (kBvhSpatialRefs - 1.0));
+    Builder(binary, clip).build(0, std::move(items), 0, static_cast<double>(boxes.size()) * (spatial_refs - 1.0));
     tree.refs = std::move(binary.refs);
     tree.stats.leaves = binary.stats.leaves;
     Collapser(binary, width, tree).collapse(0, 0, 0);

@@ -110,6 +110,7 @@ inline constexpr double kBvhNodeCost = 1.0;   // a binary node's visit (two box 
 // primitive.
 inline constexpr double kBvhSpatialOverlap = 1e-5;
 inline constexpr double kBvhSpatialRefs = 1.5;
+static_assert(OctreeParams{}.bvh_spatial_refs == kBvhSpatialRefs);
 // Nodes this shallow and this large build their two subtrees on two
 // threads (up to 2^kBvhParallelDepth at once); the result is the same.
 // Deeper costs memory (each subtree's arrays are copied into its parent's
@@ -122,10 +123,12 @@ inline constexpr size_t kBvhParallelItems = 4096;
 // Builds the BVH over `boxes` (finite; primitive i is boxes[i]). Returns the
 // octree's struct: the same arrays, big_count = 0, and the same statistics
 // (big_primitives 0; refs_per_primitive 1 without `clip`).
-// `clip` (octree.h ClipFn; may be empty): the primitives' shapes, which
-// allow spatial splits.
 // `width`: children per internal node, at most (2: the binary tree itself;
 // 2 <= width <= kBvhWidth; a scene's levels: default_bvh_widths).
-Octree build_bvh(std::span<const Aabb> boxes, uint32_t width = kBvhWidth, const ClipFn& clip = {});
+// `clip` (octree.h ClipFn; may be empty): the primitives' shapes, which
+// allow spatial splits, up to `spatial_refs` references per primitive in all
+// (1: none; OctreeParams::bvh_spatial_refs).
+Octree build_bvh(std::span<const Aabb> boxes, uint32_t width = kBvhWidth, const ClipFn& clip = {},
+                 double spatial_refs = kBvhSpatialRefs);
 
 }  // namespace octrace

@@ -48,6 +48,10 @@ struct OctreeParams {
   // The order a BVH over spheres alone has the device hold the spheres in
   // (`--bvh-sphere-order`).
   SphereOrder bvh_sphere_order = SphereOrder::Auto;
+  // The meshes' BVHs (`--accel bvh`): references per triangle, at most, that
+  // spatial splits may make (`--bvh-spatial-refs`, 1..4; 1: none, the plain
+  // binned SAH). accel/bvh.h kBvhSpatialRefs is the default.
+  double bvh_spatial_refs = 1.5;
   // What the device stores of shared meshes (`--instancing`). Not a
   // property of the tree: it decides which triangles the trees are built
   // over, the same for every structure.

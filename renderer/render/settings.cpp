@@ -3,6 +3,8 @@
 #include "core/errors.h"
 #include "shared/shared.h"
 
+#include <sstream>
+
 namespace octrace {
 
 const char* accel_name(Accel a) {
@@ -88,6 +90,11 @@ void validate_settings(const RenderSettings& s) {
     throw SettingError("sample_lanes", ": must be 0 (auto), 1, 2, 4 or 8, got " + std::to_string(s.sample_lanes));
   if (s.octree.bvh_width != 0 && s.octree.bvh_width != 2 && s.octree.bvh_width != 4)
     throw SettingError("octree.bvh_width", ": must be 0 (auto), 2 or 4, got " + std::to_string(s.octree.bvh_width));
+  if (!(s.octree.bvh_spatial_refs >= 1.0 && s.octree.bvh_spatial_refs <= 4.0)) {
+    std::ostringstream got;
+    got << s.octree.bvh_spatial_refs;
+    throw SettingError("octree.bvh_spatial_refs", ": must be between 1 (no spatial splits) and 4, got " + got.str());
+  }
 }
 
 }  // namespace octrace

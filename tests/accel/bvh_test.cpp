@@ -300,6 +300,21 @@ TEST(Bvh, SpatialSplitsCoverEveryTriangleWithinTheBudget) {
   EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(GpuOctreeNode)), 0);
 }
 
+// At most 1 reference per triangle: no spatial splits, the tree of the
+// boxes alone (the plain binned SAH), shapes or not.
+TEST(Bvh, OneReferencePerTriangleIsThePlainSah) {
+  const Soup s = slivers(2000, 17);
+  const Octree plain = build_bvh(s.boxes, 4), one = build_bvh(s.boxes, 4, s.clip, 1.0);
+  ASSERT_EQ(one.refs, plain.refs);
+  ASSERT_EQ(one.nodes.size(), plain.nodes.size());
+  EXPECT_EQ(std::memcmp(one.nodes.data(), plain.nodes.data(), one.nodes.size() * sizeof(GpuOctreeNode)), 0);
+  // And a larger budget splits more.
+  const Octree more = build_bvh(s.boxes, 4, s.clip, 2.0), fewer = build_bvh(s.boxes, 4, s.clip, 1.2);
+  EXPECT_LE(static_cast<double>(fewer.refs.size()), 2000 * 1.2);
+  EXPECT_GT(more.refs.size(), fewer.refs.size());
+  EXPECT_LE(static_cast<double>(more.refs.size()), 2000 * 2.0);
+}
+
 // Without shapes, spatial splits never happen: a tree over boxes is the
 // plain binned SAH's (one reference each), large enough to build on threads.
 TEST(Bvh, NoShapesNoSpatialSplits) {

@@ -109,6 +109,10 @@ const BadInput BAD_INPUTS[] = {
     {"sample_lanes_sixteen", "--sample-lanes 16", "--sample-lanes: must be 0 (auto), 1, 2, 4 or 8, got 16"},
     {"bvh_width_three", "--accel bvh --bvh-width 3", "--bvh-width: must be 0 (auto), 2 or 4, got 3"},
     {"bvh_width_eight", "--bvh-width 8", "--bvh-width: must be 0 (auto), 2 or 4, got 8"},
+    {"bvh_spatial_refs_low", "--accel bvh --bvh-spatial-refs 0.5",
+     "--bvh-spatial-refs: must be between 1 (no spatial splits) and 4, got 0.5"},
+    {"bvh_spatial_refs_nan", "--bvh-spatial-refs nan",
+     "--bvh-spatial-refs: must be between 1 (no spatial splits) and 4, got nan"},
     {"bvh_sphere_order_unknown", "--accel bvh --bvh-sphere-order random",
      "--bvh-sphere-order: expected auto, tree or scene, got \"random\""},
     {"instancing_unknown", "--instancing copy", "--instancing: expected auto, keep or bake, got \"copy\""},
@@ -208,7 +212,8 @@ TEST(Cli, JsonSummaryHasTimingsAndDevice) {
 TEST(Cli, JsonSummaryHasBvhStats) {
   RunResult r = run_octrace("render --size 16x8 --spp 1 --spheres 10 --accel bvh --json --out " + tmp("bvh.png"));
   ASSERT_EQ(r.code, 0) << r.output;
-  for (const char* key : {"\"bvh\"", "\"nodes\"", "\"bytes_per_primitive\"", "\"refs\": 14", "\"accel\": \"bvh\""})
+  for (const char* key : {"\"bvh\"", "\"nodes\"", "\"bytes_per_primitive\"", "\"refs\": 14", "\"accel\": \"bvh\"",
+                          "\"spatial_refs\": 1.5"})
     EXPECT_NE(r.output.find(key), std::string::npos) << key << " missing in " << r.output;
   EXPECT_EQ(r.output.find("\"octree\""), std::string::npos) << r.output;
   // The widths it was built with: a top level of spheres is binary on every
