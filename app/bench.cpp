@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "accel/bvh.h"
+#include "core/text.h"
 #include "io/file.h"
 #include "scene/gltf.h"
 #include "render/gpu_scene.h"
@@ -87,12 +88,8 @@ void print_header(const VulkanContext& ctx, const RenderSettings& settings, cons
       settings.octree.bvh_width ? "; BVH width " + std::to_string(settings.octree.bvh_width) : std::string();
   if (settings.octree.bvh_sphere_order != SphereOrder::Auto)
     bvh += std::string("; BVH spheres in the ") + sphere_order_name(settings.octree.bvh_sphere_order) + "'s order";
-  if (settings.octree.bvh_spatial_refs != kBvhSpatialRefs) {
-    char refs[64];
-    std::snprintf(refs, sizeof refs, "; BVH spatial splits up to %g references per triangle",
-                  settings.octree.bvh_spatial_refs);
-    bvh += refs;
-  }
+  if (settings.octree.bvh_spatial_refs != kBvhSpatialRefs)
+    bvh += "; BVH spatial splits up to " + float_string(settings.octree.bvh_spatial_refs) + " references per triangle";
   // ContextOptions::robust_buffers: said only where the checks are off.
   const char* robust = ctx.robust_buffers ? "" : "; buffer bounds checks off";
   std::printf("Device: %s (%s, %s). Image %dx%d, %u spp, depth %u%s%s; render = device time of the passes "

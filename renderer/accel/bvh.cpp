@@ -25,9 +25,10 @@ struct Item {
   uint32_t prim;
 };
 
-// The bin of centroid coordinate c on an axis whose centroids span
-// [lo, lo + kBvhBins / scale]: the same float operations at binning and at
-// partitioning, so both put a primitive on the same side.
+// The bin of coordinate c on an axis whose kBvhBins bins span
+// [lo, lo + kBvhBins / scale]: for centroids, the same float operations at
+// binning and at partitioning, so both put a primitive on the same side; for
+// the spatial bins, bin_range's first guess.
 uint32_t bin_of(float c, float lo, float scale) {
   const float k = (c - lo) * scale;
   return k <= 0.0f ? 0u : std::min(kBvhBins - 1, static_cast<uint32_t>(k));
@@ -146,13 +147,14 @@ class Builder {
     }
     // A spatial split is looked for only where the object split's children
     // overlap by more than kBvhSpatialOverlap of the root's area (Stich et
-    // al. 2009's alpha: elsewhere it would rarely win and costs a clip per
-    // bin a primitive spans), and while the references stay within the
-    // budget.
+    // al. 2009's alpha: elsewhere it would rarely win and costs a pass over
+    // the bins each primitive spans), and while the references stay within
+    // the budget.
     Candidate spatial;
     if (clip_ && extra >= 1.0) {
       Aabb overlap{glm::max(object.left.lo, object.right.lo), glm::min(object.left.hi, object.right.hi)};
-      const bool overlaps = overlap.lo.x <= overlap.hi.x && overlap.lo.y <= overlap.hi.y && overlap.lo.z <= overlap.hi.z;
+      const bool overlaps =
+          overlap.lo.x <= overlap.hi.x && overlap.lo.y <= overlap.hi.y && overlap.lo.z <= overlap.hi.z;
       if (overlaps && half_area(overlap) > kBvhSpatialOverlap * root_area_) spatial = spatial_split(items, box);
     }
     const double best = std::min(object.cost, spatial.cost);
@@ -231,22 +233,23 @@ class Builder {
   // bins' width and settled against plane() itself, whose values grow with k.
   static void bin_range(const Aabb& box, int a, float lo, float hi, uint32_t& first, uint32_t& last) {
     const float scale = static_cast<float>(kBvhBins) / (box.hi[a] - box.lo[a]);
-    const auto guess = [&](float c) {
-      const float k = (c - box.lo[a]) * scale;
-      return k <= 0.0f ? 0u : std::min(kBvhBins - 1, static_cast<uint32_t>(k));
-    };
-    first = guess(lo);
+    first = bin_of(lo, box.lo[a], scale);
     while (first > 0 && lo < plane(box, a, first)) --first;
     while (first + 1 < kBvhBins && lo >= plane(box, a, first + 1)) ++first;
-    last = std::max(first, guess(hi));
+    last = std::max(first, bin_of(hi, box.lo[a], scale));
     while (last > first && hi <= plane(box, a, last)) --last;
     while (last + 1 < kBvhBins && hi > plane(box, a, last + 1)) ++last;
   }
+  // `box` cut to [lo, hi] on axis a (empty there where they do not meet).
+  static Aabb slab(const Aabb& box, int a, float lo, float hi) {
+    Aabb cut = box;
+    cut.lo[a] = std::max(cut.lo[a], lo);
+    cut.hi[a] = std::min(cut.hi[a], hi);
+    return cut;
+  }
   // Item `it` clipped to [lo, hi] on axis a (its part there), if it reaches it.
   bool clipped(const Item& it, int a, float lo, float hi, Item& part) const {
-    Aabb cell = it.box;
-    cell.lo[a] = std::max(cell.lo[a], lo);
-    cell.hi[a] = std::min(cell.hi[a], hi);
+    const Aabb cell = slab(it.box, a, lo, hi);
     if (cell.lo[a] > cell.hi[a]) return false;
     Aabb b;
     if (!clip_(it.prim, cell, b)) return false;
@@ -279,12 +282,8 @@ class Builder {
           bins[first].extend(it.box);
           continue;
         }
-        for (uint32_t k = first; k <= last; ++k) {
-          Aabb cell = it.box;
-          cell.lo[a] = std::max(cell.lo[a], plane(box, a, k));
-          cell.hi[a] = std::min(cell.hi[a], plane(box, a, k + 1));
-          bins[k].extend(cell);
-        }
+        for (uint32_t k = first; k <= last; ++k)
+          bins[k].extend(slab(it.box, a, plane(box, a, k), plane(box, a, k + 1)));
       }
       sweep(bins, enter, leave, a, best);
     }

@@ -23,6 +23,12 @@ inline std::string float_string(float v) {
   return {buf, std::to_chars(buf, buf + sizeof buf, v).ptr};
 }
 
+// The same for a double ("1.5", "nan").
+inline std::string float_string(double v) {
+  char buf[32];
+  return {buf, std::to_chars(buf, buf + sizeof buf, v).ptr};
+}
+
 // "[x, y, z]", each as float_string.
 inline std::string vec3_string(glm::vec3 v) {
   // Appended rather than "[" + ..., which trips GCC 12's -Wrestrict false positive.

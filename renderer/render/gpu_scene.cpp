@@ -133,8 +133,9 @@ static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& sce
       const uint32_t* v = &mesh.indices[3 * size_t(t)];
       return clip_triangle(mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]], cell, part);
     };
-    const Octree mesh_tree = accel == Accel::Bvh ? build_bvh(mesh_triangle_boxes(mesh), widths.meshes, clip, params.bvh_spatial_refs)
-                                                 : build_octree(mesh_triangle_boxes(mesh), params, clip);
+    const Octree mesh_tree =
+        accel == Accel::Bvh ? build_bvh(mesh_triangle_boxes(mesh), widths.meshes, clip, params.bvh_spatial_refs)
+                            : build_octree(mesh_triangle_boxes(mesh), params, clip);
     const uint32_t node_base = uint32_t(octree.nodes.size()), ref_base = uint32_t(octree.refs.size());
     for (gpu::GpuOctreeNode n : mesh_tree.nodes) {
       n.first += (n.count_or_mask & gpu::OCTREE_INTERNAL) ? node_base : ref_base;

@@ -1,9 +1,8 @@
 #include "render/settings.h"
 
 #include "core/errors.h"
+#include "core/text.h"
 #include "shared/shared.h"
-
-#include <sstream>
 
 namespace octrace {
 
@@ -90,11 +89,9 @@ void validate_settings(const RenderSettings& s) {
     throw SettingError("sample_lanes", ": must be 0 (auto), 1, 2, 4 or 8, got " + std::to_string(s.sample_lanes));
   if (s.octree.bvh_width != 0 && s.octree.bvh_width != 2 && s.octree.bvh_width != 4)
     throw SettingError("octree.bvh_width", ": must be 0 (auto), 2 or 4, got " + std::to_string(s.octree.bvh_width));
-  if (!(s.octree.bvh_spatial_refs >= 1.0 && s.octree.bvh_spatial_refs <= 4.0)) {
-    std::ostringstream got;
-    got << s.octree.bvh_spatial_refs;
-    throw SettingError("octree.bvh_spatial_refs", ": must be between 1 (no spatial splits) and 4, got " + got.str());
-  }
+  if (!(s.octree.bvh_spatial_refs >= 1.0 && s.octree.bvh_spatial_refs <= 4.0))
+    throw SettingError("octree.bvh_spatial_refs", ": must be between 1 (no spatial splits) and 4, got " +
+                                                      float_string(s.octree.bvh_spatial_refs));
 }
 
 }  // namespace octrace

@@ -15,11 +15,11 @@
 // 2D against the origin with edge functions that agree exactly between two
 // triangles sharing an edge, so no ray slips between them.
 // The permutation and the shear are kept as the rows of one matrix, so that
-// a vertex's sheared coordinate is a dot product rather than a dynamically
-// indexed vector (which GPU compilers may move to local memory): with e_k
-// the one-hot vector of component k,
+// a vertex's sheared coordinate is a row's products summed (`sheared`, below)
+// rather than a dynamically indexed vector (which GPU compilers may move to
+// local memory): with e_k the one-hot vector of component k,
 //   mx = e_kx - Sx e_kz,  my = e_ky - Sy e_kz,  mz = Sz e_kz,
-// each component exact (a product with 0 or 1, or -Sx itself). So dot(A, mx)
+// each component exact (a product with 0 or 1, or -Sx itself). So A . mx
 // = A[kx] + (-Sx A[kz]) + 0 rounds once, after the one product: the value
 // of the paper's A[kx] - Sx A[kz] (up to the sign of a zero, which no test
 // below tells apart), in 5 operations where the one-hot form took 7 and the
