@@ -47,7 +47,9 @@ struct Candidate {
 class Builder {
  public:
   // `clip` (may be empty): the primitives' shapes, for spatial splits.
-  Builder(Octree& tree, const ClipFn& clip) : tree_(tree), clip_(clip) {}
+  // Nodes above `parallel_depth` build their subtrees on two threads.
+  Builder(Octree& tree, const ClipFn& clip, uint32_t parallel_depth)
+      : tree_(tree), clip_(clip), parallel_depth_(parallel_depth) {}
 
   // Node `index` over `items`, at `depth`; its subtree may add `extra`
   // references by spatial splits.
@@ -83,7 +85,7 @@ class Builder {
     tree_.nodes[index].count_or_mask = gpu::OCTREE_INTERNAL | 0x3u;
     tree_.nodes.push_back({});
     tree_.nodes.push_back({});
-    if (depth < kBvhParallelDepth && n >= kBvhParallelItems) {
+    if (depth < parallel_depth_ && n >= kBvhParallelItems) {
       // The two subtrees on two threads, each into arrays of its own, then
       // appended left first: the nodes and references a build on one thread
       // puts there, in the same order.
@@ -107,7 +109,7 @@ class Builder {
   Octree subtree(std::vector<Item> items, uint32_t depth, double extra) const {
     Octree t;
     t.nodes.push_back({});
-    Builder b(t, clip_);
+    Builder b(t, clip_, parallel_depth_);
     b.root_area_ = root_area_;
     b.build(0, std::move(items), depth, extra);
     return t;
@@ -324,6 +326,7 @@ class Builder {
 
   Octree& tree_;
   const ClipFn& clip_;
+  uint32_t parallel_depth_;
   double root_area_ = 0.0;  // the root's half area (Stich et al.'s alpha is relative to it)
 };
 
@@ -384,7 +387,8 @@ class Collapser {
 
 }  // namespace
 
-Octree build_bvh(std::span<const Aabb> boxes, uint32_t width, const ClipFn& clip, double spatial_refs) {
+Octree build_bvh(std::span<const Aabb> boxes, uint32_t width, const ClipFn& clip, double spatial_refs,
+                 uint32_t parallel_depth) {
   const auto start = Clock::now();
   Octree tree;
   if (width < 2 || width > kBvhWidth)
@@ -403,7 +407,7 @@ Octree build_bvh(std::span<const Aabb> boxes, uint32_t width, const ClipFn& clip
   } else {
     Octree binary;
     binary.nodes.push_back({});
-    Builder(binary, clip).build(0, std::move(items), 0, static_cast<double>(boxes.size()) * (spatial_refs - 1.0));
+    Builder(binary, clip, parallel_depth).build(0, std::move(items), 0, static_cast<double>(boxes.size()) * (spatial_refs - 1.0));
     tree.refs = std::move(binary.refs);
     tree.stats.leaves = binary.stats.leaves;
     Collapser(binary, width, tree).collapse(0, 0, 0);

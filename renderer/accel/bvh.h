@@ -128,7 +128,9 @@ inline constexpr size_t kBvhParallelItems = 4096;
 // `clip` (octree.h ClipFn; may be empty): the primitives' shapes, which
 // allow spatial splits, up to `spatial_refs` references per primitive in all
 // (1: none; OctreeParams::bvh_spatial_refs).
+// `parallel_depth`: the levels whose nodes build their two subtrees on two
+// threads (0: all on the calling thread); the tree is the same (bvh_test).
 Octree build_bvh(std::span<const Aabb> boxes, uint32_t width = kBvhWidth, const ClipFn& clip = {},
-                 double spatial_refs = kBvhSpatialRefs);
+                 double spatial_refs = kBvhSpatialRefs, uint32_t parallel_depth = kBvhParallelDepth);
 
 }  // namespace octrace

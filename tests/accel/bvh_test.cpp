@@ -192,12 +192,18 @@ TEST(Bvh, SahDecidesSmallNodes) {
   EXPECT_EQ(leaf.nodes[0].count_or_mask, 4u);
 }
 
-TEST(Bvh, Deterministic) {
-  const std::vector<Aabb> boxes = random_boxes(3000, 7);
-  const Octree a = build_bvh(boxes), b = build_bvh(boxes);
+// Byte for byte: the nodes and the references.
+void expect_same_tree(const Octree& a, const Octree& b) {
   ASSERT_EQ(a.nodes.size(), b.nodes.size());
   ASSERT_EQ(a.refs, b.refs);
   EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(GpuOctreeNode)), 0);
+  EXPECT_EQ(a.stats.leaves, b.stats.leaves);
+  EXPECT_EQ(a.stats.max_depth_reached, b.stats.max_depth_reached);
+}
+
+TEST(Bvh, Deterministic) {
+  const std::vector<Aabb> boxes = random_boxes(3000, 7);
+  expect_same_tree(build_bvh(boxes), build_bvh(boxes));
 }
 
 // Spatial splits (a ClipFn: the meshes' trees). Long thin triangles along
@@ -205,8 +211,8 @@ TEST(Bvh, Deterministic) {
 // alone leaves siblings overlapping, so spatial splits must happen (more
 // references than triangles), within kBvhSpatialRefs per triangle; every
 // point of a triangle (vertices, edge midpoints, random barycentrics) lies
-// in a leaf that references it; boxes nest; deterministic, though the
-// build's subtrees run on several threads.
+// in a leaf that references it; boxes nest; deterministic, and the same
+// tree whether the build's subtrees run on threads or not.
 struct Soup {
   std::vector<glm::vec3> v;  // 3 per triangle
   std::vector<Aabb> boxes;
@@ -293,11 +299,29 @@ TEST(Bvh, SpatialSplitsCoverEveryTriangleWithinTheBudget) {
     }
     EXPECT_EQ(missed, 0u);
   }
-  // The same input, the same tree, whatever the threads did.
+  // The same input, the same tree.
   const Octree a = build_bvh(s.boxes, 4, s.clip), b = build_bvh(s.boxes, 4, s.clip);
-  ASSERT_EQ(a.nodes.size(), b.nodes.size());
-  ASSERT_EQ(a.refs, b.refs);
-  EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(GpuOctreeNode)), 0);
+  expect_same_tree(a, b);
+}
+
+// The top levels' subtrees build on threads (kBvhParallelDepth, for nodes of
+// at least kBvhParallelItems references) and are appended in the order one
+// thread writes them: the tree, with spatial splits or without, is the one a
+// build on the calling thread makes, byte for byte, however deep the threads go.
+TEST(Bvh, ThreadsBuildTheOneThreadTree) {
+  const Soup s = slivers(12 * kBvhParallelItems, 23);
+  const std::vector<Aabb> boxes = random_boxes(12 * kBvhParallelItems, 29);
+  for (uint32_t width : {2u, 4u}) {
+    SCOPED_TRACE(width);
+    const Octree one = build_bvh(s.boxes, width, s.clip, kBvhSpatialRefs, 0);
+    const Octree plain_one = build_bvh(boxes, width, {}, kBvhSpatialRefs, 0);
+    EXPECT_GT(one.refs.size(), s.boxes.size());  // spatial splits happened
+    for (uint32_t depth : {kBvhParallelDepth, kBvhParallelDepth + 2}) {
+      SCOPED_TRACE(depth);
+      expect_same_tree(build_bvh(s.boxes, width, s.clip, kBvhSpatialRefs, depth), one);
+      expect_same_tree(build_bvh(boxes, width, {}, kBvhSpatialRefs, depth), plain_one);
+    }
+  }
 }
 
 // At most 1 reference per triangle: no spatial splits, the tree of the
@@ -305,9 +329,7 @@ TEST(Bvh, SpatialSplitsCoverEveryTriangleWithinTheBudget) {
 TEST(Bvh, OneReferencePerTriangleIsThePlainSah) {
   const Soup s = slivers(2000, 17);
   const Octree plain = build_bvh(s.boxes, 4), one = build_bvh(s.boxes, 4, s.clip, 1.0);
-  ASSERT_EQ(one.refs, plain.refs);
-  ASSERT_EQ(one.nodes.size(), plain.nodes.size());
-  EXPECT_EQ(std::memcmp(one.nodes.data(), plain.nodes.data(), one.nodes.size() * sizeof(GpuOctreeNode)), 0);
+  expect_same_tree(one, plain);
   // And a larger budget splits more.
   const Octree more = build_bvh(s.boxes, 4, s.clip, 2.0), fewer = build_bvh(s.boxes, 4, s.clip, 1.2);
   EXPECT_LE(static_cast<double>(fewer.refs.size()), 2000 * 1.2);
