@@ -162,12 +162,14 @@ void test_instance_triangle(Ray oray, RayShear osh, InstanceRef ir, uint local, 
 
 #define OCTREE_WALK_NAME traverse_mesh
 #define OCTREE_BVH_WIDE BVH_MESH_WIDE
+#define OCTREE_CHILD_PAIRS true
 #define OCTREE_SLAB FusedSlabRay
 #define OCTREE_SLAB_MAKE fused_slab_ray
 #define OCTREE_LEAF(k) test_instance_triangle(ray, sh, ir, ref_at(k), from_prim, hit)
 #include "accel/octree_walk.glsl"
 #undef OCTREE_WALK_NAME
 #undef OCTREE_BVH_WIDE
+#undef OCTREE_CHILD_PAIRS
 #undef OCTREE_SLAB
 #undef OCTREE_SLAB_MAKE
 #undef OCTREE_LEAF
@@ -231,12 +233,14 @@ void test_primitive_at(Ray ray, SlabRay sr, uint k, uint from_prim, bool into_fr
 
 #define OCTREE_WALK_NAME traverse_top
 #define OCTREE_BVH_WIDE BVH_TOP_WIDE
+#define OCTREE_CHILD_PAIRS false
 #define OCTREE_SLAB SlabRay
 #define OCTREE_SLAB_MAKE slab_ray
 #define OCTREE_LEAF(k) test_primitive_at(ray, sr, k, from_prim, into_from, hit)
 #include "accel/octree_walk.glsl"
 #undef OCTREE_WALK_NAME
 #undef OCTREE_BVH_WIDE
+#undef OCTREE_CHILD_PAIRS
 #undef OCTREE_SLAB
 #undef OCTREE_SLAB_MAKE
 #undef OCTREE_LEAF
@@ -307,12 +311,14 @@ void test_primitive_any_at(Ray ray, SlabRay sr, uint k, uint from_prim, bool int
 
 #define OCTREE_WALK_NAME traverse_top_any
 #define OCTREE_BVH_WIDE BVH_TOP_WIDE
+#define OCTREE_CHILD_PAIRS false
 #define OCTREE_SLAB SlabRay
 #define OCTREE_SLAB_MAKE slab_ray
 #define OCTREE_LEAF(k) test_primitive_any_at(ray, sr, k, from_prim, into_from, hit)
 #include "accel/octree_walk.glsl"
 #undef OCTREE_WALK_NAME
 #undef OCTREE_BVH_WIDE
+#undef OCTREE_CHILD_PAIRS
 #undef OCTREE_SLAB
 #undef OCTREE_SLAB_MAKE
 #undef OCTREE_LEAF

@@ -2,7 +2,8 @@
 // both of its forms; no include guard): it visits nodes until the invocation
 // holds a leaf, whose references it leaves in [leaf_first, leaf_end), or its
 // stack is empty (the range is then empty). It uses the walk's stack, sp,
-// ray, sr, inv_dir, sign_mask, t_entry and hit.
+// ray, sr, inv_dir, sign_mask, t_entry and hit, and the includer's
+// OCTREE_CHILD_PAIRS.
 //
 // Two forms of the loop, the same nodes in the same order (HOLD_NEAREST,
 // accel/octree.glsl; the host picks per device, RenderSettings::
@@ -89,16 +90,52 @@ if (HOLD_NEAREST) {
     if (WALK_STATS) ++walk_nodes;
     uint present = node.count_or_mask & 0xffu;  // children's octants; child index = rank in it
     uint ordered = octree_children_order(node, top_entry, ray.origin, inv_dir, sign_mask, hit.t);
-    while (ordered != 0u) {
-      uint j = uint(findMSB(ordered));
-      ordered ^= 1u << j;
-      uint octant = j ^ sign_mask;
-      uint child = node.first + bitCount(present & ((1u << octant) - 1u));
-      GpuOctreeNode c = node_at(child);
-      if (WALK_STATS) ++walk_boxes;
-      if (hit_box(c.lo, c.hi, sr, hit.t, t_entry)) {
-        stack[sp] = uvec2(child, floatBitsToUint(t_entry));
-        ++sp;
+    // OCTREE_CHILD_PAIRS (the meshes' walk): two children a trip, in the
+    // order one at a time takes them, the second's load issued beside the
+    // first's (a lone last child loads its node twice and drops the second
+    // result), so the same pushes in the same order: a warp runs half the
+    // trips of its busiest invocation. On the H200 the engine 5.7% and the
+    // balloon 3.1% faster, the sphere fields the same or 0.7% slower
+    // (optimisation log 81), so the top level tests one child a trip.
+    if (OCTREE_CHILD_PAIRS) {
+      while (ordered != 0u) {
+        uint j = uint(findMSB(ordered));
+        ordered ^= 1u << j;
+        uint child = node.first + bitCount(present & ((1u << (j ^ sign_mask)) - 1u));
+        bool two = ordered != 0u;
+        uint child2 = child;
+        if (two) {
+          uint j2 = uint(findMSB(ordered));
+          ordered ^= 1u << j2;
+          child2 = node.first + bitCount(present & ((1u << (j2 ^ sign_mask)) - 1u));
+        }
+        GpuOctreeNode c = node_at(child);
+        GpuOctreeNode c2 = node_at(child2);
+        if (WALK_STATS) walk_boxes += two ? 2u : 1u;
+        float t_entry2;
+        bool hit1 = hit_box(c.lo, c.hi, sr, hit.t, t_entry);
+        bool hit2 = hit_box(c2.lo, c2.hi, sr, hit.t, t_entry2) && two;
+        if (hit1) {
+          stack[sp] = uvec2(child, floatBitsToUint(t_entry));
+          ++sp;
+        }
+        if (hit2) {
+          stack[sp] = uvec2(child2, floatBitsToUint(t_entry2));
+          ++sp;
+        }
+      }
+    } else {
+      while (ordered != 0u) {
+        uint j = uint(findMSB(ordered));
+        ordered ^= 1u << j;
+        uint octant = j ^ sign_mask;
+        uint child = node.first + bitCount(present & ((1u << octant) - 1u));
+        GpuOctreeNode c = node_at(child);
+        if (WALK_STATS) ++walk_boxes;
+        if (hit_box(c.lo, c.hi, sr, hit.t, t_entry)) {
+          stack[sp] = uvec2(child, floatBitsToUint(t_entry));
+          ++sp;
+        }
       }
     }
   }

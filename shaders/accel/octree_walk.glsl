@@ -1,6 +1,8 @@
 // One octree walk, included once per level (no include guard): the includer
 // defines OCTREE_WALK_NAME (the function's name), OCTREE_BVH_WIDE (which BVH
-// walk, below), OCTREE_LEAF(k) (how the
+// walk, below), OCTREE_CHILD_PAIRS (a constant expression: whether the
+// octree's node step tests its children two a trip; accel/octree_descend.glsl),
+// OCTREE_LEAF(k) (how the
 // reference in slot k of the refs array is tested; it may use the walk's
 // parameters and its slab terms `sr`) and
 // OCTREE_SLAB / OCTREE_SLAB_MAKE (the slab test's per-ray type and what
