@@ -29,6 +29,7 @@ struct Row {
   double median_ms = 0, min_ms = 0, max_ms = 0;
   double build_ms = 0, bytes_per_sphere = 0, refs_per_sphere = 0;
   std::optional<double> speedup;  // brute median / octree median, same spheres, radius, precision
+  std::optional<double> vs_bvh;   // this median / the BVH's, same spheres, radius, precision
 };
 
 // The rtiow scene with its materials replaced, one family per effect mix:
@@ -150,6 +151,19 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 
+// Each measured row's median over the BVH's for the same scene and precision
+// (`same`), where a BVH row was measured beside it: what the octree (or
+// brute force) costs or saves against the field's standard structure.
+template <class R, class Same>
+void set_vs_bvh(std::vector<R>& rows, Same same) {
+  for (R& r : rows)
+    for (const R& b : rows)
+      if (b.accel == Accel::Bvh && b.median_ms > 0 && r.median_ms > 0 && same(r, b))
+        r.vs_bvh = r.median_ms / b.median_ms;
+}
+
+std::string ratio_cell(const std::optional<double>& x) { return x ? fmt("%.2fx", *x) : ""; }
+
 }  // namespace
 
 // --effects auto against all, per scene family, as ratios measured in one run.
@@ -233,6 +247,7 @@ int run_scene_bench(const VulkanContext& ctx, const BenchOptions& o, const Rende
     Precision precision;
     double median_ms = 0, min_ms = 0, max_ms = 0, build_ms = 0, bytes_per_primitive = 0;
     double paths_per_s = 0, rays_per_s = 0;
+    std::optional<double> vs_bvh;  // this median / the BVH's, same scene and precision
   };
   std::vector<SceneRow> rows;
   for (const auto& [name, scene] : o.scenes) {
@@ -257,26 +272,30 @@ int run_scene_bench(const VulkanContext& ctx, const BenchOptions& o, const Rende
       }
     }
   }
+  set_vs_bvh(rows, [](const SceneRow& r, const SceneRow& b) { return b.name == r.name && b.precision == r.precision; });
   print_header(ctx, settings, o, "; paths/s and rays/s (every segment: camera rays and bounces) of the last run");
   std::printf("| scene | spheres | triangles | accel | precision | render ms (median) | min | max | paths/s | rays/s | "
-              "build ms | bytes/primitive |\n");
-  std::printf("|---|---:|---:|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
+              "time / BVH's | build ms | bytes/primitive |\n");
+  std::printf("|---|---:|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const SceneRow& r : rows)
-    std::printf("| %s | %llu | %llu | %s | %s | %.2f | %.2f | %.2f | %.3g | %.3g | %s | %s |\n", r.name.c_str(),
+    std::printf("| %s | %llu | %llu | %s | %s | %.2f | %.2f | %.2f | %.3g | %.3g | %s | %s | %s |\n", r.name.c_str(),
                 (unsigned long long)r.spheres, (unsigned long long)r.triangles, accel_name(r.accel),
                 precision_name(r.precision), r.median_ms, r.min_ms, r.max_ms, r.paths_per_s, r.rays_per_s,
-                r.accel != Accel::Brute ? fmt("%.1f", r.build_ms).c_str() : "",
+                ratio_cell(r.vs_bvh).c_str(), r.accel != Accel::Brute ? fmt("%.1f", r.build_ms).c_str() : "",
                 r.accel != Accel::Brute ? fmt("%.1f", r.bytes_per_primitive).c_str() : "");
   if (!o.csv.empty()) {
     std::ostringstream f;
     f << "device,software,width,height,spp,depth,repeat,scene,spheres,triangles,accel,precision,median_ms,min_ms,"
-         "max_ms,paths_per_s,rays_per_s,build_ms,bytes_per_primitive\n";
-    for (const SceneRow& r : rows)
+         "max_ms,paths_per_s,rays_per_s,build_ms,bytes_per_primitive,vs_bvh\n";
+    for (const SceneRow& r : rows) {
       f << '"' << ctx.info.name << "\"," << (ctx.info.software ? 1 : 0) << ',' << settings.width << ','
         << settings.height << ',' << settings.spp << ',' << settings.bounce_limit << ',' << o.repeat << ",\""
         << r.name << "\"," << r.spheres << ',' << r.triangles << ',' << accel_name(r.accel) << ','
         << precision_name(r.precision) << ',' << r.median_ms << ',' << r.min_ms << ',' << r.max_ms << ','
-        << r.paths_per_s << ',' << r.rays_per_s << ',' << r.build_ms << ',' << r.bytes_per_primitive << '\n';
+        << r.paths_per_s << ',' << r.rays_per_s << ',' << r.build_ms << ',' << r.bytes_per_primitive << ',';
+      if (r.vs_bvh) f << *r.vs_bvh;
+      f << '\n';
+    }
     const std::string text = f.str();
     write_file_atomically(o.csv, text.data(), text.size());
   }
@@ -356,20 +375,23 @@ int run_bench(const BenchOptions& o) {
           b.precision == r.precision)
         r.speedup = b.median_ms / r.median_ms;
   }
+  set_vs_bvh(rows, [](const Row& r, const Row& b) {
+    return b.spheres == r.spheres && b.radius == r.radius && b.precision == r.precision;
+  });
 
   print_header(ctx, settings, o, "");
   std::printf("| spheres | radius | accel | precision | render ms (median) | min | max | speedup vs brute | "
-              "build ms | bytes/sphere |\n");
-  std::printf("|---:|---:|---|---|---:|---:|---:|---:|---:|---:|\n");
+              "time / BVH's | build ms | bytes/sphere |\n");
+  std::printf("|---:|---:|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Row& r : rows) {
     std::printf("| %llu | %g | %s | %s | ", (unsigned long long)r.spheres, r.radius, accel_name(r.accel),
                 precision_name(r.precision));
     if (r.skipped) {
-      std::printf("skipped: %s | | | | | |\n", r.skip_reason.c_str());
+      std::printf("skipped: %s | | | | | | |\n", r.skip_reason.c_str());
       continue;
     }
-    std::printf("%.2f | %.2f | %.2f | %s | %s | %s |\n", r.median_ms, r.min_ms, r.max_ms,
-                r.speedup ? fmt("%.1fx", *r.speedup).c_str() : "",
+    std::printf("%.2f | %.2f | %.2f | %s | %s | %s | %s |\n", r.median_ms, r.min_ms, r.max_ms,
+                r.speedup ? fmt("%.1fx", *r.speedup).c_str() : "", ratio_cell(r.vs_bvh).c_str(),
                 r.accel != Accel::Brute ? fmt("%.1f", r.build_ms).c_str() : "",
                 r.accel != Accel::Brute ? fmt("%.1f", r.bytes_per_sphere).c_str() : "");
   }
@@ -377,18 +399,20 @@ int run_bench(const BenchOptions& o) {
   if (!o.csv.empty()) {
     std::ostringstream f;
     f << "device,software,width,height,spp,depth,repeat,spheres,radius,accel,precision,skipped,median_ms,min_ms,"
-           "max_ms,speedup,build_ms,bytes_per_sphere,refs_per_sphere\n";
+           "max_ms,speedup,build_ms,bytes_per_sphere,refs_per_sphere,vs_bvh\n";
     for (const Row& r : rows) {
       f << '"' << ctx.info.name << "\"," << (ctx.info.software ? 1 : 0) << ',' << settings.width << ','
         << settings.height << ',' << settings.spp << ',' << settings.bounce_limit << ',' << o.repeat << ','
         << r.spheres << ',' << r.radius << ',' << accel_name(r.accel) << ',' << precision_name(r.precision) << ','
         << (r.skipped ? 1 : 0) << ',';
       if (r.skipped) {
-        f << ",,,,,,\n";
+        f << ",,,,,,,\n";
         continue;
       }
       f << r.median_ms << ',' << r.min_ms << ',' << r.max_ms << ',' << (r.speedup ? *r.speedup : 0.0) << ','
-        << r.build_ms << ',' << r.bytes_per_sphere << ',' << r.refs_per_sphere << '\n';
+        << r.build_ms << ',' << r.bytes_per_sphere << ',' << r.refs_per_sphere << ',';
+      if (r.vs_bvh) f << *r.vs_bvh;
+      f << '\n';
     }
     const std::string text = f.str();
     write_file_atomically(o.csv, text.data(), text.size());
