@@ -248,13 +248,16 @@ int run_scene_bench(const VulkanContext& ctx, const BenchOptions& o, const Rende
     double median_ms = 0, min_ms = 0, max_ms = 0, build_ms = 0, bytes_per_primitive = 0;
     double paths_per_s = 0, rays_per_s = 0;
     std::optional<double> vs_bvh;  // this median / the BVH's, same scene and precision
+    size_t scene_index = 0;        // in o.scenes (two files may share a name)
   };
   std::vector<SceneRow> rows;
-  for (const auto& [name, scene] : o.scenes) {
+  for (size_t index = 0; index < o.scenes.size(); ++index) {
+    const auto& [name, scene] = o.scenes[index];
     for (Precision precision : o.precisions) {
       for (Accel accel : o.accels) {
         TimedRuns t = timed_runs(ctx, scene, settings, accel, precision, o.repeat, o.warmup_s);
         SceneRow row{name, scene.spheres.size(), instanced_triangle_count(scene), accel, precision};
+        row.scene_index = index;
         row.median_ms = t.median_ms;
         row.min_ms = t.min_ms;
         row.max_ms = t.max_ms;
@@ -272,7 +275,9 @@ int run_scene_bench(const VulkanContext& ctx, const BenchOptions& o, const Rende
       }
     }
   }
-  set_vs_bvh(rows, [](const SceneRow& r, const SceneRow& b) { return b.name == r.name && b.precision == r.precision; });
+  set_vs_bvh(rows, [](const SceneRow& r, const SceneRow& b) {
+    return b.scene_index == r.scene_index && b.precision == r.precision;
+  });
   print_header(ctx, settings, o, "; paths/s and rays/s (every segment: camera rays and bounces) of the last run");
   std::printf("| scene | spheres | triangles | accel | precision | render ms (median) | min | max | paths/s | rays/s | "
               "time / BVH's | build ms | bytes/primitive |\n");

@@ -423,6 +423,23 @@ TEST(Cli, BenchGivesTimeOverTheBvhs) {
     ASSERT_GE(without.size(), 3u);
     for (size_t i = 1; i < without.size(); ++i) EXPECT_EQ(without[i].back(), "") << i;
   }
+  // Two files of one name are two scenes: each row against its own BVH's
+  // (rows come scene by scene, in the order of --accel).
+  const std::string twin = octrace::test::quad_gltf().write(tmp("gltf2/bench_ratio_quad.glb"));
+  const std::string csv = tmp("bench_twins.csv");
+  RunResult r = run_octrace("bench --device cpu --scene " + quad + "," + twin + " --accel octree,bvh" + common + csv);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto lines = csv_cells(csv);
+  ASSERT_EQ(lines.size(), 5u);
+  const auto& head = lines[0];
+  const size_t median = std::find(head.begin(), head.end(), "median_ms") - head.begin(),
+               vs_bvh = std::find(head.begin(), head.end(), "vs_bvh") - head.begin();
+  for (size_t i : {1u, 3u}) {
+    EXPECT_NEAR(std::stod(lines[i][vs_bvh]), std::stod(lines[i][median]) / std::stod(lines[i + 1][median]),
+                1e-4 * std::stod(lines[i][vs_bvh]))
+        << i;
+    EXPECT_EQ(lines[i + 1][vs_bvh], "1") << i;
+  }
 }
 
 // `bench --warmup` takes seconds >= 0: anything else is a one-line input
