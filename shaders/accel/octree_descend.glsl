@@ -43,10 +43,7 @@ if (HOLD_NEAREST) {
     uint ordered = octree_children_order(node, cur_entry, ray.origin, inv_dir, sign_mask, hit.t);
     bool have = false;
     while (ordered != 0u) {
-      uint j = uint(findMSB(ordered));
-      ordered ^= 1u << j;
-      uint octant = j ^ sign_mask;
-      uint child = node.first + bitCount(present & ((1u << octant) - 1u));
+      uint child = take_child(ordered, present, node.first, sign_mask);
       GpuOctreeNode c = node_at(child);
       if (WALK_STATS) ++walk_boxes;
       if (hit_box(c.lo, c.hi, sr, hit.t, t_entry)) {
@@ -99,16 +96,10 @@ if (HOLD_NEAREST) {
     // (optimisation log 81), so the top level tests one child a trip.
     if (OCTREE_CHILD_PAIRS) {
       while (ordered != 0u) {
-        uint j = uint(findMSB(ordered));
-        ordered ^= 1u << j;
-        uint child = node.first + bitCount(present & ((1u << (j ^ sign_mask)) - 1u));
+        uint child = take_child(ordered, present, node.first, sign_mask);
         bool two = ordered != 0u;
         uint child2 = child;
-        if (two) {
-          uint j2 = uint(findMSB(ordered));
-          ordered ^= 1u << j2;
-          child2 = node.first + bitCount(present & ((1u << (j2 ^ sign_mask)) - 1u));
-        }
+        if (two) child2 = take_child(ordered, present, node.first, sign_mask);
         GpuOctreeNode c = node_at(child);
         GpuOctreeNode c2 = node_at(child2);
         if (WALK_STATS) walk_boxes += two ? 2u : 1u;
@@ -126,10 +117,7 @@ if (HOLD_NEAREST) {
       }
     } else {
       while (ordered != 0u) {
-        uint j = uint(findMSB(ordered));
-        ordered ^= 1u << j;
-        uint octant = j ^ sign_mask;
-        uint child = node.first + bitCount(present & ((1u << octant) - 1u));
+        uint child = take_child(ordered, present, node.first, sign_mask);
         GpuOctreeNode c = node_at(child);
         if (WALK_STATS) ++walk_boxes;
         if (hit_box(c.lo, c.hi, sr, hit.t, t_entry)) {
