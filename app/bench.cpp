@@ -151,15 +151,15 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 
-// Each measured row's median over the BVH's for the same scene and precision
-// (`same`), where a BVH row was measured beside it: what the octree (or
-// brute force) costs or saves against the field's standard structure.
+// The row of `accel` measured (not skipped) for the same scene and precision
+// as `r` (`same`), if there is one: what a row is compared with (brute force
+// for the speedup; the BVH, the field's standard structure, for the time
+// over the BVH's).
 template <class R, class Same>
-void set_vs_bvh(std::vector<R>& rows, Same same) {
-  for (R& r : rows)
-    for (const R& b : rows)
-      if (b.accel == Accel::Bvh && b.median_ms > 0 && r.median_ms > 0 && same(r, b))
-        r.vs_bvh = r.median_ms / b.median_ms;
+const R* measured_twin(const std::vector<R>& rows, const R& r, Accel accel, Same same) {
+  for (const R& b : rows)
+    if (b.accel == accel && b.median_ms > 0 && same(r, b)) return &b;
+  return nullptr;
 }
 
 std::string ratio_cell(const std::optional<double>& x) { return x ? fmt("%.2fx", *x) : ""; }
@@ -275,9 +275,12 @@ int run_scene_bench(const VulkanContext& ctx, const BenchOptions& o, const Rende
       }
     }
   }
-  set_vs_bvh(rows, [](const SceneRow& r, const SceneRow& b) {
-    return b.scene_index == r.scene_index && b.precision == r.precision;
-  });
+  for (SceneRow& r : rows) {
+    const SceneRow* b = measured_twin(rows, r, Accel::Bvh, [](const SceneRow& r, const SceneRow& b) {
+      return b.scene_index == r.scene_index && b.precision == r.precision;
+    });
+    if (b) r.vs_bvh = r.median_ms / b->median_ms;
+  }
   print_header(ctx, settings, o, "; paths/s and rays/s (every segment: camera rays and bounces) of the last run");
   std::printf("| scene | spheres | triangles | accel | precision | render ms (median) | min | max | paths/s | rays/s | "
               "time / BVH's | build ms | bytes/primitive |\n");
@@ -373,16 +376,15 @@ int run_bench(const BenchOptions& o) {
       }
     }
   }
-  for (Row& r : rows) {
-    if (r.accel == Accel::Brute || r.skipped) continue;
-    for (const Row& b : rows)
-      if (b.accel == Accel::Brute && !b.skipped && b.spheres == r.spheres && b.radius == r.radius &&
-          b.precision == r.precision)
-        r.speedup = b.median_ms / r.median_ms;
-  }
-  set_vs_bvh(rows, [](const Row& r, const Row& b) {
+  const auto same = [](const Row& r, const Row& b) {
     return b.spheres == r.spheres && b.radius == r.radius && b.precision == r.precision;
-  });
+  };
+  for (Row& r : rows) {
+    if (r.skipped) continue;
+    if (const Row* b = measured_twin(rows, r, Accel::Brute, same); b && r.accel != Accel::Brute)
+      r.speedup = b->median_ms / r.median_ms;
+    if (const Row* b = measured_twin(rows, r, Accel::Bvh, same)) r.vs_bvh = r.median_ms / b->median_ms;
+  }
 
   print_header(ctx, settings, o, "");
   std::printf("| spheres | radius | accel | precision | render ms (median) | min | max | speedup vs brute | "

@@ -379,6 +379,11 @@ std::vector<std::vector<std::string>> csv_cells(const std::string& path) {
   return lines;
 }
 
+// The index of the column `name` in a CSV header (its size if absent).
+size_t column(const std::vector<std::string>& head, const char* name) {
+  return static_cast<size_t>(std::find(head.begin(), head.end(), name) - head.begin());
+}
+
 // `bench` puts each row's time over the BVH's beside it (the octree within
 // 1.2x of the BVH is issue 15's goal): in the table and as the CSV's vs_bvh,
 // median over the BVH's median for the same scene and precision, for sphere
@@ -396,11 +401,8 @@ TEST(Cli, BenchGivesTimeOverTheBvhs) {
     const auto lines = csv_cells(csv);
     ASSERT_GE(lines.size(), 4u);
     const auto& head = lines[0];
-    const auto col = [&](const char* name) {
-      return static_cast<size_t>(std::find(head.begin(), head.end(), name) - head.begin());
-    };
-    const size_t accel = col("accel"), median = col("median_ms"), vs_bvh = col("vs_bvh"),
-                 scene = col(what[2] == 's' && what[3] == 'p' ? "spheres" : "scene");
+    const size_t accel = column(head, "accel"), median = column(head, "median_ms"), vs_bvh = column(head, "vs_bvh"),
+                 scene = column(head, what[2] == 's' && what[3] == 'p' ? "spheres" : "scene");
     ASSERT_LT(vs_bvh, head.size());
     size_t checked = 0;
     for (size_t i = 1; i < lines.size(); ++i) {
@@ -431,9 +433,7 @@ TEST(Cli, BenchGivesTimeOverTheBvhs) {
   ASSERT_EQ(r.code, 0) << r.output;
   const auto lines = csv_cells(csv);
   ASSERT_EQ(lines.size(), 5u);
-  const auto& head = lines[0];
-  const size_t median = std::find(head.begin(), head.end(), "median_ms") - head.begin(),
-               vs_bvh = std::find(head.begin(), head.end(), "vs_bvh") - head.begin();
+  const size_t median = column(lines[0], "median_ms"), vs_bvh = column(lines[0], "vs_bvh");
   for (size_t i : {1u, 3u}) {
     EXPECT_NEAR(std::stod(lines[i][vs_bvh]), std::stod(lines[i][median]) / std::stod(lines[i + 1][median]),
                 1e-4 * std::stod(lines[i][vs_bvh]))
