@@ -28,6 +28,11 @@ packages=(
 if [ "${OCTRACE_SETUP_MITSUBA:-0}" = 1 ]; then
   packages+=(python3-venv)
 fi
+# Optional too: OCTRACE_SETUP_PROFILING=1 adds perf, gdb and objdump for
+# tools/llvmpipe_profile.py (where llvmpipe's time goes, per instruction).
+if [ "${OCTRACE_SETUP_PROFILING:-0}" = 1 ]; then
+  packages+=(linux-perf gdb binutils)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
