@@ -328,7 +328,7 @@ json device_json(const DeviceInfo& d) {
             {"api_version", d.api_version}, {"software", d.software},
             {"shader_float16", d.shader_float16}, {"storage_buffer_16bit_access", d.storage_16bit},
             {"fp16_variant", d.supports_fp16()}, {"pipeline_robustness", d.pipeline_robustness},
-            {"resident_threads", d.resident_threads}};
+            {"resident_threads", d.resident_threads}, {"subgroup_size", d.subgroup_size}};
   for (Precision p : kPrecisions) {
     auto unmet = unmet_requirements(d, requirements_of(p));
     j["variants"][precision_name(p)] = unmet.empty();
@@ -767,8 +767,11 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
     }
     if (result.walk.counted) {
       const WalkStats& w = result.walk;
-      j["walk"] = {{"queries", w.queries}, {"nodes", w.nodes},           {"leaves", w.leaves},
-                   {"boxes", w.boxes},     {"primitives", w.primitives}, {"instances", w.instances}};
+      j["walk"] = {{"queries", w.queries},         {"nodes", w.nodes},
+                   {"leaves", w.leaves},           {"boxes", w.boxes},
+                   {"primitives", w.primitives},   {"instances", w.instances},
+                   {"query_slots", w.query_slots}, {"node_slots", w.node_slots},
+                   {"primitive_slots", w.primitive_slots}};
     }
     std::cout << j.dump(2) << "\n";
   } else if (!quiet) {
@@ -817,6 +820,10 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
                   "tests, %.2f mesh instances (--walk-stats: the passes' times include the counting)\n",
                   (unsigned long long)w.queries, double(w.nodes) / q, double(w.leaves) / q, double(w.boxes) / q,
                   double(w.primitives) / q, double(w.instances) / q);
+      const auto busy = [](uint64_t n, uint64_t slots) { return slots ? 100.0 * double(n) / double(slots) : 0.0; };
+      std::printf("lanes     busy in their subgroup: %.0f%% where queries start, %.0f%% at node expansions, %.0f%% at "
+                  "primitive tests\n",
+                  busy(w.queries, w.query_slots), busy(w.nodes, w.node_slots), busy(w.primitives, w.primitive_slots));
     }
     if (result.nonfinite_samples)
       std::printf("warning   %llu NaN/Inf samples were rejected\n", (unsigned long long)result.nonfinite_samples);
@@ -876,6 +883,7 @@ int cmd_devices(bool as_json) {
     std::printf("   driver    %s, Vulkan %s\n", d.driver.c_str(), d.api_version.c_str());
     std::printf("   features  shaderFloat16 %s, storageBuffer16BitAccess %s\n", d.shader_float16 ? "yes" : "no",
                 d.storage_16bit ? "yes" : "no");
+    if (d.subgroup_size > 0) std::printf("   subgroup  %u lanes\n", d.subgroup_size);
     if (d.resident_threads > 0)
       std::printf("   resident  %llu threads at once (--tail-fill's auto)\n", (unsigned long long)d.resident_threads);
     else
@@ -966,8 +974,9 @@ int main(int argc, char** argv) {
                          "Continue the render saved as PREFIX (--state) up to --spp, with the same sample indices");
   render_cmd->add_flag("--quiet,-q", quiet, "No progress or summary");
   render_cmd->add_flag("--walk-stats", render_opts.settings.walk_stats,
-                       "Count what the walks do: queries, nodes expanded, leaves, box and primitive tests (the "
-                       "summary's \"walk\" line, or \"walk\" in --json); the same image, slower passes");
+                       "Count what the walks do: queries, nodes expanded, leaves, box and primitive tests, and "
+                       "how many of a subgroup's lanes were busy at those steps (the summary's \"walk\" and "
+                       "\"lanes\" lines, or \"walk\" in --json); the same image, slower passes");
   double batch_ms = 0;
   render_cmd->add_option("--batch-ms", batch_ms,
                          "Under MPI: each rank asks rank 0 for the samples that take about MS milliseconds at its "

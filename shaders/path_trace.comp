@@ -3,6 +3,7 @@
 // metallic-roughness material (shading/pbr.glsl; docs/design.md).
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
 
 #include "shared/shared.h"
 #include "shading/precision.glsl"
@@ -344,7 +345,11 @@ void flush_walk_counts() {
   add_walk_count(WALK_BOXES, walk_boxes);
   add_walk_count(WALK_PRIMITIVES, walk_primitives);
   add_walk_count(WALK_INSTANCES, walk_instances);
+  add_walk_count(WALK_QUERY_SLOTS, walk_query_slots);
+  add_walk_count(WALK_NODE_SLOTS, walk_node_slots);
+  add_walk_count(WALK_PRIMITIVE_SLOTS, walk_primitive_slots);
   walk_queries = walk_nodes = walk_leaves = walk_boxes = walk_primitives = walk_instances = 0u;
+  walk_query_slots = walk_node_slots = walk_primitive_slots = 0u;
 }
 
 // The pixel of this invocation: `lanes` invocations share a pixel (lane =
@@ -395,7 +400,8 @@ void whole_pass() {
       // Each count stays below 2^32 in the invocation's own word: added to
       // the buffer once one passes 2^31 (a path adds fewer than 2^31 to each).
       if (WALK_STATS && max(max(max(walk_queries, walk_nodes), max(walk_leaves, walk_boxes)),
-                            max(walk_primitives, walk_instances)) >= 0x80000000u)
+                            max(max(walk_primitives, walk_instances),
+                                max(walk_query_slots, max(walk_node_slots, walk_primitive_slots)))) >= 0x80000000u)
         flush_walk_counts();
     }
     if (!SAMPLE_LANES || lanes == 1u) {

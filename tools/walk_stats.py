@@ -3,7 +3,8 @@
 by side: `octrace render --walk-stats --json` for each scene and accel, as a
 table of nodes expanded, leaves, box tests and primitive tests per query
 (a closest-hit or shadow-ray query of the scene; every level of the walk
-counts, the meshes' own trees included).
+counts, the meshes' own trees included), and how full the subgroups were
+where queries start, at node expansions and at primitive tests.
 
   tools/walk_stats.py --octrace BIN [--accel octree,bvh] [--render "ARGS"] \
       --scene "LABEL=SCENE FLAGS" ... [--out FILE]
@@ -16,7 +17,9 @@ each --scene a label and that scene's own flags, e.g.
 scene, the structure, the image and the samples, hardly from the device:
 the walk is the same, and only paths that the devices' float rounding sends
 elsewhere differ (the H200 against lavapipe: queries within 0.1%, the
-figures per query equal to two decimals; docs/results/h200/walk_stats/). Prints the table; with --out also
+figures per query equal to two decimals; docs/results/h200/walk_stats/).
+The lanes busy do depend on the device: its subgroup size (32 on NVIDIA, 8
+on llvmpipe) and which lanes run a step together. Prints the table; with --out also
 writes it as markdown, with the date, the device, the checkout's commit and
 the command. The passes' times are not reported: counting costs time.
 """
@@ -39,6 +42,11 @@ def render(binary, args, out_dir):
     return json.loads(p.stdout)
 
 
+def busy(count, slots):
+    """The share of a subgroup's lanes busy at the steps counted (octrace's walk.*_slots)."""
+    return f"{100.0 * count / slots:.0f}%" if slots else "-"
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--octrace", required=True, help="the octrace binary")
@@ -51,8 +59,8 @@ def main():
     shared = shlex.split(a.render)
     accels = [x for x in a.accel.split(",") if x]
     header = ("| scene | accel | queries | nodes | leaves | box tests | primitive tests | primitives per leaf "
-              "| mesh instances |")
-    rows = [header, "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
+              "| mesh instances | lanes busy: queries | nodes | primitives |")
+    rows = [header, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     device = ""
     for spec in a.scene:
         label, sep, flags = spec.partition("=")
@@ -67,7 +75,8 @@ def main():
             per_leaf = w["primitives"] / w["leaves"] if w["leaves"] else float("nan")
             rows.append(f"| {label} | {accel} | {w['queries']} | {w['nodes'] / q:.2f} | {w['leaves'] / q:.2f} "
                         f"| {w['boxes'] / q:.2f} | {w['primitives'] / q:.2f} | {per_leaf:.2f} "
-                        f"| {w['instances'] / q:.2f} |")
+                        f"| {w['instances'] / q:.2f} | {busy(w['queries'], w['query_slots'])} "
+                        f"| {busy(w['nodes'], w['node_slots'])} | {busy(w['primitives'], w['primitive_slots'])} |")
             print(rows[-1], flush=True)
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
                             cwd=os.path.dirname(os.path.abspath(__file__))).stdout.strip() or "unknown commit"
@@ -77,7 +86,9 @@ def main():
             f.write(f"# Walk statistics per query\n\n{now}, {device}, checkout at {commit}.\n\n")
             f.write("Command: `tools/walk_stats.py " + " ".join(shlex.quote(x) for x in sys.argv[1:]) + "`\n\n")
             f.write("Per query (closest-hit and shadow-ray queries of the scene): internal nodes expanded, "
-                    "leaves (and big lists) tested, ray/box tests, ray/primitive tests, mesh instances entered.\n\n")
+                    "leaves (and big lists) tested, ray/box tests, ray/primitive tests, mesh instances entered; "
+                    "then the share of a subgroup's lanes busy where queries start, at node expansions and at "
+                    "primitive tests (a subgroup: a warp on a GPU, the 8 lanes of a vector on llvmpipe).\n\n")
             f.write("\n".join(rows) + "\n")
 
 

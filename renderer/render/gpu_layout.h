@@ -75,7 +75,7 @@ static_assert(offsetof(GpuTexture, width) == 4);
 static_assert(offsetof(GpuTexture, height) == 8);
 static_assert(offsetof(GpuTexture, wrap) == 12);
 
-static_assert(sizeof(RenderStats) == 64);
+static_assert(sizeof(RenderStats) == 88);
 static_assert(offsetof(RenderStats, walk) == 16 && sizeof(RenderStats::walk) == 8 * WALK_COUNTERS);
 static_assert(offsetof(RenderStats, pad0) == 4);
 static_assert(offsetof(RenderStats, pad1) == 8);

@@ -603,6 +603,9 @@ WalkStats& WalkStats::operator+=(const WalkStats& o) {
   boxes += o.boxes;
   primitives += o.primitives;
   instances += o.instances;
+  query_slots += o.query_slots;
+  node_slots += o.node_slots;
+  primitive_slots += o.primitive_slots;
   return *this;
 }
 
@@ -620,6 +623,9 @@ WalkStats PathTracer::walk_stats() {
   w.boxes = count(gpu::WALK_BOXES);
   w.primitives = count(gpu::WALK_PRIMITIVES);
   w.instances = count(gpu::WALK_INSTANCES);
+  w.query_slots = count(gpu::WALK_QUERY_SLOTS);
+  w.node_slots = count(gpu::WALK_NODE_SLOTS);
+  w.primitive_slots = count(gpu::WALK_PRIMITIVE_SLOTS);
   return w;
 }
 

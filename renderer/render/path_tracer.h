@@ -53,6 +53,13 @@ struct WalkStats {
   uint64_t boxes = 0;       // ray/box tests
   uint64_t primitives = 0;  // ray/primitive tests (spheres and triangles)
   uint64_t instances = 0;   // mesh instances entered (their trees walked)
+  // How full the subgroups were (shared.h WALK_*_SLOTS): the subgroup's size
+  // summed over the steps where its lanes started a query, expanded a node,
+  // tested a primitive. queries / query_slots is the share of lanes busy at
+  // such a step, and so on.
+  uint64_t query_slots = 0;
+  uint64_t node_slots = 0;
+  uint64_t primitive_slots = 0;
   WalkStats& operator+=(const WalkStats& o);
 };
 

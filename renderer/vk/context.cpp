@@ -174,11 +174,14 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index, const std::functi
   if (info.vulkan12) {
     VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
     VkPhysicalDeviceIDProperties id{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ID_PROPERTIES};
+    VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
     driver.pNext = &id;
+    id.pNext = &subgroup;
     VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
     props2.pNext = &driver;
     vkGetPhysicalDeviceProperties2(physical, &props2);
     info.driver = std::string(driver.driverName) + " " + driver.driverInfo;
+    info.subgroup_size = subgroup.subgroupSize;
     static const char kHex[] = "0123456789abcdef";
     for (uint8_t byte : id.deviceUUID) {
       info.uuid += kHex[byte >> 4];

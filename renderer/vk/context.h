@@ -49,6 +49,9 @@ struct DeviceInfo {
   // their warps or wavefronts), where the driver says (VK_NV_shader_sm_builtins,
   // VK_AMD_shader_core_properties); 0 when unknown.
   uint64_t resident_threads = 0;
+  // Lanes of a compute subgroup (VkPhysicalDeviceSubgroupProperties; 0 below
+  // Vulkan 1.2): a warp on NVIDIA, the vector width on llvmpipe.
+  uint32_t subgroup_size = 0;
   bool presents = false;         // a compute queue family presents to the window; known only when
                                  // selecting for a window (ContextOptions::can_present)
 

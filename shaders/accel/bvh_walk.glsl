@@ -52,6 +52,7 @@ while (bvh_sp > 0) {
   uint bvh_n = bitCount(node.count_or_mask & 0xfu);
   if (WALK_STATS) {
     ++walk_nodes;
+    walk_node_slots += walk_slots();
     walk_boxes += bvh_n;
   }
   uint bvh_k0, bvh_k1, bvh_k2, bvh_k3;
@@ -96,6 +97,7 @@ while (bvh_have) {
   }
   if (WALK_STATS) {
     ++walk_nodes;
+    walk_node_slots += walk_slots();
     walk_boxes += 2u;
   }
   GpuOctreeNode left = node_at(bvh_first);

@@ -38,7 +38,14 @@ const uint NO_PRIM = 0xffffffffu;
 // buffer; with WALK_STATS off (the default) the counting compiles out.
 layout(constant_id = SPEC_WALK_STATS) const bool WALK_STATS = false;
 uint walk_queries = 0u, walk_nodes = 0u, walk_leaves = 0u, walk_boxes = 0u, walk_primitives = 0u,
-     walk_instances = 0u;
+     walk_instances = 0u, walk_query_slots = 0u, walk_node_slots = 0u, walk_primitive_slots = 0u;
+// At a step counted with it (a query started, a node expanded, a primitive
+// tested): one of the subgroup's lanes that run the step adds the subgroup's
+// size, so that the step's count over these slots is the share of the
+// subgroup's lanes busy there (shared.h, WALK_*_SLOTS). On a GPU the lanes
+// that run it are those converged there; on llvmpipe, those of the 8-wide
+// vector whose paths and walks have not ended.
+uint walk_slots() { return subgroupElect() ? gl_SubgroupSize : 0u; }
 
 // Which instance a mesh walk is in: its index, the global id of its mesh's
 // triangle 0, and where the mesh's triangles start.
@@ -73,7 +80,10 @@ float widened(float t) { return uintBitsToFloat(floatBitsToUint(t) + 1u); }
 // `from_prim`: the primitive the ray was spawned on (NO_PRIM for camera
 // rays); `into_from`: whether the ray enters it (see sphere_root).
 void test_sphere(Ray ray, uint i, uint from_prim, bool into_from, inout Hit hit) {
-  if (WALK_STATS) ++walk_primitives;
+  if (WALK_STATS) {
+    ++walk_primitives;
+    walk_primitive_slots += walk_slots();
+  }
   GpuSphere s = sphere_at(i);
   SphereQuadratic sq = sphere_quadratic(ray, s.center, s.radius);
   if (sq.disc < 0.0) return;
@@ -124,7 +134,10 @@ bool alpha_cut(GpuTriangle tri, uint i, uint id, vec3 b) {
 void test_instance_triangle(Ray oray, RayShear osh, InstanceRef ir, uint local, uint from_prim, inout Hit hit) {
   uint id = ir.first_id + local;
   uint i = ir.first_triangle + local;
-  if (WALK_STATS) ++walk_primitives;
+  if (WALK_STATS) {
+    ++walk_primitives;
+    walk_primitive_slots += walk_slots();
+  }
   GpuTriangle tri = triangle_at(i);
   // Both faces are hit here (the material decides what a back face does,
   // below). Each miss returns at once: a ray spawned on the triangle cannot
@@ -261,7 +274,10 @@ bool closest_hit_within(Ray ray, uint from_prim, bool into_from, float t_max, ou
   hit.prim = NO_PRIM;
   hit.kind = PRIM_SPHERE;
   hit.inst = 0u;
-  if (WALK_STATS) ++walk_queries;
+  if (WALK_STATS) {
+    ++walk_queries;
+    walk_query_slots += walk_slots();
+  }
   if (ONE_INSTANCE) {
     test_instance(ray, 0u, from_prim, hit);
     return hit.prim != NO_PRIM;
@@ -330,7 +346,10 @@ bool occluded(Ray ray, uint from_prim, bool into_from, float t_max, uint skip) {
   hit.kind = PRIM_SPHERE;
   hit.inst = 0u;
   shadow_skip = skip;
-  if (WALK_STATS) ++walk_queries;
+  if (WALK_STATS) {
+    ++walk_queries;
+    walk_query_slots += walk_slots();
+  }
   // Only a sphere is ever skipped (a sphere light's own), and there is none.
   if (ONE_INSTANCE) {
     test_instance(ray, 0u, from_prim, hit);

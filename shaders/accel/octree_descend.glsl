@@ -38,7 +38,10 @@ if (HOLD_NEAREST) {
       leaf_end = node.first + node.count_or_mask;
       break;
     }
-    if (WALK_STATS) ++walk_nodes;
+    if (WALK_STATS) {
+      ++walk_nodes;
+      walk_node_slots += walk_slots();
+    }
     uint present = node.count_or_mask & 0xffu;
     uint ordered = octree_children_order(node, cur_entry, ray.origin, inv_dir, sign_mask, hit.t);
     bool have = false;
@@ -84,7 +87,10 @@ if (HOLD_NEAREST) {
       leaf_end = node.first + node.count_or_mask;
       break;
     }
-    if (WALK_STATS) ++walk_nodes;
+    if (WALK_STATS) {
+      ++walk_nodes;
+      walk_node_slots += walk_slots();
+    }
     uint present = node.count_or_mask & 0xffu;  // children's octants; child index = rank in it
     uint ordered = octree_children_order(node, top_entry, ray.origin, inv_dir, sign_mask, hit.t);
     // OCTREE_CHILD_PAIRS (the meshes' walk): two children a trip, in the

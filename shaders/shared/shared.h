@@ -536,15 +536,22 @@ OCT_CONST(uint, WALK_LEAVES, 2u);     // leaves (and big lists) whose primitives
 OCT_CONST(uint, WALK_BOXES, 3u);      // ray/box tests
 OCT_CONST(uint, WALK_PRIMITIVES, 4u); // ray/primitive tests (spheres, triangles)
 OCT_CONST(uint, WALK_INSTANCES, 5u);  // mesh instances entered (their own trees walked)
-OCT_CONST(uint, WALK_COUNTERS, 6u);
+// How full the subgroups were: at each step where lanes of a subgroup start a
+// query, expand a node or test a primitive, the subgroup's size (its lanes,
+// busy or not; accel/closest_hit.glsl, walk_slots). The count over these is
+// the share of the lanes that were busy at such steps.
+OCT_CONST(uint, WALK_QUERY_SLOTS, 6u);
+OCT_CONST(uint, WALK_NODE_SLOTS, 7u);
+OCT_CONST(uint, WALK_PRIMITIVE_SLOTS, 8u);
+OCT_CONST(uint, WALK_COUNTERS, 9u);
 
-// 64 bytes. Counters the passes update with atomics.
+// 88 bytes. Counters the passes update with atomics.
 struct RenderStats {
   uint nonfinite_samples;  // samples that were NaN or Inf and were not added
   uint pad0;
   uint pad1;
   uint pad2;
-  uint walk[12];  // WALK_COUNTERS 64-bit counts (zeros without --walk-stats)
+  uint walk[18];  // WALK_COUNTERS 64-bit counts (zeros without --walk-stats)
 };
 
 // 64 bytes. What the passes need of the scene besides its arrays; uploaded

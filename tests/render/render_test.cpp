@@ -377,7 +377,20 @@ TEST_F(RenderTest, WalkStatsCountTheWalksAndChangeNoPixel) {
   ASSERT_TRUE(r.walk.counted);
   EXPECT_EQ(r.walk.queries, camera_rays);
   EXPECT_EQ(r.walk.primitives, camera_rays * scene.spheres.size());
-  EXPECT_EQ(r.walk.nodes + r.walk.leaves + r.walk.boxes + r.walk.instances, 0u);
+  EXPECT_EQ(r.walk.nodes + r.walk.leaves + r.walk.boxes + r.walk.instances + r.walk.node_slots, 0u);
+  // Every query tests every sphere with the lanes that started it, so the
+  // subgroups are as full at the sphere tests as where the queries start (on
+  // llvmpipe, whose lanes keep in step, exactly; a GPU may let the lanes of
+  // a warp part after a miss's early return).
+  const uint32_t lanes = test::shared_context().info.subgroup_size;
+  ASSERT_GT(lanes, 0u);
+  EXPECT_GE(r.walk.query_slots, r.walk.queries);
+  EXPECT_LE(r.walk.query_slots, r.walk.queries * lanes);
+  EXPECT_EQ(r.walk.query_slots % lanes, 0u);
+  if (test::shared_context().info.software) {
+    EXPECT_EQ(r.walk.query_slots, r.walk.queries);  // 24x16 fills its subgroups: every lane casts a camera ray
+    EXPECT_EQ(r.walk.primitive_slots, r.walk.query_slots * scene.spheres.size());
+  }
 
   s.bounce_limit = 8;
   for (Accel accel : {Accel::Brute, Accel::Octree, Accel::Bvh}) {
@@ -403,6 +416,17 @@ TEST_F(RenderTest, WalkStatsCountTheWalksAndChangeNoPixel) {
       EXPECT_GT(w.nodes, 0u);
       EXPECT_LT(w.primitives, w.queries * scene.spheres.size() / 4);  // the structures spare most tests
     }
+    // A step's slots are the subgroup's lanes, of which at least one is busy
+    // there: between the count and the count times the lanes. Paths part
+    // after their first bounce, so some lanes idle where queries start.
+    const uint32_t lanes = test::shared_context().info.subgroup_size;
+    for (auto [count, slots] : {std::pair{w.queries, w.query_slots}, std::pair{w.nodes, w.node_slots},
+                                std::pair{w.primitives, w.primitive_slots}}) {
+      EXPECT_GE(slots, count);
+      EXPECT_LE(slots, count * lanes);
+      EXPECT_EQ(slots % lanes, 0u);
+    }
+    EXPECT_GT(w.query_slots, w.queries);
   }
 
   scene.lights = {test::point_light({0.0f, 4.0f, 0.0f}, 10.0f)};
