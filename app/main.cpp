@@ -328,7 +328,8 @@ json device_json(const DeviceInfo& d) {
             {"api_version", d.api_version}, {"software", d.software},
             {"shader_float16", d.shader_float16}, {"storage_buffer_16bit_access", d.storage_16bit},
             {"fp16_variant", d.supports_fp16()}, {"pipeline_robustness", d.pipeline_robustness},
-            {"resident_threads", d.resident_threads}, {"subgroup_size", d.subgroup_size}};
+            {"resident_threads", d.resident_threads}, {"subgroup_size", d.subgroup_size},
+            {"cpu_threads", d.cpu_threads}};
   for (Precision p : kPrecisions) {
     auto unmet = unmet_requirements(d, requirements_of(p));
     j["variants"][precision_name(p)] = unmet.empty();
@@ -884,6 +885,9 @@ int cmd_devices(bool as_json) {
     std::printf("   features  shaderFloat16 %s, storageBuffer16BitAccess %s\n", d.shader_float16 ? "yes" : "no",
                 d.storage_16bit ? "yes" : "no");
     if (d.subgroup_size > 0) std::printf("   subgroup  %u lanes\n", d.subgroup_size);
+    if (d.cpu_threads > 0)
+      std::printf("   threads   %u (llvmpipe's: LP_NUM_THREADS, else the CPUs; batches take whole multiples)\n",
+                  d.cpu_threads);
     if (d.resident_threads > 0)
       std::printf("   resident  %llu threads at once (--tail-fill's auto)\n", (unsigned long long)d.resident_threads);
     else

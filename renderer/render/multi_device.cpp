@@ -109,7 +109,7 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
       // the end so that no device is left with much more than the others.
       // The first batch (PathTracer::first_batch) and every later one in whole
       // rounds of a pixel's lanes, as render()'s.
-      const uint32_t lanes = tracer.full_lanes();
+      const uint32_t lanes = tracer.batch_granule();
       uint32_t batch = tracer.first_batch();
       for (;;) {
         if (failed || (control.stop && control.stop->load())) break;

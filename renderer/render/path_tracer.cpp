@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdlib>
 #include <bit>
+#include <numeric>
 #include <vector>
 
 #include "accumulate.h"
@@ -123,6 +124,7 @@ struct PathTracer::State {
   void create_stage(ComputePipeline& p, uint32_t stage, const uint32_t* spirv, size_t spirv_bytes);
   void record_staged_passes(VkCommandBuffer cmd, gpu::PassParams pc, uint32_t first_sample, uint32_t count,
                             uint32_t per_dispatch) const;
+  uint32_t batch_granule() const;
 };
 
 // Bytes the tail queue's buffers may take each: a quarter GiB on a GPU, 32
@@ -153,13 +155,20 @@ void PathTracer::State::create_accumulation() {
   // With tail levels, two halves: a level reads one and queues into the other.
   const uint64_t halves = s.tail_step() > 0 ? 2 : 1;
   if (s.staged()) {
-    const uint64_t budget = tail_buffer_bytes(s.ctx);
     const uint64_t value_bytes = s.pixels() * sizeof(glm::vec4);
+    // A CPU device's head dispatch takes whole images per thread
+    // (batch_granule) where the values of that many fit one buffer, past the
+    // budget if need be: 1600x900 takes 23 MB a sample.
+    const uint32_t granule = s.ctx.info.software ? s.batch_granule() : 1u;
+    const uint64_t budget = s.ctx.info.software
+                                ? std::max(tail_buffer_bytes(s.ctx), std::min<uint64_t>(granule * value_bytes, limit))
+                                : tail_buffer_bytes(s.ctx);
     // At most 16 samples: what the H200 runs of log 49 took at 1200x800
     // (the budget's 17 in whole rounds of 8); more saves little per
     // dispatch and costs memory on small images.
     s.tail_samples = uint32_t(std::clamp<uint64_t>(budget / value_bytes, 1, 2 * gpu::MAX_SAMPLE_LANES));
     if (s.tail_samples >= gpu::MAX_SAMPLE_LANES) s.tail_samples -= s.tail_samples % gpu::MAX_SAMPLE_LANES;
+    if (granule > 1 && s.tail_samples >= granule) s.tail_samples -= s.tail_samples % granule;
     // No more than a dispatch takes.
     if (s.samples_per_dispatch()) s.tail_samples = std::min(s.tail_samples, s.samples_per_dispatch());
     const uint64_t group = gpu::WORKGROUP_SIZE * gpu::WORKGROUP_SIZE;
@@ -517,16 +526,25 @@ void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, ui
 
 uint32_t PathTracer::first_batch() const {
   const State& s = *state_;
-  const uint32_t lanes = full_lanes();
+  const uint32_t lanes = batch_granule();
   if (!s.staged() || s.ctx.info.software) return lanes;
   return std::max(lanes, s.tail_samples);
 }
 
-uint32_t PathTracer::full_lanes() const {
-  const State& s = *state_;
-  if (!s.sample_lanes_enabled()) return 1u;
-  return sample_lanes(s.settings.sample_lanes, s.scene_features.triangles, s.staged(), gpu::MAX_SAMPLE_LANES,
-                      uint32_t(s.settings.height));
+uint32_t PathTracer::batch_granule() const { return state_->batch_granule(); }
+
+uint32_t PathTracer::State::batch_granule() const {
+  const State& s = *this;
+  const uint32_t lanes = s.sample_lanes_enabled() ? sample_lanes(s.settings.sample_lanes, s.scene_features.triangles,
+                                                                 s.staged(), gpu::MAX_SAMPLE_LANES,
+                                                                 uint32_t(s.settings.height))
+                                                  : 1u;
+  if (!s.ctx.info.software || s.ctx.info.cpu_threads <= 1) return lanes;
+  // Whole images per thread, and whole rounds of lanes (`--sample-lanes` on
+  // a CPU device): their least common multiple, where that stays a batch of
+  // at most 32 samples.
+  const uint32_t both = std::lcm(lanes, s.ctx.info.cpu_threads);
+  return both <= 32 ? both : lanes;
 }
 
 double PathTracer::run_passes(const PassSettings& pass, uint32_t first_sample, uint32_t count) {
@@ -702,7 +720,7 @@ RenderResult render(const VulkanContext& ctx, const Scene& scene, const RenderSe
   // slow ones. The first has at least as many samples as a pixel has lanes,
   // so that it runs with all of them (a batch of one sample would have one
   // lane); on a GPU as many as a dispatch of the staged head takes.
-  const uint32_t lanes = tracer.full_lanes();
+  const uint32_t lanes = tracer.batch_granule();
   uint32_t batch = tracer.first_batch();
   // Test hook: OCTRACE_TEST_DEVICE_LOST_AFTER=N fails the render as a lost
   // device would, after the first batch that reaches N samples and its

@@ -117,11 +117,17 @@ class PathTracer {
   // Adds passes [first_sample, first_sample + count) in one submission and
   // waits; returns their device time in milliseconds.
   double run_passes(const PassSettings& pass, uint32_t first_sample, uint32_t count);
-  // How many invocations share a pixel when a batch has enough samples for
-  // them (1 where lanes are compiled out): the smallest batch that uses them.
-  uint32_t full_lanes() const;
+  // The samples a batch holds a whole multiple of where it can. On a GPU how
+  // many invocations share a pixel when a batch has enough samples for them
+  // (1 where lanes are compiled out): the smallest batch that uses them. On
+  // a CPU device its threads (DeviceInfo::cpu_threads): llvmpipe gives each
+  // thread one contiguous block of a dispatch's workgroups, so that a
+  // dispatch of one sample gave one thread the image's top half and the
+  // other its bottom; with whole images each, both stay busy to the end (the
+  // default scene's passes 9% faster on two; optimisation log 85).
+  uint32_t batch_granule() const;
   // The samples of a render's first batch, before a batch's time is known:
-  // full_lanes(), and on a GPU with the staged passes as many as one
+  // batch_granule(), and on a GPU with the staged passes as many as one
   // dispatch of the head takes (its tail, the longest path's bounces one
   // after another, then comes once for them; optimisation log 50).
   uint32_t first_batch() const;
@@ -186,8 +192,9 @@ void resolve_accumulation(const Accumulation& acc, RenderResult& r);
 
 // The next batch's samples, after one whose passes took `per_pass_ms` each:
 // as many as take about `target_ms` (at least 1, at most 1024), in whole
-// rounds of a pixel's `lanes` (PathTracer::full_lanes), so that no dispatch
-// ends with lanes idle (optimisation log 42); a batch too small for one
+// multiples of `lanes` (PathTracer::batch_granule: a pixel's lanes, so that
+// no dispatch ends with lanes idle, optimisation log 42; a CPU device's
+// threads, log 85); a batch too small for one
 // round grows to one while that takes at most a second, so that a stop
 // still waits no longer than that.
 uint32_t next_batch(double per_pass_ms, uint32_t lanes, double target_ms = 250.0);

@@ -138,6 +138,15 @@ bool has_device_extension(VkPhysicalDevice physical, const char* name) {
   return false;
 }
 
+// The threads llvmpipe runs a dispatch on, as Mesa 22.3 sets them: LP_NUM_THREADS
+// where given (0 runs it in the submitting thread: one), else the online CPUs;
+// at most LP_MAX_THREADS (32).
+uint32_t llvmpipe_threads() {
+  long threads = sysconf(_SC_NPROCESSORS_ONLN);
+  if (const char* env = std::getenv("LP_NUM_THREADS")) threads = std::strtol(env, nullptr, 10);
+  return uint32_t(std::clamp<long>(threads, 1, 32));
+}
+
 // Threads resident at once, from the vendor's properties (0: unknown).
 uint64_t resident_threads(VkPhysicalDevice physical) {
   VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
@@ -166,6 +175,7 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index, const std::functi
   info.name = props.deviceName;
   info.type = device_type_name(props.deviceType);
   info.software = props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+  if (info.software) info.cpu_threads = llvmpipe_threads();
   info.api_version = std::to_string(VK_API_VERSION_MAJOR(props.apiVersion)) + "." +
                      std::to_string(VK_API_VERSION_MINOR(props.apiVersion)) + "." +
                      std::to_string(VK_API_VERSION_PATCH(props.apiVersion));

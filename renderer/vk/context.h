@@ -52,6 +52,12 @@ struct DeviceInfo {
   // Lanes of a compute subgroup (VkPhysicalDeviceSubgroupProperties; 0 below
   // Vulkan 1.2): a warp on NVIDIA, the vector width on llvmpipe.
   uint32_t subgroup_size = 0;
+  // A CPU device's worker threads (0 on a GPU), as llvmpipe counts them:
+  // LP_NUM_THREADS, else the online CPUs, at most 32. llvmpipe gives each
+  // thread one contiguous block of a dispatch's workgroups, so a dispatch of
+  // whole images per thread keeps them all busy to its end (PathTracer::
+  // batch_granule; optimisation log 85).
+  uint32_t cpu_threads = 0;
   bool presents = false;         // a compute queue family presents to the window; known only when
                                  // selecting for a window (ContextOptions::can_present)
 

@@ -582,4 +582,27 @@ TEST(Cli, DevicesSaysWhichVariantsEachDeviceRuns) {
     EXPECT_NE(r.output.find(key), std::string::npos) << key << " missing in " << r.output;
 }
 
+// A CPU device's threads, as llvmpipe counts them (LP_NUM_THREADS, else the
+// CPUs): batches there take whole multiples of them (optimisation log 85).
+TEST(Cli, DevicesCountLlvmpipesThreads) {
+  for (auto [env, want] : {std::pair{"LP_NUM_THREADS=3", 3u}, std::pair{"LP_NUM_THREADS=0", 1u}}) {
+    RunResult r = run_octrace("devices --json", env);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto first = r.output.find('['), last = r.output.rfind(']');
+    ASSERT_TRUE(first != std::string::npos && last != std::string::npos && first < last) << r.output;
+    const nlohmann::json devices = nlohmann::json::parse(r.output.substr(first, last - first + 1));
+    ASSERT_TRUE(devices.is_array()) << r.output;
+    bool seen = false;
+    for (const auto& d : devices) {
+      if (!d.at("software").get<bool>()) continue;
+      seen = true;
+      EXPECT_EQ(d.at("cpu_threads").get<uint32_t>(), want) << env;
+      EXPECT_GT(d.at("subgroup_size").get<uint32_t>(), 0u) << env;
+    }
+    EXPECT_TRUE(seen) << r.output;
+  }
+  RunResult r = run_octrace("devices", "LP_NUM_THREADS=3");
+  EXPECT_NE(r.output.find("   threads   3 "), std::string::npos) << r.output;
+}
+
 }  // namespace

@@ -1,6 +1,7 @@
 // Renders held against physics and against themselves.
 #include <cmath>
 #include <cstring>
+#include <numeric>
 
 #include <tuple>
 
@@ -240,6 +241,30 @@ TEST(NextBatch, TakesWholeRoundsOfLanesAndKeepsAStopPrompt) {
   EXPECT_EQ(next_batch(300.0, 1), 1u);
   EXPECT_EQ(next_batch(10.0, 4, 1000.0), 100u);  // another target (mpirun --batch-ms)
   EXPECT_EQ(next_batch(1.0, 0), 250u);   // no lanes counts as one
+}
+
+// On a CPU device a batch is whole images per thread: llvmpipe gives each of
+// its threads one contiguous block of a dispatch's workgroups, and a batch of
+// one sample gave one thread the image's top half, the other its bottom
+// (optimisation log 85). The first batch is one such round, and so is the
+// smallest later one; `--sample-lanes` there makes it a multiple of both.
+TEST_F(RenderTest, CpuDeviceBatchesAreWholeImagesPerThread) {
+  const VulkanContext& ctx = test::shared_context();
+  if (!ctx.info.software) GTEST_SKIP() << "a GPU's batches are whole rounds of its lanes";
+  ASSERT_GE(ctx.info.cpu_threads, 1u);
+  ASSERT_LE(ctx.info.cpu_threads, 32u);
+  Scene scene = make_rtiow_scene({40, 0.2f, 3});
+  RenderSettings s;
+  s.width = 24;
+  s.height = 16;
+  s.spp = 4;
+  PathTracer tracer(ctx, scene, s);
+  EXPECT_EQ(tracer.batch_granule(), ctx.info.cpu_threads);
+  EXPECT_EQ(tracer.first_batch(), ctx.info.cpu_threads);
+  s.sample_lanes = 4;
+  PathTracer lanes(ctx, scene, s);
+  EXPECT_EQ(lanes.batch_granule() % 4, 0u);
+  if (std::lcm(4u, ctx.info.cpu_threads) <= 32) EXPECT_EQ(lanes.batch_granule(), std::lcm(4u, ctx.info.cpu_threads));
 }
 
 // Auto lanes: 4, and 8 only for triangles in whole paths (optimisation log
