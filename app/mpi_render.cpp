@@ -764,7 +764,7 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
   share.rank = job.rank;
   share.host = job.host;
   // The first batch (PathTracer::first_batch) and every later one in whole
-  // rounds of a pixel's lanes, as render()'s.
+  // multiples of the batch granule, as render()'s.
   const uint32_t lanes = tracer.batch_granule();
   uint32_t completed = 0, batch = tracer.first_batch();
   const auto ready = Clock::now();

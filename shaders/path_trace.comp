@@ -398,10 +398,10 @@ void whole_pass() {
       value = path_value(p);
       segments = p.segments;
       // Each count stays below 2^32 in the invocation's own word: added to
-      // the buffer once one passes 2^31 (a path adds fewer than 2^31 to each).
-      if (WALK_STATS && max(max(max(walk_queries, walk_nodes), max(walk_leaves, walk_boxes)),
-                            max(max(walk_primitives, walk_instances),
-                                max(walk_query_slots, max(walk_node_slots, walk_primitive_slots)))) >= 0x80000000u)
+      // the buffer once one passes 2^31 (a path adds fewer than 2^31 to
+      // each), which is when bit 31 of their OR is set.
+      if (WALK_STATS && (walk_queries | walk_nodes | walk_leaves | walk_boxes | walk_primitives | walk_instances |
+                         walk_query_slots | walk_node_slots | walk_primitive_slots) >= 0x80000000u)
         flush_walk_counts();
     }
     if (!SAMPLE_LANES || lanes == 1u) {

@@ -108,7 +108,7 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
       // Batches grow until one takes about a quarter second, and shrink near
       // the end so that no device is left with much more than the others.
       // The first batch (PathTracer::first_batch) and every later one in whole
-      // rounds of a pixel's lanes, as render()'s.
+      // multiples of the batch granule, as render()'s.
       const uint32_t lanes = tracer.batch_granule();
       uint32_t batch = tracer.first_batch();
       for (;;) {

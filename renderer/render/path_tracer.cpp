@@ -156,13 +156,15 @@ void PathTracer::State::create_accumulation() {
   const uint64_t halves = s.tail_step() > 0 ? 2 : 1;
   if (s.staged()) {
     const uint64_t value_bytes = s.pixels() * sizeof(glm::vec4);
+    uint64_t budget = tail_buffer_bytes(s.ctx);
     // A CPU device's head dispatch takes whole images per thread
     // (batch_granule) where the values of that many fit one buffer, past the
     // budget if need be: 1600x900 takes 23 MB a sample.
-    const uint32_t granule = s.ctx.info.software ? s.batch_granule() : 1u;
-    const uint64_t budget = s.ctx.info.software
-                                ? std::max(tail_buffer_bytes(s.ctx), std::min<uint64_t>(granule * value_bytes, limit))
-                                : tail_buffer_bytes(s.ctx);
+    uint32_t granule = 1;
+    if (s.ctx.info.software) {
+      granule = s.batch_granule();
+      budget = std::max(budget, std::min<uint64_t>(granule * value_bytes, limit));
+    }
     // At most 16 samples: what the H200 runs of log 49 took at 1200x800
     // (the budget's 17 in whole rounds of 8); more saves little per
     // dispatch and costs memory on small images.
@@ -717,9 +719,9 @@ RenderResult render(const VulkanContext& ctx, const Scene& scene, const RenderSe
   bool interrupted = false;
   // Batches grow until one takes about a quarter second: few submissions for
   // fast passes, regular progress, a prompt stop and no driver watchdog for
-  // slow ones. The first has at least as many samples as a pixel has lanes,
-  // so that it runs with all of them (a batch of one sample would have one
-  // lane); on a GPU as many as a dispatch of the staged head takes.
+  // slow ones. The first is one batch granule (a pixel's lanes, so that it
+  // runs with all of them; a CPU device's threads, so that each takes whole
+  // images); on a GPU as many as a dispatch of the staged head takes.
   const uint32_t lanes = tracer.batch_granule();
   uint32_t batch = tracer.first_batch();
   // Test hook: OCTRACE_TEST_DEVICE_LOST_AFTER=N fails the render as a lost

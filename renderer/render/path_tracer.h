@@ -124,7 +124,7 @@ class PathTracer {
   // thread one contiguous block of a dispatch's workgroups, so that a
   // dispatch of one sample gave one thread the image's top half and the
   // other its bottom; with whole images each, both stay busy to the end (the
-  // default scene's passes 9% faster on two; optimisation log 85).
+  // default scene's passes 6.7% faster on two; optimisation log 85).
   uint32_t batch_granule() const;
   // The samples of a render's first batch, before a batch's time is known:
   // batch_granule(), and on a GPU with the staged passes as many as one

@@ -264,7 +264,9 @@ TEST_F(RenderTest, CpuDeviceBatchesAreWholeImagesPerThread) {
   s.sample_lanes = 4;
   PathTracer lanes(ctx, scene, s);
   EXPECT_EQ(lanes.batch_granule() % 4, 0u);
-  if (std::lcm(4u, ctx.info.cpu_threads) <= 32) EXPECT_EQ(lanes.batch_granule(), std::lcm(4u, ctx.info.cpu_threads));
+  if (std::lcm(4u, ctx.info.cpu_threads) <= 32) {
+    EXPECT_EQ(lanes.batch_granule(), std::lcm(4u, ctx.info.cpu_threads));
+  }
 }
 
 // Auto lanes: 4, and 8 only for triangles in whole paths (optimisation log
