@@ -49,7 +49,7 @@ apt_opts=(-o "Dir::Etc::SourceList=$work/sources.list" -o Dir::Etc::SourceParts=
   -o APT::Get::List-Cleanup=0)
 # As root, apt would hand the download to its _apt user, who cannot write here.
 if [ "$(id -u)" -eq 0 ]; then apt_opts+=(-o APT::Sandbox::User=root); fi
-apt-get "${apt_opts[@]}" update -qq || fail "cannot read the $suite index from deb.debian.org"
+apt-get "${apt_opts[@]}" update -qq --error-on=any || fail "cannot read the $suite index from deb.debian.org"
 (cd "$work" && apt-get "${apt_opts[@]}" download -qq "mesa-vulkan-drivers/$suite") ||
   fail "cannot download mesa-vulkan-drivers from $suite"
 deb=$(ls "$work"/mesa-vulkan-drivers_*.deb)
@@ -60,7 +60,10 @@ lib=$(find "$work/root" -name libvulkan_lvp.so | head -1)
 [ -n "$lib" ] || fail "$deb holds no libvulkan_lvp.so"
 mkdir -p "$dir"
 dir=$(cd "$dir" && pwd)
-cp "$lib" "$dir/libvulkan_lvp.so"
+# A new file renamed over the old one: a process still running the old
+# driver keeps its copy (cp would rewrite the mapped file in place).
+cp "$lib" "$dir/libvulkan_lvp.so.new"
+mv -f "$dir/libvulkan_lvp.so.new" "$dir/libvulkan_lvp.so"
 api=$(sed -n 's/.*"api_version": *"\([^"]*\)".*/\1/p' "$(find "$work/root" -name 'lvp_icd*.json' | head -1)")
 cat >"$dir/lvp_icd.json" <<EOF
 {
