@@ -34,6 +34,21 @@ if [ "${OCTRACE_SETUP_PROFILING:-0}" = 1 ]; then
   packages+=(linux-perf gdb binutils)
 fi
 
+# Optional too: OCTRACE_SETUP_LAVAPIPE=backports also unpacks Debian 12's
+# bookworm-backports lavapipe (Mesa 25) into .lavapipe-backports/ beside the
+# system's driver, for VK_ICD_FILENAMES (tools/lavapipe_backports.sh says
+# why; optimisation log 88). The system's driver stays as it is.
+case "${OCTRACE_SETUP_LAVAPIPE:-}" in
+  "" | backports) ;;
+  *)
+    echo "setup: OCTRACE_SETUP_LAVAPIPE=${OCTRACE_SETUP_LAVAPIPE}: expected 'backports' or nothing" >&2
+    exit 2
+    ;;
+esac
+setup_lavapipe() {
+  if [ "${OCTRACE_SETUP_LAVAPIPE:-}" = backports ]; then "$(dirname "$0")/lavapipe_backports.sh"; fi
+}
+
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
@@ -55,6 +70,7 @@ setup_mitsuba() {
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#packages[@]} packages present"
   setup_mitsuba
+  setup_lavapipe
   exit 0
 fi
 
@@ -66,3 +82,4 @@ export DEBIAN_FRONTEND=noninteractive
 "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 echo "setup: done"
 setup_mitsuba
+setup_lavapipe
