@@ -85,18 +85,26 @@ def main():
     dev = info[variants[0][0]]["device"]
     date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     what = "times_ms.render" if a.metric == "render" else "whole-process wall time"
-    lines = [f"{date}, {dev['name']} ({dev['driver']}); `octrace render {a.render} --json`, {what}, "
+    # Variants may run on other devices or drivers (--device, VK_ICD_FILENAMES):
+    # then each row names its own.
+    device_of = {label: f"{info[label]['device']['name']} ({info[label]['device']['driver']})"
+                 for label, _, _ in variants}
+    several = len(set(device_of.values())) > 1
+    where = "each variant's device in its row" if several else f"{dev['name']} ({dev['driver']})"
+    lines = [f"{date}, {where}; `octrace render {a.render} --json`, {what}, "
              f"median of {a.rounds} rounds after a warm-up, variants alternating", "",
-             "| variant | env | flags | median ms | min | max | rays/s | against first |",
-             "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: |"]
+             "| variant | env | flags | " + ("device | " if several else "") +
+             "median ms | min | max | rays/s | against first |",
+             "| --- | --- | --- | " + ("--- | " if several else "") + "---: | ---: | ---: | ---: | ---: |"]
     for label, env, flags in variants:
         t = times[label]
         med = statistics.median(t)
         rays = info[label].get("rays", 0)
         rps = f"{rays / med * 1e3:.3g}" if rays and a.metric == "render" else ""
         envs = " ".join(f"{k}={v}" for k, v in env.items())
-        lines.append(f"| {label} | {envs} | {' '.join(flags)} | {med:.3f} | {min(t):.3f} | {max(t):.3f} | {rps} | "
-                     f"{med / first:.3f}x |")
+        device = f"{device_of[label]} | " if several else ""
+        lines.append(f"| {label} | {envs} | {' '.join(flags)} | {device}{med:.3f} | {min(t):.3f} | {max(t):.3f} | "
+                     f"{rps} | {med / first:.3f}x |")
     text = "\n".join(lines) + "\n"
     print(text)
     if a.out:
