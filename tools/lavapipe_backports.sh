@@ -23,7 +23,8 @@
 #     > /etc/apt/sources.list.d/bookworm-backports.list
 #   apt-get update && apt-get install -t bookworm-backports mesa-vulkan-drivers
 #
-# Needs apt-get, dpkg-deb and network access to deb.debian.org; not root.
+# Needs apt-get, dpkg-deb and network access to deb.debian.org; root is not
+# needed. DIR changes only once the unpacked driver has passed both checks.
 set -euo pipefail
 
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -58,37 +59,44 @@ version=$(dpkg-deb -f "$deb" Version)
 dpkg-deb -x "$deb" "$work/root"
 lib=$(find "$work/root" -name libvulkan_lvp.so | head -1)
 [ -n "$lib" ] || fail "$deb holds no libvulkan_lvp.so"
-mkdir -p "$dir"
-dir=$(cd "$dir" && pwd)
-# A new file renamed over the old one: a process still running the old
-# driver keeps its copy (cp would rewrite the mapped file in place).
-cp "$lib" "$dir/libvulkan_lvp.so.new"
-mv -f "$dir/libvulkan_lvp.so.new" "$dir/libvulkan_lvp.so"
 api=$(sed -n 's/.*"api_version": *"\([^"]*\)".*/\1/p' "$(find "$work/root" -name 'lvp_icd*.json' | head -1)")
-cat >"$dir/lvp_icd.json" <<EOF
+# The loader's manifest for a driver at $1.
+manifest() {
+  cat <<EOF
 {
     "file_format_version": "1.0.0",
     "ICD": {
-        "library_path": "$dir/libvulkan_lvp.so",
+        "library_path": "$1",
         "api_version": "${api:-1.3.0}"
     }
 }
 EOF
-echo "$version" >"$dir/VERSION"
+}
 
 # Every symbol the driver takes from other libraries must be in the system's
 # versions of them (the package asks for newer libdrm than Debian 12's, but
 # lavapipe calls none of what was added since).
 if command -v nm >/dev/null; then
   missing=$(comm -23 \
-    <(nm -D --undefined-only "$dir/libvulkan_lvp.so" | awk '$1 == "U" {sub(/@.*/, "", $2); print $2}' | sort -u) \
-    <(ldd "$dir/libvulkan_lvp.so" | awk '/=>/ {print $3}' | xargs -r nm -D --defined-only 2>/dev/null |
+    <(nm -D --undefined-only "$lib" | awk '$1 == "U" {sub(/@.*/, "", $2); print $2}' | sort -u) \
+    <(ldd "$lib" | awk '/=>/ {print $3}' | xargs -r nm -D --defined-only 2>/dev/null |
       awk '{sub(/@.*/, "", $3); print $3}' | sort -u))
   [ -z "$missing" ] || fail "the driver needs symbols this system lacks: $(echo $missing | head -c 300)"
 fi
 if command -v vulkaninfo >/dev/null; then
-  XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} VK_ICD_FILENAMES="$dir/lvp_icd.json" vulkaninfo --summary 2>/dev/null |
-    grep -q "llvmpipe" || fail "the loader does not list the unpacked lavapipe ($dir/lvp_icd.json)"
+  manifest "$lib" >"$work/lvp_icd.json"
+  XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} VK_ICD_FILENAMES="$work/lvp_icd.json" vulkaninfo --summary 2>/dev/null |
+    grep -q "llvmpipe" || fail "the Vulkan loader does not list the unpacked lavapipe"
 fi
+
+mkdir -p "$dir"
+dir=$(cd "$dir" && pwd)
+# New files renamed over the old ones: a process still running the old
+# driver keeps its copy (cp would rewrite the mapped file in place).
+cp "$lib" "$dir/libvulkan_lvp.so.new"
+mv -f "$dir/libvulkan_lvp.so.new" "$dir/libvulkan_lvp.so"
+manifest "$dir/libvulkan_lvp.so" >"$dir/lvp_icd.json.new"
+mv -f "$dir/lvp_icd.json.new" "$dir/lvp_icd.json"
+echo "$version" >"$dir/VERSION"
 echo "lavapipe_backports: Mesa $version in $dir"
 echo "use: VK_ICD_FILENAMES=$dir/lvp_icd.json octrace render --device cpu ..."
