@@ -98,7 +98,7 @@ void main() {
     stats[i].pad0 = u + 14;
     stats[i].pad1 = u + 15;
     stats[i].pad2 = u + 16;
-    for (int k = 0; k < 18; ++k) stats[i].walk[k] = u + 300 + k;
+    for (int k = 0; k < int(2u * WALK_COUNTERS); ++k) stats[i].walk[k] = u + 300 + k;
     materials_half[i].color_type = f16vec4(o + 17, o + 18, o + 19, o + 20);
     materials_half[i].params = f16vec4(o + 21, o + 22, o + 23, o + 24);
     materials_half[i].emission = f16vec4(o + 85, o + 86, o + 87, o + 88);

@@ -551,7 +551,7 @@ struct RenderStats {
   uint pad0;
   uint pad1;
   uint pad2;
-  uint walk[18];  // WALK_COUNTERS 64-bit counts (zeros without --walk-stats)
+  uint walk[2u * WALK_COUNTERS];  // WALK_COUNTERS 64-bit counts, low word first (zeros without --walk-stats)
 };
 
 // 64 bytes. What the passes need of the scene besides its arrays; uploaded

@@ -164,7 +164,7 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(stats[i].pad0, u + 14) << "stats " << i;
     EXPECT_EQ(stats[i].pad1, u + 15) << "stats " << i;
     EXPECT_EQ(stats[i].pad2, u + 16) << "stats " << i;
-    for (int k = 0; k < 18; ++k) EXPECT_EQ(stats[i].walk[k], u + 300 + k) << "stats " << i << " walk " << k;
+    for (int k = 0; k < int(2 * gpu::WALK_COUNTERS); ++k) EXPECT_EQ(stats[i].walk[k], u + 300 + k) << "stats " << i << " walk " << k;
     for (int c = 0; c < 4; ++c) {
       EXPECT_EQ(half(halves[i].color_type[c]), o + 17 + float(c)) << "half material " << i << " color_type " << c;
       EXPECT_EQ(half(halves[i].params[c]), o + 21 + float(c)) << "half material " << i << " params " << c;
