@@ -36,6 +36,12 @@ fail() {
   echo "lavapipe_backports: $*" >&2
   exit 1
 }
+# Bad input: exit 2, before anything is downloaded.
+[ $# -le 1 ] || { echo "lavapipe_backports: usage: tools/lavapipe_backports.sh [DIR]" >&2; exit 2; }
+if [ -e "$dir" ] && [ ! -d "$dir" ]; then
+  echo "lavapipe_backports: $dir: not a folder" >&2
+  exit 2
+fi
 for tool in apt-get dpkg-deb; do
   command -v "$tool" >/dev/null || fail "$tool not found (this tool is for Debian 12)"
 done
