@@ -12,7 +12,9 @@ for that variant (a before/after of a code change: `--variant "new=BIN=b2"`). Af
 ROUNDS rounds run every variant once, in turn. The figure is `render --json`
 times_ms.render: the sum of the passes' timestamp queries (device time; no
 set-up, read-back or resolve); with `--metric wall`, the whole process's wall
-time instead (start to exit: device and pipeline creation, the write included). Prints, per variant, the median, min and max
+time instead (start to exit: device and pipeline creation, the write included);
+with `--metric write`, times_ms.write: encoding the image and writing its
+file (the format from the render's `-o`). Prints, per variant, the median, min and max
 over rounds, rays/s, and the ratio of the median to the first variant's;
 with --out, also writes that table as markdown (date and device included).
 """
@@ -63,8 +65,8 @@ def main():
     ap.add_argument("--variant", action="append", required=True, help="LABEL=[ENV=VALUE ...] [-- flags]")
     ap.add_argument("--rounds", type=int, default=5)
     ap.add_argument("--out", help="markdown file to write the table to")
-    ap.add_argument("--metric", choices=["render", "wall"], default="render",
-                    help="render: device time of the passes; wall: the whole process")
+    ap.add_argument("--metric", choices=["render", "wall", "write"], default="render",
+                    help="render: device time of the passes; wall: the whole process; write: the image's file")
     a = ap.parse_args()
     if a.rounds < 1:
         sys.exit("ab_render.py: --rounds must be at least 1")
@@ -77,14 +79,14 @@ def main():
     for r in range(a.rounds):
         for v in variants:
             j = render(a.octrace, args, v)
-            times[v[0]].append(j["times_ms"]["render"] if a.metric == "render" else j["wall_ms"])
+            times[v[0]].append(j["wall_ms"] if a.metric == "wall" else j["times_ms"][a.metric])
             info[v[0]] = j
         print(f"round {r + 1}/{a.rounds}: " + ", ".join(f"{k} {t[-1]:.3f} ms" for k, t in times.items()),
               file=sys.stderr)
     first = statistics.median(times[variants[0][0]])
     dev = info[variants[0][0]]["device"]
     date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
-    what = "times_ms.render" if a.metric == "render" else "whole-process wall time"
+    what = {"render": "times_ms.render", "wall": "whole-process wall time", "write": "times_ms.write"}[a.metric]
     # Variants may run on other devices or drivers (--device, VK_ICD_FILENAMES):
     # then each row names its own.
     device_of = {label: f"{info[label]['device']['name']} ({info[label]['device']['driver']})"

@@ -11,7 +11,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-tools spirv-tools
-  libglm-dev libglfw3-dev libstb-dev nlohmann-json3-dev libcli11-dev
+  libglm-dev libglfw3-dev libstb-dev zlib1g-dev nlohmann-json3-dev libcli11-dev
   libtinyexr-dev libtinygltf-dev libgtest-dev
   assimp-testmodels
   clang libclang-rt-14-dev
