@@ -18,8 +18,13 @@ uint32_t find_memory_type(const VulkanContext& ctx, uint32_t type_bits, VkMemory
 
 }  // namespace
 
-void create_buffer(Buffer& b, const VulkanContext& ctx, VkDeviceSize size, bool host, const std::string& what,
-                   bool addressable) {
+namespace {
+
+// create_buffer with its memory type: the first of the device's types with
+// every flag of `want`, else of `fallback` (0: any type; UINT32_MAX: none).
+void create_buffer_in(Buffer& b, const VulkanContext& ctx, VkDeviceSize size, VkMemoryPropertyFlags want,
+                      VkMemoryPropertyFlags fallback, const std::string& what, bool addressable) {
+  const bool host = (want & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) != 0;
   destroy_buffer(b);
   size = std::max<VkDeviceSize>(size, 16);
   b.ctx = &ctx;
@@ -37,12 +42,8 @@ void create_buffer(Buffer& b, const VulkanContext& ctx, VkDeviceSize size, bool 
 
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(ctx.device, b.buffer, &req);
-  // Host buffers are coherent so mapped writes need no flush; device buffers
-  // prefer device-local memory and fall back to any memory (lavapipe has one heap).
-  VkMemoryPropertyFlags want = host ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
-                                    : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
   uint32_t type = find_memory_type(ctx, req.memoryTypeBits, want);
-  if (type == UINT32_MAX && !host) type = find_memory_type(ctx, req.memoryTypeBits, 0);
+  if (type == UINT32_MAX && fallback != UINT32_MAX) type = find_memory_type(ctx, req.memoryTypeBits, fallback);
   if (type == UINT32_MAX) throw RuntimeError("no memory type for " + what);
 
   VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
@@ -57,6 +58,18 @@ void create_buffer(Buffer& b, const VulkanContext& ctx, VkDeviceSize size, bool 
   if (r != VK_SUCCESS) throw RuntimeError("cannot allocate the " + what + ": " + vk_result_name(r));
   VK_CHECK(vkBindBufferMemory(ctx.device, b.buffer, b.memory, 0));
   if (host) VK_CHECK(vkMapMemory(ctx.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
+}
+
+constexpr VkMemoryPropertyFlags kHostCoherent = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+
+}  // namespace
+
+// Host buffers are coherent so mapped writes need no flush; device buffers
+// prefer device-local memory and fall back to any memory (lavapipe has one heap).
+void create_buffer(Buffer& b, const VulkanContext& ctx, VkDeviceSize size, bool host, const std::string& what,
+                   bool addressable) {
+  if (host) create_buffer_in(b, ctx, size, kHostCoherent, UINT32_MAX, what, addressable);
+  else create_buffer_in(b, ctx, size, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0, what, addressable);
 }
 
 VkDeviceAddress buffer_address(const Buffer& b) {
@@ -90,8 +103,12 @@ void upload_buffer(const VulkanContext& ctx, Buffer& dst, const void* data, size
 
 void download_buffer(const VulkanContext& ctx, const Buffer& src, void* data, size_t bytes) {
   if (bytes == 0) return;
+  // Host-cached where the device has it: the host reads this memory, and a
+  // GPU's uncached host memory is write-combined, slow to read
+  // (optimisation log 94).
   Buffer staging;
-  create_buffer(staging, ctx, bytes, true, "readback buffer");
+  create_buffer_in(staging, ctx, bytes, kHostCoherent | VK_MEMORY_PROPERTY_HOST_CACHED_BIT, kHostCoherent,
+                   "readback buffer", false);
   submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
     VkBufferCopy region{0, 0, bytes};
     vkCmdCopyBuffer(cmd, src.buffer, staging.buffer, 1, &region);
