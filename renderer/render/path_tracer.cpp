@@ -566,9 +566,10 @@ Accumulation PathTracer::read_accumulation() {
   const uint64_t pixels = s.pixels();
   Accumulation a{s.settings.width, s.settings.height, std::vector<glm::vec4>(pixels), std::vector<glm::vec4>(pixels),
                  std::vector<glm::vec4>(pixels)};
-  download_buffer(s.ctx, s.accum_sum, a.sum.data(), pixels * sizeof(glm::vec4));
-  download_buffer(s.ctx, s.accum_comp, a.comp.data(), pixels * sizeof(glm::vec4));
-  download_buffer(s.ctx, s.accum_sq, a.sq.data(), pixels * sizeof(glm::vec4));
+  const size_t bytes = pixels * sizeof(glm::vec4);
+  download_buffers(s.ctx, {{&s.accum_sum, a.sum.data(), bytes},
+                           {&s.accum_comp, a.comp.data(), bytes},
+                           {&s.accum_sq, a.sq.data(), bytes}});
   return a;
 }
 

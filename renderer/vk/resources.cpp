@@ -1,5 +1,6 @@
 #include "vk/resources.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "core/text.h"
@@ -102,23 +103,35 @@ void upload_buffer(const VulkanContext& ctx, Buffer& dst, const void* data, size
 }
 
 void download_buffer(const VulkanContext& ctx, const Buffer& src, void* data, size_t bytes) {
-  if (bytes == 0) return;
-  // Host-cached where the device has it: the host reads this memory, and a
-  // GPU's uncached host memory is write-combined, slow to read
-  // (optimisation log 94).
+  download_buffers(ctx, {{&src, data, bytes}});
+}
+
+void download_buffers(const VulkanContext& ctx, std::initializer_list<Download> downloads) {
+  size_t largest = 0;
+  for (const Download& d : downloads) largest = std::max(largest, d.bytes);
+  if (largest == 0) return;
+  // One staging buffer, the size of the largest, for every copy in turn:
+  // allocating host memory and touching its pages for the first time were
+  // most of a read-back (optimisation log 95), and one at a time the peak
+  // memory is that of one download. Host-cached where the device has it:
+  // the host reads this memory, and a GPU's uncached host memory is
+  // write-combined, slow to read (log 94).
   Buffer staging;
-  create_buffer_in(staging, ctx, bytes, kHostCoherent | VK_MEMORY_PROPERTY_HOST_CACHED_BIT, kHostCoherent,
+  create_buffer_in(staging, ctx, largest, kHostCoherent | VK_MEMORY_PROPERTY_HOST_CACHED_BIT, kHostCoherent,
                    "readback buffer", false);
-  submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
-    VkBufferCopy region{0, 0, bytes};
-    vkCmdCopyBuffer(cmd, src.buffer, staging.buffer, 1, &region);
-    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier,
-                         0, nullptr, 0, nullptr);
-  });
-  std::memcpy(data, staging.mapped, bytes);
+  for (const Download& d : downloads) {
+    if (d.bytes == 0) continue;
+    submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
+      VkBufferCopy region{0, 0, d.bytes};
+      vkCmdCopyBuffer(cmd, d.src->buffer, staging.buffer, 1, &region);
+      VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+      barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+      barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier,
+                           0, nullptr, 0, nullptr);
+    });
+    std::memcpy(d.data, staging.mapped, d.bytes);
+  }
 }
 
 namespace {

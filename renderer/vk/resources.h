@@ -39,6 +39,13 @@ void destroy_buffer(Buffer& b);
 // Copies host data into a device buffer through a staging buffer, and back.
 void upload_buffer(const VulkanContext& ctx, Buffer& dst, const void* data, size_t bytes);
 void download_buffer(const VulkanContext& ctx, const Buffer& src, void* data, size_t bytes);
+// Several buffers back at once, through one staging buffer in turn.
+struct Download {
+  const Buffer* src;
+  void* data;
+  size_t bytes;
+};
+void download_buffers(const VulkanContext& ctx, std::initializer_list<Download> downloads);
 
 struct SpecConstant {
   uint32_t id;

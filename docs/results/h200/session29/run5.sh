@@ -1,6 +1,7 @@
 # Session 29 on the H200, run 5 (expected.md, run 5): run 1's N = 0 of the
 # shared-stack build (27.64 ms on the peer's scene, octree) against HEAD's
-# binary (28.81 ms in run 2's peer comparison): an A/B in one run.
+# binary (28.81 ms in run 2's peer comparison): an A/B in one run; and
+# the read-back through one staging buffer (log 95) against 94fc5ce's.
 # Carried: .gl, .gpub (bin.txz as run 1), .assets. Prelude: tools/gpu_run.sh.
 source tools/gpu_run.sh
 X=build-gpu/octrace-sst
@@ -17,4 +18,9 @@ for v in head:$B s0:$X; do
   python3 -c "import json; j=json.load(open('$R/stats_${v%%:*}.json')); print('${v%%:*}', {k: v for k, v in j.get('pipeline_statistics', {}).items() if 'egister' in k or 'hared' in k or 'ocal' in k or 'pill' in k})" >> $T 2>&1
 done
 rm -f $R/x.pfm
+timeout 90 python3 tools/ab_render.py --octrace $B --rounds 5 --metric readback --render "$S -o $R/w.png" --variant "94fc5ce=" --variant "one_staging=BIN=build-gpu/octrace-rb" --out $R/ab_host_readback.md > $R/ab_host_readback.log 2>&1
+echo "host readback rc=$?: $(grep -E '^\| (94fc5ce|one_staging) ' $R/ab_host_readback.md | cut -d'|' -f2,5,6,7,9 | tr '\n' ' ')" >> $T
+timeout 90 python3 tools/ab_render.py --octrace $B --rounds 5 --metric wall --render "$S -o $R/w.png" --variant "94fc5ce=" --variant "one_staging=BIN=build-gpu/octrace-rb" --out $R/ab_host_wall.md > $R/ab_host_wall.log 2>&1
+echo "host wall rc=$?: $(grep -E '^\| (94fc5ce|one_staging) ' $R/ab_host_wall.md | cut -d'|' -f2,5,6,7,9 | tr '\n' ' ')" >> $T
+rm -f $R/w.png
 gpu_finish
