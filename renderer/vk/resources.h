@@ -39,7 +39,8 @@ void destroy_buffer(Buffer& b);
 // Copies host data into a device buffer through a staging buffer, and back.
 void upload_buffer(const VulkanContext& ctx, Buffer& dst, const void* data, size_t bytes);
 void download_buffer(const VulkanContext& ctx, const Buffer& src, void* data, size_t bytes);
-// Several buffers back at once, through one staging buffer in turn.
+// Several buffers back in one call, one after another through one staging
+// buffer the size of the largest (renderer/vk/resources.cpp says why).
 struct Download {
   const Buffer* src;
   void* data;
