@@ -602,10 +602,7 @@ void resolve_accumulation(const Accumulation& a, RenderResult& r) {
     const double n = a.sum[i].w;
     r.min_samples = std::min(r.min_samples, uint32_t(n));
     r.rays += std::bit_cast<uint32_t>(a.sq[i].w);
-    for (int c = 0; c < 3; ++c) {
-      const double var = n > 1 ? double(a.sq[i][c]) / (n - 1) : 0.0;
-      r.variance_of_mean.rgb[3 * i + c] = n > 0 ? float(var / n) : 0.0f;
-    }
+    for (int c = 0; c < 3; ++c) r.variance_of_mean.rgb[3 * i + c] = pixel_variance_of_mean(a.sq[i][c], n);
   }
 }
 
@@ -650,20 +647,66 @@ WalkStats PathTracer::walk_stats() {
   return w;
 }
 
+// resolve_accumulation's values, each buffer resolved as it arrives in the
+// staging memory, in the same arithmetic: the sum's count and colour (kept
+// in the mean until the compensation comes), the compensation's mean, then
+// M2's variance and rays. No copy of the three buffers on the host
+// (optimisation log 97).
 RenderResult PathTracer::read_result() {
+  State& s = *state_;
   auto start = Clock::now();
-  const Accumulation acc = read_accumulation();
-  const double download_ms = ms_since(start);
-  RenderResult r = read_result(acc);
-  state_->timings.readback_ms = r.timings.readback_ms += download_ms;
+  RenderResult r;
+  const uint64_t pixels = s.pixels();
+  const int w = s.settings.width, h = s.settings.height;
+  r.mean = Image{w, h, std::vector<float>(pixels * 3)};
+  r.variance_of_mean = Image{w, h, std::vector<float>(pixels * 3)};
+  r.count.resize(pixels);
+  r.min_samples = pixels ? UINT32_MAX : 0;
+  float* mean = r.mean.rgb.data();
+  float* var = r.variance_of_mean.rgb.data();
+  float* count = r.count.data();
+  const auto pixels_of = [](const void* mapped) { return static_cast<const glm::vec4*>(mapped); };
+  const size_t bytes = pixels * sizeof(glm::vec4);
+  download_buffers(s.ctx, {{&s.accum_sum, nullptr, bytes,
+                            [&](const void* mapped) {
+                              const glm::vec4* sum = pixels_of(mapped);
+                              for (uint64_t i = 0; i < pixels; ++i) {
+                                count[i] = sum[i].w;
+                                for (int c = 0; c < 3; ++c) mean[3 * i + c] = sum[i][c];
+                              }
+                            }},
+                           {&s.accum_comp, nullptr, bytes,
+                            [&](const void* mapped) {
+                              const glm::vec4* comp = pixels_of(mapped);
+                              for (uint64_t i = 0; i < pixels; ++i)
+                                for (int c = 0; c < 3; ++c)
+                                  mean[3 * i + c] = pixel_mean(mean[3 * i + c], comp[i][c], count[i]);
+                            }},
+                           {&s.accum_sq, nullptr, bytes, [&](const void* mapped) {
+                              const glm::vec4* sq = pixels_of(mapped);
+                              for (uint64_t i = 0; i < pixels; ++i) {
+                                const double n = count[i];
+                                r.min_samples = std::min(r.min_samples, uint32_t(n));
+                                r.rays += std::bit_cast<uint32_t>(sq[i].w);
+                                for (int c = 0; c < 3; ++c) var[3 * i + c] = pixel_variance_of_mean(sq[i][c], n);
+                              }
+                            }}});
+  finish_result(r, start);
   return r;
 }
 
 RenderResult PathTracer::read_result(const Accumulation& acc) {
-  State& s = *state_;
   auto start = Clock::now();
   RenderResult r;
   resolve_accumulation(acc, r);
+  finish_result(r, start);
+  return r;
+}
+
+// What a result has besides the images: the device's counters, the timings
+// (the read-back's from `start`), the tree and the pipeline's choices.
+void PathTracer::finish_result(RenderResult& r, Clock::time_point start) {
+  State& s = *state_;
   r.nonfinite_samples = nonfinite_samples();
   r.walk = walk_stats();
   s.timings.readback_ms = ms_since(start);
@@ -676,7 +719,6 @@ RenderResult PathTracer::read_result(const Accumulation& acc) {
   r.tail_step = s.tail_step();
   r.tail_fill = s.tail_fill();
   r.pipeline_statistics = s.pipeline.statistics;
-  return r;
 }
 
 std::string software_loop_limit_warning(const DeviceInfo& device, const Scene& scene, const RenderSettings& settings) {
@@ -756,13 +798,19 @@ RenderResult render(const VulkanContext& ctx, const Scene& scene, const RenderSe
     if (lose_now) throw_vk_error(VK_ERROR_DEVICE_LOST, "vkQueueSubmit");
   }
   double wall_ms = ms_since(start);
-  // Read back once: the final checkpoint and the result share it.
-  auto readback_start = Clock::now();
-  const Accumulation acc = tracer.read_accumulation();
-  const double download_ms = ms_since(readback_start);
-  if (control.checkpoint) control.checkpoint(acc, done, tracer.scene_hash());  // the final state
-  RenderResult r = tracer.read_result(acc);
-  r.timings.readback_ms += download_ms;
+  // Read back once: with checkpoints the final state and the result share
+  // the buffers; without, they are resolved as they arrive.
+  RenderResult r;
+  if (control.checkpoint) {
+    auto readback_start = Clock::now();
+    const Accumulation acc = tracer.read_accumulation();
+    const double download_ms = ms_since(readback_start);
+    control.checkpoint(acc, done, tracer.scene_hash());  // the final state
+    r = tracer.read_result(acc);
+    r.timings.readback_ms += download_ms;
+  } else {
+    r = tracer.read_result();
+  }
   r.timings.render_device_ms = device_ms;
   r.timings.render_wall_ms = wall_ms;
   r.samples = done;

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "accel/octree.h"
+#include "core/clock.h"
 #include "io/image.h"
 #include "render/render_state.h"
 #include "render/settings.h"
@@ -141,6 +142,8 @@ class PathTracer {
   // The settings in force (width, height, accel, precision and effects follow
   // resize and reconfigure).
   const RenderSettings& settings() const;
+  // The result of the samples added since the last reset: the buffers are
+  // read back and resolved as they arrive, without a host copy of them.
   RenderResult read_result();
   // The same from an accumulation already read back (read_accumulation).
   RenderResult read_result(const Accumulation& acc);
@@ -170,6 +173,8 @@ class PathTracer {
   uint32_t tail_fill() const;
 
  private:
+  // What a result has besides the images (read_result).
+  void finish_result(RenderResult& r, Clock::time_point start);
   struct State;
   std::unique_ptr<State> state_;
 };

@@ -80,11 +80,7 @@ RenderState state_of(const Accumulation& acc) {
   for (size_t i = 0; i < acc.sum.size(); ++i) {
     const double n = acc.sum[i].w;
     st.count[i] = float(n);
-    for (int c = 0; c < 3; ++c) {
-      // The Kahan sum is sum - comp (comp holds what the float sum overshot).
-      const double total = double(acc.sum[i][c]) - double(acc.comp[i][c]);
-      st.mean.rgb[3 * i + c] = float(n > 0 ? total / n : 0.0);
-    }
+    for (int c = 0; c < 3; ++c) st.mean.rgb[3 * i + c] = pixel_mean(acc.sum[i][c], acc.comp[i][c], n);
   }
   return st;
 }

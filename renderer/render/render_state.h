@@ -67,6 +67,18 @@ CheckpointInfo checkpoint_info_of(const nlohmann::json& j);
 // The mean and count of an accumulation, as PathTracer::read_result has them.
 RenderState state_of(const Accumulation& acc);
 
+// One channel of a pixel's mean: its Kahan sum (sum - comp: comp holds what
+// the float sum overshot) over its n samples, in double.
+inline float pixel_mean(float sum, float comp, double n) {
+  return float(n > 0 ? (double(sum) - double(comp)) / n : 0.0);
+}
+// One channel of the variance of a pixel's mean: its sum of squared
+// deviations (Welford's M2) over n - 1, over n.
+inline float pixel_variance_of_mean(float m2, double n) {
+  const double var = n > 1 ? double(m2) / (n - 1) : 0.0;
+  return n > 0 ? float(var / n) : 0.0f;
+}
+
 // The first difference between a saved checkpoint and a render that would
 // resume it, in words ("sample seed 3, this render 1"); empty if none.
 std::string checkpoint_mismatch(const CheckpointInfo& saved, const CheckpointInfo& now);

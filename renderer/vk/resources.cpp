@@ -130,7 +130,8 @@ void download_buffers(const VulkanContext& ctx, std::initializer_list<Download> 
       vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier,
                            0, nullptr, 0, nullptr);
     });
-    std::memcpy(d.data, staging.mapped, d.bytes);
+    if (d.take) d.take(staging.mapped);
+    else std::memcpy(d.data, staging.mapped, d.bytes);
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <initializer_list>
 #include <string>
 #include <vector>
@@ -40,11 +41,15 @@ void destroy_buffer(Buffer& b);
 void upload_buffer(const VulkanContext& ctx, Buffer& dst, const void* data, size_t bytes);
 void download_buffer(const VulkanContext& ctx, const Buffer& src, void* data, size_t bytes);
 // Several buffers back in one call, one after another through one staging
-// buffer the size of the largest (renderer/vk/resources.cpp says why).
+// buffer the size of the largest (renderer/vk/resources.cpp says why). Each
+// is copied to `data`, or, where `take` is set (and `data` null), handed to
+// it in the staging memory, valid during the call: a caller that only
+// reduces what it reads needs no array of its own (optimisation log 97).
 struct Download {
   const Buffer* src;
   void* data;
   size_t bytes;
+  std::function<void(const void* mapped)> take = {};
 };
 void download_buffers(const VulkanContext& ctx, std::initializer_list<Download> downloads);
 

@@ -87,6 +87,33 @@ void expect_same_result(const RenderResult& got, const RenderResult& want) {
   EXPECT_EQ(got.nonfinite_samples, want.nonfinite_samples);
 }
 
+// read_result() resolves each buffer in the staging memory as it arrives
+// (optimisation log 97): every bit as resolve_accumulation's of the
+// buffers read back, including min_samples (a pixel below the others: a
+// second batch over part of the samples is not possible, so the counts are
+// set through write_accumulation).
+TEST_F(RenderTest, ResultResolvedAsItArrivesIsTheAccumulationsResolved) {
+  VulkanContext& ctx = test::shared_context();
+  Scene scene = make_rtiow_scene({40, 0.2f, 3});
+  RenderSettings s;
+  s.width = 37;
+  s.height = 23;
+  PathTracer tracer(ctx, scene, s);
+  tracer.run_passes(pass_settings(scene, s), 0, 5);
+  Accumulation acc = tracer.read_accumulation();
+  acc.sum[100].w = 2.0f;  // fewer samples in one pixel, and one with none
+  acc.sum[101].w = 0.0f;
+  tracer.write_accumulation(acc);
+  RenderResult want;
+  resolve_accumulation(tracer.read_accumulation(), want);
+  const RenderResult got = tracer.read_result();
+  expect_same_result(got, want);
+  EXPECT_EQ(got.min_samples, 0u);
+  EXPECT_EQ(want.min_samples, 0u);
+  EXPECT_GT(got.rays, 0u);
+  EXPECT_EQ(got.variance_of_mean.rgb[3 * 101], 0.0f);
+}
+
 // How samples are split into dispatches and shared among invocations does
 // not change a bit of the result: mean, variance, sample and ray counts
 // (shaders/path_trace.comp main()). The image size is not a multiple of the
