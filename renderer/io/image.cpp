@@ -2,9 +2,13 @@
 
 #include <stb_image.h>
 #include <tinyexr.h>
-#include <zlib.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <vector>
+
+#include "core/parallel.h"
+#include "io/deflate.h"
 
 // PNG files are written by stb_image_write compiled here, with zlib's deflate
 // at its fastest level in place of stb's own (STBIW_ZLIB_COMPRESS, the
@@ -13,16 +17,18 @@
 // (docs/performance.md, "Writing the image"; log 92). The same pixels
 // either way; only the compressed bytes differ. Static, so Debian's libstb
 // (linked for stb_image) keeps its own copy of the writer unused.
+// The deflate runs in pieces on the host's threads (io/deflate.h, log 98).
 namespace {
+constexpr size_t kDeflatePiece = 512 * 1024;  // the least data a piece gets
+
 unsigned char* png_deflate(unsigned char* data, int data_len, int* out_len, int /*stb's level*/) {
-  uLongf size = compressBound(uLong(data_len));
-  auto* out = static_cast<unsigned char*>(std::malloc(size));
-  if (out && compress2(out, &size, data, uLong(data_len), Z_BEST_SPEED) == Z_OK) {
-    *out_len = int(size);
-    return out;
-  }
-  std::free(out);
-  return nullptr;  // stb's encoder then fails, and encode_png says so
+  const size_t n = size_t(std::max(data_len, 0));
+  const std::vector<unsigned char> z = octrace::zlib_deflate(data, n, octrace::parallel_range_count(n, kDeflatePiece));
+  auto* out = z.empty() ? nullptr : static_cast<unsigned char*>(std::malloc(z.size()));
+  if (!out) return nullptr;  // stb's encoder then fails, and encode_png says so
+  std::copy(z.begin(), z.end(), out);
+  *out_len = int(z.size());
+  return out;
 }
 }  // namespace
 #define STB_IMAGE_WRITE_IMPLEMENTATION
@@ -91,8 +97,12 @@ float displayed(float linear) {
 
 Bytes encode_png(const Image& image, const std::string& path) {
   std::vector<std::uint8_t> pixels(image.rgb.size());
-  std::transform(image.rgb.begin(), image.rgb.end(), pixels.begin(),
-                 [](float v) { return std::uint8_t(displayed(v) * 255.0f + 0.5f); });
+  // On the host's threads (log 98): a powf per value.
+  parallel_ranges(pixels.size(), parallel_range_count(pixels.size(), 64 * 1024), [&](size_t, size_t begin, size_t end) {
+    std::transform(image.rgb.begin() + std::ptrdiff_t(begin), image.rgb.begin() + std::ptrdiff_t(end),
+                   pixels.begin() + std::ptrdiff_t(begin),
+                   [](float v) { return std::uint8_t(displayed(v) * 255.0f + 0.5f); });
+  });
   Bytes bytes;
   auto append = [](void* context, void* data, int size) {
     auto* out = static_cast<Bytes*>(context);

@@ -1,6 +1,7 @@
 #include "io/image.h"
 
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "io/deflate.h"
 
 namespace octrace {
 namespace {
@@ -91,6 +93,30 @@ Image with_noise(const Image& image, float sigma, unsigned seed) {
   std::normal_distribution<float> noise(0.0f, sigma);
   for (float& v : noisy.rgb) v += noise(rng);
   return noisy;
+}
+
+// zlib_deflate's pieces make one zlib stream: zlib's own inflate (which
+// checks the Adler-32) gives the data back, for one piece, several, and more
+// pieces than bytes; data long runs (back-references across the pieces'
+// seams, through the dictionary), a ramp and noise.
+TEST(Deflate, PiecesInflateToTheData) {
+  std::vector<unsigned char> data(300000);
+  std::mt19937 rng(5);
+  for (size_t i = 0; i < data.size(); ++i)
+    data[i] = i < 100000 ? 0 : i < 200000 ? static_cast<unsigned char>(i / 7) : static_cast<unsigned char>(rng());
+  for (const std::vector<unsigned char>& input : {data, std::vector<unsigned char>(data.begin(), data.begin() + 3),
+                                                  std::vector<unsigned char>{}}) {
+    for (size_t pieces : {1, 2, 3, 7, 1000}) {
+      const std::vector<unsigned char> z = zlib_deflate(input.data(), input.size(), pieces);
+      ASSERT_FALSE(z.empty());
+      std::vector<unsigned char> back(input.size() + 1);
+      uLongf size = uLongf(back.size());
+      ASSERT_EQ(uncompress(back.data(), &size, z.data(), uLong(z.size())), Z_OK)
+          << pieces << " pieces of " << input.size() << " bytes";
+      back.resize(size);
+      EXPECT_EQ(back, input) << pieces << " pieces of " << input.size() << " bytes";
+    }
+  }
 }
 
 TEST(ImageIo, PngRoundTripIsWithinEightBitQuantisation) {

@@ -1,0 +1,51 @@
+// Work on the host split over its hardware threads.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace octrace {
+
+// How many ranges to split n items into for parallel_ranges: one per
+// hardware thread, each of at least min_items (at least 1 range).
+inline size_t parallel_range_count(size_t n, size_t min_items) {
+  const size_t threads = std::max(1u, std::thread::hardware_concurrency());
+  return std::max<size_t>(1, std::min(threads, n / std::max<size_t>(1, min_items)));
+}
+
+// Calls f(k, begin, end) for `ranges` contiguous ranges k of [0, n) (their
+// sizes differ by at most 1; at most n ranges, at least 1), each on a
+// thread of its own (the caller's
+// takes range 0), and returns when every one is done. An exception thrown
+// by f is rethrown here (the first of several), after all have finished.
+template <class F>
+void parallel_ranges(size_t n, size_t ranges, F&& f) {
+  ranges = std::clamp<size_t>(ranges, 1, std::max<size_t>(1, n));
+  const auto begin_of = [&](size_t k) { return n / ranges * k + std::min(k, n % ranges); };
+  if (ranges == 1) {
+    f(size_t(0), size_t(0), n);
+    return;
+  }
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  const auto run = [&](size_t k) {
+    try {
+      f(k, begin_of(k), begin_of(k + 1));
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(error_mutex);
+      if (!error) error = std::current_exception();
+    }
+  };
+  {
+    std::vector<std::jthread> helpers;
+    for (size_t k = 1; k < ranges; ++k) helpers.emplace_back(run, k);
+    run(0);
+  }
+  if (error) std::rethrow_exception(error);
+}
+
+}  // namespace octrace
