@@ -117,19 +117,26 @@ Bytes encode_png(const Image& image, const std::string& path) {
 
 // PFM stores floats in the byte order given by the sign of the scale; we always
 // write little-endian (scale -1), independent of the host.
-void append_le_float(Bytes& out, float value) {
-  auto bits = std::bit_cast<std::uint32_t>(value);
-  for (int i = 0; i < 4; ++i) out.push_back(std::uint8_t(bits >> (8 * i)));
-}
-
 Bytes encode_pfm(const Image& image) {
   std::string header =
       "PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n-1.0\n";
-  Bytes bytes(header.begin(), header.end());
-  bytes.reserve(header.size() + 4 * image.rgb.size());
-  // PFM rows run bottom to top (Netpbm PFM specification).
-  for (int y = image.height - 1; y >= 0; --y)
-    for (int i = 0; i < 3 * image.width; ++i) append_le_float(bytes, image.pixel(0, y)[i]);
+  Bytes bytes(header.size() + 4 * image.rgb.size());
+  std::copy(header.begin(), header.end(), bytes.begin());
+  // PFM rows run bottom to top (Netpbm PFM specification); a row's values
+  // are copied whole where the host's byte order is the file's (log 100).
+  const size_t row = 3 * size_t(image.width);
+  unsigned char* out = bytes.data() + header.size();
+  for (int y = image.height - 1; y >= 0; --y, out += 4 * row) {
+    const float* values = image.pixel(0, y);
+    if constexpr (std::endian::native == std::endian::little) {
+      std::memcpy(out, values, 4 * row);
+    } else {
+      for (size_t i = 0; i < row; ++i) {
+        const auto bits = std::bit_cast<std::uint32_t>(values[i]);
+        for (int b = 0; b < 4; ++b) out[4 * i + b] = std::uint8_t(bits >> (8 * b));
+      }
+    }
+  }
   return bytes;
 }
 
