@@ -1,17 +1,34 @@
 #include "accel/clip.h"
 
-#include <cmath>
+#include <bit>
+#include <cstdint>
 #include <limits>
+#include <utility>
 
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
 namespace octrace {
 
+float next_float_down(float f) {
+  if (f == 0.0f) return -std::numeric_limits<float>::denorm_min();
+  const auto bits = std::bit_cast<std::uint32_t>(f);
+  return std::bit_cast<float>(f > 0.0f ? bits - 1u : bits + 1u);
+}
+
+float next_float_up(float f) {
+  if (f == 0.0f) return std::numeric_limits<float>::denorm_min();
+  const auto bits = std::bit_cast<std::uint32_t>(f);
+  return std::bit_cast<float>(f > 0.0f ? bits + 1u : bits - 1u);
+}
+
 bool clip_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const Aabb& cell, Aabb& part) {
-  // A triangle clipped by 6 planes has at most 3 + 6 vertices.
+  // A triangle clipped by 6 planes has at most 3 + 6 vertices; two arrays,
+  // the polygon and the next one, swapped after each plane.
   constexpr int kMax = 9;
-  glm::dvec3 poly[kMax] = {glm::dvec3(a), glm::dvec3(b), glm::dvec3(c)}, next[kMax];
+  glm::dvec3 buffers[2][kMax] = {{glm::dvec3(a), glm::dvec3(b), glm::dvec3(c)}};
+  glm::dvec3* poly = buffers[0];
+  glm::dvec3* next = buffers[1];
   int n = 3;
   glm::dvec3 lo = glm::min(poly[0], glm::min(poly[1], poly[2]));
   glm::dvec3 hi = glm::max(poly[0], glm::max(poly[1], poly[2]));
@@ -28,7 +45,7 @@ bool clip_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, c
       int m = 0;
       for (int i = 0; i < n; ++i) {
         const glm::dvec3& p = poly[i];
-        const glm::dvec3& q = poly[(i + 1) % n];
+        const glm::dvec3& q = poly[i + 1 < n ? i + 1 : 0];
         const double dp = sign * (p[axis] - plane), dq = sign * (q[axis] - plane);
         if (dp <= 0.0) next[m++] = p;
         if ((dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0)) {
@@ -38,7 +55,7 @@ bool clip_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, c
         }
       }
       n = m;
-      for (int i = 0; i < n; ++i) poly[i] = next[i];
+      std::swap(poly, next);
       if (n > 0) {
         lo = hi = poly[0];
         for (int i = 1; i < n; ++i) {
@@ -54,10 +71,9 @@ bool clip_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, c
     hi = glm::max(hi, poly[i]);
   }
   // Outward to float by one ulp beyond the rounding, then back into the cell.
-  const float inf = std::numeric_limits<float>::infinity();
   for (int k = 0; k < 3; ++k) {
-    part.lo[k] = std::max(std::nextafter(std::nextafter(float(lo[k]), -inf), -inf), cell.lo[k]);
-    part.hi[k] = std::min(std::nextafter(std::nextafter(float(hi[k]), inf), inf), cell.hi[k]);
+    part.lo[k] = std::max(next_float_down(next_float_down(float(lo[k]))), cell.lo[k]);
+    part.hi[k] = std::min(next_float_up(next_float_up(float(hi[k]))), cell.hi[k]);
   }
   return true;
 }

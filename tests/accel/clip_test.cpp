@@ -5,6 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
 #include <random>
 
 #include <glm/geometric.hpp>
@@ -103,6 +107,27 @@ TEST(ClipTriangle, PartHoldsEveryPointOfTheTriangleInTheCell) {
   // Both outcomes occur: the test exercises both.
   EXPECT_GT(kept, 100);
   EXPECT_GT(dropped, 100);
+}
+
+// The one-ulp steps are std::nextafter's, for every finite float of a
+// stride over all bit patterns and for the edges: zeros, subnormals, the
+// smallest normal, one, the largest finite float.
+TEST(NextFloat, StepsAsNextafterDoes) {
+  const float inf = std::numeric_limits<float>::infinity();
+  const auto check = [&](float f) {
+    ASSERT_EQ(std::bit_cast<std::uint32_t>(next_float_down(f)), std::bit_cast<std::uint32_t>(std::nextafter(f, -inf)))
+        << f;
+    ASSERT_EQ(std::bit_cast<std::uint32_t>(next_float_up(f)), std::bit_cast<std::uint32_t>(std::nextafter(f, inf)))
+        << f;
+  };
+  for (float f : {0.0f, -0.0f, std::numeric_limits<float>::denorm_min(), -std::numeric_limits<float>::denorm_min(),
+                  std::numeric_limits<float>::min(), -std::numeric_limits<float>::min(), 1.0f, -1.0f,
+                  std::numeric_limits<float>::max(), -std::numeric_limits<float>::max()})
+    check(f);
+  for (std::uint64_t bits = 0; bits <= 0xffffffffu; bits += 4099) {
+    const float f = std::bit_cast<float>(std::uint32_t(bits));
+    if (std::isfinite(f)) check(f);
+  }
 }
 
 }  // namespace
