@@ -448,7 +448,21 @@ Image decode_exr(const std::string& path, const Bytes& bytes) {
   for (int c = 0; c < exr.header.num_channels; ++c)
     if (exr.header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF)
       exr.header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
-  if (LoadEXRImageFromMemory(&exr.image, &exr.header, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS) {
+  // tinyexr 1.0.1's PIZ decoder reads a chunk's bitmap range and the length
+  // word after it (at most 4 + 8192 + 4 bytes) before it checks them against
+  // the chunk's size, so a chunk at the end of the file was read past the
+  // file's bytes (found by tests/fuzz/fuzz_image.cpp:
+  // regression_exr_piz_bitmap_past_end.exr). A PIZ file's bytes go to it
+  // followed by that many zeros: those reads stay in octrace's buffer, and
+  // the check after them rejects the chunk.
+  constexpr size_t kPizReadsPast = 4 + 8192 + 4;
+  Bytes padded;
+  if (exr.header.compression_type == TINYEXR_COMPRESSIONTYPE_PIZ) {
+    padded.assign(bytes.size() + kPizReadsPast, 0);
+    std::copy(bytes.begin(), bytes.end(), padded.begin());
+  }
+  const unsigned char* data = padded.empty() ? bytes.data() : padded.data();
+  if (LoadEXRImageFromMemory(&exr.image, &exr.header, data, bytes.size(), &err) != TINYEXR_SUCCESS) {
     // tinyexr has freed the image and left its pointers (a second free was
     // found by tests/fuzz/fuzz_image.cpp); it leaks the channel buffers
     // (tools/lsan.supp).
