@@ -588,22 +588,34 @@ void PathTracer::write_accumulation(const Accumulation& a) {
 
 uint64_t PathTracer::scene_hash() const { return state_->scene.content_hash; }
 
+namespace {
+
+// The variance of the mean (an image the size of r.mean), the smallest count
+// and the rays of a result whose mean and counts are in place, from the
+// accumulation's M2 buffer (`sq`: M2 per channel, the ray segments in .w).
+// For both read-backs: resolve_accumulation and PathTracer::read_result.
+void resolve_m2(const glm::vec4* sq, RenderResult& r) {
+  const uint64_t pixels = r.count.size();
+  r.variance_of_mean = Image{r.mean.width, r.mean.height, std::vector<float>(pixels * 3)};
+  r.min_samples = pixels ? UINT32_MAX : 0;
+  r.rays = 0;
+  for (uint64_t i = 0; i < pixels; ++i) {
+    const double n = r.count[i];
+    r.min_samples = std::min(r.min_samples, uint32_t(n));
+    r.rays += std::bit_cast<uint32_t>(sq[i].w);
+    for (int c = 0; c < 3; ++c) r.variance_of_mean.rgb[3 * i + c] = pixel_variance_of_mean(sq[i][c], n);
+  }
+}
+
+}  // namespace
+
 void resolve_accumulation(const Accumulation& a, RenderResult& r) {
   // The mean and count as a checkpoint's state has them (render_state.h) ...
   RenderState state = state_of(a);
   r.mean = std::move(state.mean);
   r.count = std::move(state.count);
   // ... and the variance of the mean, the smallest count and the rays.
-  const uint64_t pixels = a.sum.size();
-  r.variance_of_mean = Image{a.width, a.height, std::vector<float>(pixels * 3, 0.0f)};
-  r.min_samples = pixels ? UINT32_MAX : 0;
-  r.rays = 0;
-  for (uint64_t i = 0; i < pixels; ++i) {
-    const double n = a.sum[i].w;
-    r.min_samples = std::min(r.min_samples, uint32_t(n));
-    r.rays += std::bit_cast<uint32_t>(a.sq[i].w);
-    for (int c = 0; c < 3; ++c) r.variance_of_mean.rgb[3 * i + c] = pixel_variance_of_mean(a.sq[i][c], n);
-  }
+  resolve_m2(a.sq.data(), r);
 }
 
 uint64_t PathTracer::nonfinite_samples() {
@@ -650,8 +662,8 @@ WalkStats PathTracer::walk_stats() {
 // resolve_accumulation's values, each buffer resolved as it arrives in the
 // staging memory, in the same arithmetic: the sum's count and colour (kept
 // in the mean until the compensation comes), the compensation's mean, then
-// M2's variance and rays. No copy of the three buffers on the host
-// (optimisation log 97).
+// M2's variance and rays (resolve_m2, as resolve_accumulation). No copy of
+// the three buffers on the host (optimisation log 97).
 RenderResult PathTracer::read_result() {
   State& s = *state_;
   auto start = Clock::now();
@@ -659,11 +671,8 @@ RenderResult PathTracer::read_result() {
   const uint64_t pixels = s.pixels();
   const int w = s.settings.width, h = s.settings.height;
   r.mean = Image{w, h, std::vector<float>(pixels * 3)};
-  r.variance_of_mean = Image{w, h, std::vector<float>(pixels * 3)};
   r.count.resize(pixels);
-  r.min_samples = pixels ? UINT32_MAX : 0;
   float* mean = r.mean.rgb.data();
-  float* var = r.variance_of_mean.rgb.data();
   float* count = r.count.data();
   const auto pixels_of = [](const void* mapped) { return static_cast<const glm::vec4*>(mapped); };
   const size_t bytes = pixels * sizeof(glm::vec4);
@@ -682,15 +691,8 @@ RenderResult PathTracer::read_result() {
                                 for (int c = 0; c < 3; ++c)
                                   mean[3 * i + c] = pixel_mean(mean[3 * i + c], comp[i][c], count[i]);
                             }},
-                           {&s.accum_sq, nullptr, bytes, [&](const void* mapped) {
-                              const glm::vec4* sq = pixels_of(mapped);
-                              for (uint64_t i = 0; i < pixels; ++i) {
-                                const double n = count[i];
-                                r.min_samples = std::min(r.min_samples, uint32_t(n));
-                                r.rays += std::bit_cast<uint32_t>(sq[i].w);
-                                for (int c = 0; c < 3; ++c) var[3 * i + c] = pixel_variance_of_mean(sq[i][c], n);
-                              }
-                            }}});
+                           {&s.accum_sq, nullptr, bytes,
+                            [&](const void* mapped) { resolve_m2(pixels_of(mapped), r); }}});
   finish_result(r, start);
   return r;
 }
