@@ -17,14 +17,18 @@ inline size_t parallel_range_count(size_t n, size_t min_items) {
   return std::max<size_t>(1, std::min(threads, n / std::max<size_t>(1, min_items)));
 }
 
-// Calls f(k, begin, end) for `ranges` contiguous ranges k of [0, n) (their
-// sizes differ by at most 1; at most n ranges, at least 1), each on a
-// thread of its own (the caller's
-// takes range 0), and returns when every one is done. An exception thrown
-// by f is rethrown here (the first of several), after all have finished.
+// How many ranges parallel_ranges makes of n items when asked for `ranges`:
+// at most n, at least 1 (a caller sizing an array per range uses it).
+inline size_t clamp_ranges(size_t n, size_t ranges) { return std::clamp<size_t>(ranges, 1, std::max<size_t>(1, n)); }
+
+// Calls f(k, begin, end) for clamp_ranges(n, ranges) contiguous ranges k of
+// [0, n) (their sizes differ by at most 1), each on a thread of its own (the
+// caller's takes range 0), and returns when every one is done. An exception
+// thrown by f is rethrown here (the first of several), after all have
+// finished.
 template <class F>
 void parallel_ranges(size_t n, size_t ranges, F&& f) {
-  ranges = std::clamp<size_t>(ranges, 1, std::max<size_t>(1, n));
+  ranges = clamp_ranges(n, ranges);
   const auto begin_of = [&](size_t k) { return n / ranges * k + std::min(k, n % ranges); };
   if (ranges == 1) {
     f(size_t(0), size_t(0), n);

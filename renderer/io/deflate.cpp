@@ -42,7 +42,7 @@ Piece deflate_piece(const unsigned char* data, size_t begin, size_t end, bool la
 }  // namespace
 
 std::vector<unsigned char> zlib_deflate(const unsigned char* data, size_t size, size_t pieces) {
-  pieces = std::clamp<size_t>(pieces, 1, std::max<size_t>(1, size));  // as parallel_ranges has them
+  pieces = clamp_ranges(size, pieces);
   std::vector<Piece> parts(pieces);
   parallel_ranges(size, pieces, [&](size_t k, size_t begin, size_t end) {
     parts[k] = deflate_piece(data, begin, end, k + 1 == pieces);
