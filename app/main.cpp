@@ -138,7 +138,7 @@ struct RenderOptions {
   std::string precision = "fp32";
   std::string effects = "auto";
   std::string nee = "on";
-  std::string octant_culling = "on";
+  std::string octant_culling = "auto";
   std::string tail_depth = "auto";
   std::string tail_step = "auto";
   std::string tail_fill = "auto";
@@ -208,7 +208,8 @@ struct RenderOptions {
                    "triangles without the tail queue, 1 on a CPU device); same image")
         ->capture_default_str();
     cmd.add_option("--octant-culling", octant_culling,
-                   "Octree walk: skip children in octants the ray cannot reach: on | off; same image, other speed")
+                   "Octree walk: skip children in octants the ray cannot reach: auto | on | off (auto: on, but "
+                   "off for scenes without triangles on lavapipe from Mesa 25); same image, other speed")
         ->capture_default_str();
     cmd.add_option("--tail-depth", tail_depth,
                    "Tail queue: paths still going at this bounce finish in a dispatch of their own: auto | off | "
@@ -265,9 +266,11 @@ struct RenderOptions {
     s.octree.instancing = parse_instancing(instancing);
     if (nee != "on" && nee != "off") throw SettingError("nee", ": expected on or off, got \"" + nee + "\"");
     s.nee = nee == "on";
-    if (octant_culling != "on" && octant_culling != "off")
-      throw SettingError("octant_culling", ": expected on or off, got \"" + octant_culling + "\"");
-    s.octant_culling = octant_culling == "on";
+    if (octant_culling != "auto" && octant_culling != "on" && octant_culling != "off")
+      throw SettingError("octant_culling", ": expected auto, on or off, got \"" + octant_culling + "\"");
+    s.octant_culling = octant_culling == "auto" ? OctantCulling::Auto
+                       : octant_culling == "on" ? OctantCulling::On
+                                                : OctantCulling::Off;
     s.tail_depth = parse_tail_count(tail_depth, "tail_depth", "a bounce");
     s.tail_step = parse_tail_count(tail_step, "tail_step", "a bounce count");
     s.tail_fill = parse_tail_count(tail_fill, "tail_fill", "a path count", 1000000000);
@@ -696,7 +699,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
               {"nee", settings.nee ? "on" : "off"},
               {"samples_per_dispatch", settings.samples_per_dispatch},
               {"sample_lanes", settings.sample_lanes},
-              {"octant_culling", settings.octant_culling ? "on" : "off"},
+              {"octant_culling", result.octant_culling ? "on" : "off"},
               {"tail_depth", result.tail_depth},
               {"tail_step", result.tail_step},
               {"tail_fill", result.tail_fill},

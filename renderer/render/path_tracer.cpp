@@ -54,6 +54,11 @@ struct PathTracer::State {
   bool one_instance() const {
     return !settings.all_effects && scene.values.sphere_count == 0 && scene.values.instance_count == 1;
   }
+  // RenderSettings::octant_culling for this device and scene.
+  bool octant_culling() const {
+    if (settings.octant_culling != OctantCulling::Auto) return settings.octant_culling == OctantCulling::On;
+    return default_octant_culling(ctx.info, scene_features.triangles);
+  }
   // RenderSettings::nearest_child for this device: whether the octree walk holds it.
   bool hold_nearest() const {
     if (settings.nearest_child != NearestChild::Auto) return settings.nearest_child == NearestChild::Held;
@@ -265,7 +270,7 @@ void PathTracer::State::create_stage(ComputePipeline& p, uint32_t stage, const u
                            {gpu::SPEC_PBR, f.pbr},
                            {gpu::SPEC_DEFOCUS, f.defocus},
                            {gpu::SPEC_SAMPLE_LANES, s.sample_lanes_enabled()},
-                           {gpu::SPEC_OCTANT_CULLING, s.settings.octant_culling},
+                           {gpu::SPEC_OCTANT_CULLING, s.octant_culling()},
                            {gpu::SPEC_BIG_LEAF, s.big_leaf(f)},
                            {gpu::SPEC_OCTREE_HOLD_NEAREST, s.hold_nearest()},
                            {gpu::SPEC_BVH_TOP_WIDE, g.tree == Accel::Bvh && g.octree.bvh_top_width > 2},
@@ -347,6 +352,7 @@ uint64_t PathTracer::buffer_part_bytes() const {
   return state_->scene.part_log2 ? uint64_t(1) << state_->scene.part_log2 : 0;
 }
 const SceneFeatures& PathTracer::features() const { return state_->features; }
+bool PathTracer::octant_culling() const { return state_->octant_culling(); }
 uint32_t PathTracer::tail_depth() const { return state_->tail_depth(); }
 uint32_t PathTracer::tail_step() const { return state_->tail_step(); }
 uint32_t PathTracer::tail_fill() const { return state_->tail_fill(); }
@@ -717,10 +723,15 @@ void PathTracer::finish_result(RenderResult& r, Clock::time_point start) {
   r.buffer_parts = buffer_parts();
   r.buffer_part_bytes = buffer_part_bytes();
   r.features = s.features;
+  r.octant_culling = s.octant_culling();
   r.tail_depth = s.tail_depth();
   r.tail_step = s.tail_step();
   r.tail_fill = s.tail_fill();
   r.pipeline_statistics = s.pipeline.statistics;
+}
+
+bool default_octant_culling(const DeviceInfo& device, bool triangles) {
+  return triangles || device.llvmpipe_release < 2500;
 }
 
 std::string software_loop_limit_warning(const DeviceInfo& device, const Scene& scene, const RenderSettings& settings) {

@@ -81,12 +81,24 @@ struct RenderResult {
   // shaders/shared/scene_buffers.glsl) and the largest part's bytes.
   uint32_t buffer_parts = 0;
   uint64_t buffer_part_bytes = 0;
+  bool octant_culling = true;  // RenderSettings::octant_culling in force
   uint32_t tail_depth = 0;   // the tail queue's bounce in force (RenderSettings::tail_depth; 0: off)
   uint32_t tail_step = 0;    // bounces per tail level in force (RenderSettings::tail_step; 0: one level)
   uint32_t tail_fill = 0;    // RenderSettings::tail_fill in force (0: every level queues its survivors)
   uint32_t samples = 0;      // samples per pixel the state holds (settings.spp unless interrupted)
   bool interrupted = false;  // render(): RenderControl::stop ended it early
 };
+
+// RenderSettings::octant_culling's auto: whether the octree walk culls
+// children by octant on `device` for a scene with (`triangles`) or without
+// meshes. Off for a scene without triangles on lavapipe from Mesa 25, whose
+// llvmpipe no longer loops over a vector's lanes for each load (optimisation
+// log 88), so the box tests the culling saves cost less than its own
+// arithmetic: the default scene's passes 6-7% faster without it on Mesa
+// 25.0.7, 8,000 spheres 6%; the meshes 0-5% slower, so on for them. On
+// elsewhere: on Mesa 22.3.6 culling off is 44% slower, on the H100 1.5-8.6%
+// (logs 29 and 106). Between 22.3 and 25.0 no release was measured.
+bool default_octant_culling(const DeviceInfo& device, bool triangles);
 
 // Called after each batch of passes: passes done, total passes.
 using ProgressFn = std::function<void(uint32_t done, uint32_t total)>;
@@ -164,6 +176,8 @@ class PathTracer {
   uint32_t buffer_parts() const;
   uint64_t buffer_part_bytes() const;
   const SceneFeatures& features() const;
+  // RenderSettings::octant_culling resolved for the device and the scene.
+  bool octant_culling() const;
   // The tail queue's bounce in force (RenderSettings::tail_depth resolved
   // for the device; 0: off).
   uint32_t tail_depth() const;

@@ -49,6 +49,8 @@ enum class BigList { Auto, FirstLeaf, OwnLoop };
 // What the octree walk does with a node's nearest child
 // (RenderSettings::nearest_child).
 enum class NearestChild { Auto, Pushed, Held };
+// Whether the octree walk culls children by octant (RenderSettings::octant_culling).
+enum class OctantCulling { Auto, On, Off };
 
 struct RenderSettings {
   Accel accel = Accel::Octree;
@@ -88,8 +90,12 @@ struct RenderSettings {
   // node's children in octants the ray cannot reach before its nearest hit
   // are skipped. The image is the same either way; only the time changes:
   // 1.5-8.6% faster on the H100 (optimisation log 29), 10-11% faster on
-  // lavapipe on the 2-core machine of log 34 (3.5% slower on the one of 29).
-  bool octant_culling = true;
+  // lavapipe on the 2-core machine of log 34 (3.5% slower on the one of 29),
+  // 44% on Debian 12's lavapipe (Mesa 22.3.6); but 6-7% slower on scenes of
+  // spheres with Mesa 25.0.7's lavapipe (log 106). Auto: off for a scene
+  // without triangles on lavapipe from Mesa 25 (default_octant_culling), on
+  // otherwise.
+  OctantCulling octant_culling = OctantCulling::Auto;
   // Where the octree walks test a tree's big list (primitives too large for
   // its cells; shaders/accel/octree_walk.glsl): as the walk's first leaf, or
   // in a loop of the caller's. The image is the same either way. Auto: its

@@ -10,6 +10,20 @@
 
 namespace octrace {
 
+uint32_t mesa_release(std::string_view info) {
+  const size_t at = info.find("Mesa ");
+  if (at == std::string_view::npos) return 0;
+  uint32_t major = 0, minor = 0;
+  size_t i = at + 5;
+  const auto number = [&](uint32_t& v) {
+    const size_t start = i;
+    while (i < info.size() && info[i] >= '0' && info[i] <= '9' && i - start < 4) v = v * 10 + uint32_t(info[i++] - '0');
+    return i > start;
+  };
+  if (!number(major) || i >= info.size() || info[i++] != '.' || !number(minor)) return 0;
+  return major * 100 + minor;
+}
+
 namespace {
 
 std::atomic<uint32_t> g_validation_messages{0};
@@ -191,6 +205,8 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index, const std::functi
     props2.pNext = &driver;
     vkGetPhysicalDeviceProperties2(physical, &props2);
     info.driver = std::string(driver.driverName) + " " + driver.driverInfo;
+    if (driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE)
+      info.llvmpipe_release = mesa_release(driver.driverInfo);
     info.subgroup_size = subgroup.subgroupSize;
     static const char kHex[] = "0123456789abcdef";
     for (uint8_t byte : id.deviceUUID) {

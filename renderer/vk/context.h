@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <vulkan/vulkan.h>
@@ -35,6 +36,11 @@ struct DeviceInfo {
   // MPI front end lets such ranks take turns, docs/multi_gpu.md).
   std::string uuid;
   bool software = false;         // a CPU implementation (lavapipe, SwiftShader)
+  // Lavapipe's Mesa release as major * 100 + minor (driverID MESA_LLVMPIPE;
+  // read from its driverInfo, "Mesa 25.0.7 ...", as lavapipe's driverVersion
+  // is 0.0.1), e.g. 2203 for 22.3.6 (Debian 12) and 2500 for 25.0.7; 0 for
+  // every other driver.
+  uint32_t llvmpipe_release = 0;
   bool vulkan12 = false;         // device API >= 1.2 (we need it)
   bool compute = false;          // a queue family with compute
   bool timestamps = false;       // timestamps on the compute queue
@@ -63,6 +69,10 @@ struct DeviceInfo {
 
   bool supports_fp16() const { return shader_float16 && storage_16bit; }
 };
+
+// The Mesa release a driverInfo string names ("Mesa 25.0.7-2~bpo12+1 (LLVM
+// 15.0.6)": 2500) as major * 100 + minor; 0 where it names none.
+uint32_t mesa_release(std::string_view driver_info);
 
 // What a run needs of a device beyond Vulkan 1.2, a compute queue and timestamps.
 struct DeviceRequirements {

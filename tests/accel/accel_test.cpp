@@ -272,7 +272,7 @@ TEST_P(AccelTest, TreeImagesMatchBruteForce) {
       // The BVH's auto widths on a CPU device are all binary (accel/bvh.h): width 2 again.
       if (v.accel == Accel::Bvh && v.bvh_width == 0 && test::shared_context().info.software) continue;
       s.accel = v.accel;
-      s.octant_culling = v.culling;
+      s.octant_culling = v.culling ? OctantCulling::On : OctantCulling::Off;
       s.big_list = v.big_list;
       s.nearest_child = v.nearest;
       s.octree.leaf_size = 2;  // octree: a deep tree, many cells, many straddling spheres

@@ -312,6 +312,36 @@ TEST(SampleLanes, AutoIsFourAndEightOnlyForTrianglesInWholePaths) {
   EXPECT_EQ(sample_lanes(8, true, true, 8, 65535), 8u);
 }
 
+// Auto octant culling (optimisation log 106): off only for scenes without
+// triangles on lavapipe from Mesa 25; the tracer resolves the setting so.
+TEST(OctantCulling, AutoIsOffOnlyForSpheresOnLavapipeFromMesa25) {
+  DeviceInfo gpu, mesa22, mesa25, mesa26;
+  mesa22.software = mesa25.software = mesa26.software = true;
+  mesa22.llvmpipe_release = 2203;
+  mesa25.llvmpipe_release = 2500;
+  mesa26.llvmpipe_release = 2601;
+  for (bool triangles : {false, true}) {
+    EXPECT_TRUE(default_octant_culling(gpu, triangles));
+    EXPECT_TRUE(default_octant_culling(mesa22, triangles));
+  }
+  EXPECT_FALSE(default_octant_culling(mesa25, false));
+  EXPECT_FALSE(default_octant_culling(mesa26, false));
+  EXPECT_TRUE(default_octant_culling(mesa25, true));
+}
+
+TEST_F(RenderTest, OctantCullingResolvedForTheDevice) {
+  VulkanContext& ctx = test::shared_context();
+  const Scene scene = make_rtiow_scene({40, 0.2f, 3});
+  RenderSettings s;
+  s.width = 16;
+  s.height = 8;
+  EXPECT_EQ(PathTracer(ctx, scene, s).octant_culling(), default_octant_culling(ctx.info, false));
+  s.octant_culling = OctantCulling::On;
+  EXPECT_TRUE(PathTracer(ctx, scene, s).octant_culling());
+  s.octant_culling = OctantCulling::Off;
+  EXPECT_FALSE(PathTracer(ctx, scene, s).octant_culling());
+}
+
 // The seam of the preview window: a tracer made once renders another camera,
 // bounce limit and seed per pass, and gives exactly the image of a tracer
 // made for them from the start. A move rebuilds nothing.

@@ -12,6 +12,7 @@ namespace {
 
 using octrace::DeviceInfo;
 using octrace::DeviceRequirements;
+using octrace::mesa_release;
 using octrace::RuntimeError;
 using octrace::select_device;
 using octrace::SettingError;
@@ -55,6 +56,16 @@ std::string error_of(const std::vector<DeviceInfo>& devices, const std::string& 
     return e.what();
   }
   return "";
+}
+
+TEST(MesaRelease, ReadFromTheDriverInfo) {
+  EXPECT_EQ(mesa_release("Mesa 22.3.6 (LLVM 15.0.6)"), 2203u);
+  EXPECT_EQ(mesa_release("Mesa 25.0.7-2~bpo12+1 (LLVM 15.0.6)"), 2500u);
+  EXPECT_EQ(mesa_release("Mesa 24.10.1"), 2410u);
+  EXPECT_EQ(mesa_release("580.159.04"), 0u);  // NVIDIA's
+  EXPECT_EQ(mesa_release("Mesa 25"), 0u);
+  EXPECT_EQ(mesa_release("Mesa .1"), 0u);
+  EXPECT_EQ(mesa_release(""), 0u);
 }
 
 TEST(DeviceRequirements, ACapableDeviceMeetsAll) {
