@@ -3,7 +3,6 @@
 #include <bit>
 #include <cstdint>
 #include <limits>
-#include <utility>
 
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
@@ -22,60 +21,159 @@ float next_float_up(float f) {
   return std::bit_cast<float>(f > 0.0f ? bits + 1u : bits - 1u);
 }
 
-bool clip_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const Aabb& cell, Aabb& part) {
-  // A triangle clipped by 6 planes has at most 3 + 6 vertices; two arrays,
-  // the polygon and the next one, swapped after each plane.
-  constexpr int kMax = 9;
-  glm::dvec3 buffers[2][kMax] = {{glm::dvec3(a), glm::dvec3(b), glm::dvec3(c)}};
-  glm::dvec3* poly = buffers[0];
-  glm::dvec3* next = buffers[1];
-  int n = 3;
-  glm::dvec3 lo = glm::min(poly[0], glm::min(poly[1], poly[2]));
-  glm::dvec3 hi = glm::max(poly[0], glm::max(poly[1], poly[2]));
+namespace {
+
+// A triangle being clipped (Sutherland and Hodgman 1974), in double: at most
+// 3 + 6 vertices after 6 planes, and their bounds.
+struct Polygon {
+  static constexpr int kMax = 9;
+  glm::dvec3 v[kMax];
+  int n = 0;
+  glm::dvec3 lo, hi;
+};
+
+Polygon triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+  Polygon p;
+  p.v[0] = glm::dvec3(a);
+  p.v[1] = glm::dvec3(b);
+  p.v[2] = glm::dvec3(c);
+  p.n = 3;
+  p.lo = glm::min(p.v[0], glm::min(p.v[1], p.v[2]));
+  p.hi = glm::max(p.v[0], glm::max(p.v[1], p.v[2]));
+  return p;
+}
+
+// Whether the bounds [lo, hi] lie outside `cell` on some axis.
+bool misses(const glm::dvec3& lo, const glm::dvec3& hi, const Aabb& cell) {
   for (int axis = 0; axis < 3; ++axis)
-    if (lo[axis] > double(cell.hi[axis]) || hi[axis] < double(cell.lo[axis])) return false;
-  for (int axis = 0; axis < 3 && n > 0; ++axis) {
-    for (int side = 0; side < 2 && n > 0; ++side) {
-      // Keep the points with sign * (p[axis] - plane) <= 0: inside, faces included.
-      const double plane = side == 0 ? double(cell.lo[axis]) : double(cell.hi[axis]);
-      const double sign = side == 0 ? -1.0 : 1.0;
-      // A plane that cuts nothing off the polygon (most of the six: the
-      // build clips against one octant of a box the triangle already lies in).
-      if (side == 0 ? lo[axis] >= plane : hi[axis] <= plane) continue;
-      int m = 0;
-      for (int i = 0; i < n; ++i) {
-        const glm::dvec3& p = poly[i];
-        const glm::dvec3& q = poly[i + 1 < n ? i + 1 : 0];
-        const double dp = sign * (p[axis] - plane), dq = sign * (q[axis] - plane);
-        if (dp <= 0.0) next[m++] = p;
-        if ((dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0)) {
-          glm::dvec3 x = p + (q - p) * (dp / (dp - dq));
-          x[axis] = plane;  // exactly on the plane
-          next[m++] = x;
-        }
-      }
-      n = m;
-      std::swap(poly, next);
-      if (n > 0) {
-        lo = hi = poly[0];
-        for (int i = 1; i < n; ++i) {
-          lo = glm::min(lo, poly[i]);
-          hi = glm::max(hi, poly[i]);
-        }
-      }
+    if (lo[axis] > double(cell.hi[axis]) || hi[axis] < double(cell.lo[axis])) return true;
+  return false;
+}
+
+// Whether the plane `plane` on `axis` cuts anything off `p`, which keeps
+// the side above it (side 0: a cell's low face) or below it (side 1: its
+// high face). Most of a cell's six planes cut nothing: the build clips
+// against one octant of a box the triangle already lies in.
+bool cuts(const Polygon& p, int axis, int side, double plane) {
+  return side == 0 ? p.lo[axis] < plane : p.hi[axis] > plane;
+}
+
+// `out` = `p` cut by that plane (faces included), with its bounds.
+void cut(const Polygon& p, Polygon& out, int axis, int side, double plane) {
+  const double sign = side == 0 ? -1.0 : 1.0;
+  int m = 0;
+  for (int i = 0; i < p.n; ++i) {
+    const glm::dvec3& a = p.v[i];
+    const glm::dvec3& b = p.v[i + 1 < p.n ? i + 1 : 0];
+    const double da = sign * (a[axis] - plane), db = sign * (b[axis] - plane);
+    if (da <= 0.0) out.v[m++] = a;
+    if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) {
+      glm::dvec3 x = a + (b - a) * (da / (da - db));
+      x[axis] = plane;  // exactly on the plane
+      out.v[m++] = x;
     }
   }
-  if (n == 0) return false;
-  for (int i = 0; i < n; ++i) {
-    lo = glm::min(lo, poly[i]);
-    hi = glm::max(hi, poly[i]);
+  out.n = m;
+  if (m > 0) {
+    out.lo = out.hi = out.v[0];
+    for (int i = 1; i < m; ++i) {
+      out.lo = glm::min(out.lo, out.v[i]);
+      out.hi = glm::max(out.hi, out.v[i]);
+    }
   }
-  // Outward to float by one ulp beyond the rounding, then back into the cell.
+}
+
+// `p` cut to the cell's two planes on `axis`, low face first: `p` itself
+// where neither cuts, else `a` or `b` (scratch, neither of them `p`).
+const Polygon& clip_axis(const Polygon& p, Polygon& a, Polygon& b, int axis, const Aabb& cell) {
+  const double lo = double(cell.lo[axis]), hi = double(cell.hi[axis]);
+  const Polygon* q = &p;
+  if (cuts(*q, axis, 0, lo)) {
+    cut(*q, a, axis, 0, lo);
+    q = &a;
+  }
+  if (q->n > 0 && cuts(*q, axis, 1, hi)) {
+    Polygon& out = q == &a ? b : a;
+    cut(*q, out, axis, 1, hi);
+    q = &out;
+  }
+  return *q;
+}
+
+// The box of what is left of `p` (n > 0) in `cell`: outward to float by one
+// ulp beyond the rounding, then back into the cell.
+Aabb part_box(const Polygon& p, const Aabb& cell) {
+  Aabb part;
   for (int k = 0; k < 3; ++k) {
-    part.lo[k] = std::max(next_float_down(next_float_down(float(lo[k]))), cell.lo[k]);
-    part.hi[k] = std::min(next_float_up(next_float_up(float(hi[k]))), cell.hi[k]);
+    part.lo[k] = std::max(next_float_down(next_float_down(float(p.lo[k]))), cell.lo[k]);
+    part.hi[k] = std::min(next_float_up(next_float_up(float(p.hi[k]))), cell.hi[k]);
   }
+  return part;
+}
+
+// clip_octants below, from `axis` on: `p` is the triangle cut to the planes
+// of axes before it on the sides `octant` names.
+struct OctantClip {
+  glm::dvec3 lo, hi;  // the whole triangle's bounds
+  const Aabb& box;
+  const glm::vec3& mid;
+  uint32_t candidates;
+  Aabb* parts;
+  uint32_t reached = 0;
+
+  // Octant k's cell (octree.cpp octant_cell: an axis whose mid is not
+  // finite is not split).
+  Aabb cell(uint32_t k) const {
+    Aabb c = box;
+    for (int a = 0; a < 3; ++a) {
+      if (!(mid[a] < std::numeric_limits<float>::infinity())) continue;
+      if ((k >> a) & 1) c.lo[a] = mid[a];
+      else c.hi[a] = mid[a];
+    }
+    return c;
+  }
+
+  void descend(const Polygon& p, int axis, uint32_t octant) {
+    if (axis == 3) {
+      const Aabb c = cell(octant);
+      if (misses(lo, hi, c)) return;  // as clip_triangle rejects it before clipping
+      parts[octant] = part_box(p, c);
+      reached |= 1u << octant;
+      return;
+    }
+    const uint32_t prefix = (1u << (axis + 1)) - 1u;
+    for (uint32_t side = 0; side < 2; ++side) {
+      const uint32_t next = octant | (side << axis);
+      bool wanted = false;
+      for (uint32_t s = candidates; s != 0; s &= s - 1)
+        wanted |= (uint32_t(std::countr_zero(s)) & prefix) == next;
+      if (!wanted) continue;
+      Polygon a, b;
+      const Polygon& q = clip_axis(p, a, b, axis, cell(next));
+      if (q.n > 0) descend(q, axis + 1, next);
+    }
+  }
+};
+
+}  // namespace
+
+bool clip_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const Aabb& cell, Aabb& part) {
+  const Polygon t = triangle(a, b, c);
+  if (misses(t.lo, t.hi, cell)) return false;
+  Polygon scratch[3][2];  // a pair per axis, so that none is the polygon it cuts
+  const Polygon* p = &t;
+  for (int axis = 0; axis < 3 && p->n > 0; ++axis) p = &clip_axis(*p, scratch[axis][0], scratch[axis][1], axis, cell);
+  if (p->n == 0) return false;
+  part = part_box(*p, cell);
   return true;
+}
+
+uint32_t clip_triangle_octants(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const Aabb& box,
+                               const glm::vec3& mid, uint32_t candidates, Aabb parts[8]) {
+  const Polygon p = triangle(a, b, c);
+  OctantClip clip{p.lo, p.hi, box, mid, candidates & 0xFFu, parts};
+  clip.descend(p, 0, 0);
+  return clip.reached;
 }
 
 }  // namespace octrace

@@ -2,6 +2,8 @@
 // cells (split clipping: ClipFn in accel/octree.h).
 #pragma once
 
+#include <cstdint>
+
 #include <glm/vec3.hpp>
 
 #include "accel/aabb.h"
@@ -14,6 +16,18 @@ namespace octrace {
 // against the cell's six planes (Sutherland and Hodgman 1974, "Reentrant
 // polygon clipping") in double, so a thin triangle loses nothing.
 bool clip_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const Aabb& cell, Aabb& part);
+
+// The parts of triangle (a, b, c) in the octants of `box` split at `mid` (an
+// axis whose mid is not finite is not split: its whole extent is the low
+// half; octant k is on the high side of axis a where bit a of k is set),
+// for the octants in `candidates` (bit k: octant k): parts[k] receives, for
+// each octant k it reaches, what clip_triangle(a, b, c, that octant's cell,
+// parts[k]) would give, bit for bit; returns the octants reached. One
+// clip per side of each axis serves every octant on that side (the
+// octree's splits: optimisation log 108), where clip_triangle per octant
+// clips the triangle through every plane of each.
+uint32_t clip_triangle_octants(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const Aabb& box,
+                               const glm::vec3& mid, uint32_t candidates, Aabb parts[8]);
 
 // The float one ulp below / above a finite float f: std::nextafter(f, -inf)
 // and std::nextafter(f, +inf), by its bits (libm's call was 7% of the

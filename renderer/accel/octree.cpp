@@ -88,6 +88,7 @@ Box octant_cell(const Box& box, const glm::vec3& mid, int k) {
 // (not every octant its box overlaps), and carries into each the box of the
 // part inside: `parts` receives those, reference by reference in octant order.
 bool plan_split(const Ref* refs, size_t n, const BuildNode& node, const OctreeParams& params, const ClipFn& clip,
+                const ClipOctantsFn& clip_octants,
                 uint8_t* octants, std::vector<Ref>& parts, Split& split) {
   if (n <= params.leaf_size || node.depth >= params.max_depth) return false;
   const Box& box = node.box;
@@ -116,10 +117,19 @@ bool plan_split(const Ref* refs, size_t n, const BuildNode& node, const OctreePa
     if (clip && std::popcount(set) > 1) {
       const uint32_t candidates = set;
       set = 0;
-      for (uint32_t s = candidates; s != 0; s &= s - 1) {
+      Box cut[8];
+      uint32_t reached = 0;
+      if (clip_octants) {
+        reached = clip_octants(r.prim, box, mid, candidates, cut);
+      } else {
+        for (uint32_t s = candidates; s != 0; s &= s - 1) {
+          const int k = std::countr_zero(s);
+          if (clip(r.prim, octant_cell(box, mid, k), cut[k])) reached |= 1u << k;
+        }
+      }
+      for (uint32_t s = reached; s != 0; s &= s - 1) {
         const int k = std::countr_zero(s);
-        Box part;
-        if (!clip(r.prim, octant_cell(box, mid, k), part)) continue;
+        Box part = cut[k];
         // Never larger than what the reference had: the part lies in both.
         part.lo = glm::max(part.lo, r.lo);
         part.hi = glm::min(part.hi, r.hi);
@@ -204,7 +214,8 @@ struct Subtree {
 // build allocates nothing per node once the buffers have grown.
 class SubtreeBuilder {
  public:
-  SubtreeBuilder(const OctreeParams& params, const ClipFn& clip) : params_(params), clip_(clip) {}
+  SubtreeBuilder(const OctreeParams& params, const ClipFn& clip, const ClipOctantsFn& clip_octants)
+      : params_(params), clip_(clip), clip_octants_(clip_octants) {}
 
   Subtree build(const std::vector<Ref>& refs, const BuildNode& root) {
     out_ = {};
@@ -227,7 +238,7 @@ class SubtreeBuilder {
     out_.max_depth = std::max(out_.max_depth, node.depth);
     reserve(n);
     Split split;
-    if (!plan_split(scratch_.data() + begin, n, node, params_, clip_, octants_.data(), parts_, split)) {
+    if (!plan_split(scratch_.data() + begin, n, node, params_, clip_, clip_octants_, octants_.data(), parts_, split)) {
       out_.nodes[index].first = static_cast<uint32_t>(out_.refs.size());
       out_.nodes[index].count_or_mask = static_cast<uint32_t>(n);
       for (size_t i = begin; i < end; ++i) out_.refs.push_back(scratch_[i].prim);
@@ -253,6 +264,7 @@ class SubtreeBuilder {
 
   const OctreeParams& params_;
   const ClipFn& clip_;
+  const ClipOctantsFn& clip_octants_;
   Subtree out_;
   std::vector<Ref> parts_;
   std::vector<Ref> scratch_;
@@ -308,7 +320,8 @@ void check_params(const OctreeParams& params) {
 
 }  // namespace
 
-Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params, const ClipFn& clip) {
+Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params, const ClipFn& clip,
+                    const ClipOctantsFn& clip_octants) {
   check_params(params);
   const auto start = Clock::now();
   Octree tree;
@@ -350,7 +363,7 @@ Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params, con
     Pending& p = pending[largest];
     octants.resize(p.refs.size());
     Split split;
-    if (!plan_split(p.refs.data(), p.refs.size(), p.node, params, clip, octants.data(), parts, split)) {
+    if (!plan_split(p.refs.data(), p.refs.size(), p.node, params, clip, clip_octants, octants.data(), parts, split)) {
       p.splittable = false;
       continue;
     }
@@ -382,7 +395,7 @@ Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params, con
   std::vector<Subtree> subtrees(pending.size());
   std::atomic<size_t> next{0};
   const auto work = [&] {
-    SubtreeBuilder builder(params, clip);
+    SubtreeBuilder builder(params, clip, clip_octants);
     for (size_t i; (i = next++) < schedule.size();) {
       const Pending& p = pending[schedule[i]];
       subtrees[schedule[i]] = builder.build(p.refs, p.node);

@@ -185,11 +185,20 @@ inline constexpr uint32_t kMaxOctreeRefs = 64;   // OctreeParams::max_refs
 // referenced by every cell its box overlaps, most of which it only passes by.
 // Called from several threads at once.
 using ClipFn = std::function<bool(uint32_t prim, const Aabb& cell, Aabb& part)>;
+// Optional with a ClipFn, for speed: primitive `prim`'s parts in the
+// octants `candidates` (bit k: octant k) of `box` split at `mid`, all at
+// once: parts[k] for each octant k it reaches, bit for bit what the ClipFn
+// gives for that octant's cell (accel/clip.h clip_triangle_octants); returns
+// the octants reached. Without it the build calls the ClipFn per octant; the
+// tree is the same. Called from several threads at once.
+using ClipOctantsFn =
+    std::function<uint32_t(uint32_t prim, const Aabb& box, const glm::vec3& mid, uint32_t candidates, Aabb parts[8])>;
 
 // Builds the octree over `boxes` (finite, non-empty; primitive i is boxes[i]).
 // Uses the hardware threads; the result depends only on the input.
 // Throws SettingError ("octree.leaf_size", "octree.max_depth",
 // "octree.max_refs") for bad params.
-Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params, const ClipFn& clip = {});
+Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params, const ClipFn& clip = {},
+                    const ClipOctantsFn& clip_octants = {});
 
 }  // namespace octrace

@@ -133,9 +133,15 @@ static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& sce
       const uint32_t* v = &mesh.indices[3 * size_t(t)];
       return clip_triangle(mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]], cell, part);
     };
+    const auto clip_octants = [&mesh](uint32_t t, const Aabb& box, const glm::vec3& mid, uint32_t candidates,
+                                      Aabb parts[8]) {
+      const uint32_t* v = &mesh.indices[3 * size_t(t)];
+      return clip_triangle_octants(mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]], box, mid,
+                                   candidates, parts);
+    };
     const Octree mesh_tree =
         accel == Accel::Bvh ? build_bvh(mesh_triangle_boxes(mesh), widths.meshes, clip, params.bvh_spatial_refs)
-                            : build_octree(mesh_triangle_boxes(mesh), params, clip);
+                            : build_octree(mesh_triangle_boxes(mesh), params, clip, clip_octants);
     const uint32_t node_base = uint32_t(octree.nodes.size()), ref_base = uint32_t(octree.refs.size());
     for (gpu::GpuOctreeNode n : mesh_tree.nodes) {
       n.first += (n.count_or_mask & gpu::OCTREE_INTERNAL) ? node_base : ref_base;

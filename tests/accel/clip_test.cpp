@@ -109,6 +109,49 @@ TEST(ClipTriangle, PartHoldsEveryPointOfTheTriangleInTheCell) {
   EXPECT_GT(dropped, 100);
 }
 
+// All octants at once (the octree's splits, optimisation log 108): for
+// each candidate octant, the same answer and the same box, bit for bit, as
+// clip_triangle with that octant's cell; triangles across the split planes,
+// on them, past the box's faces, and axes left unsplit (mid = +inf).
+TEST(ClipTriangleOctants, EachOctantAsClipTriangleGivesIt) {
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<float> pos(-0.5f, 1.5f), w(0.0f, 1.0f);
+  const float inf = std::numeric_limits<float>::infinity();
+  int reached_total = 0, partial = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    glm::vec3 a(pos(rng), pos(rng), pos(rng)), b(pos(rng), pos(rng), pos(rng)), c(pos(rng), pos(rng), pos(rng));
+    if (trial % 4 == 1) b = a + 0.01f * (b - a), c = a + 0.01f * (c - a);  // small ones
+    if (trial % 4 == 2) a.x = b.x = c.x = 0.5f;                           // in a split plane
+    glm::vec3 mid(0.5f, 0.375f, w(rng));
+    if (trial % 5 == 3) mid.y = inf;                                        // an axis not split
+    const uint32_t candidates = trial % 3 == 0 ? 0xFFu : uint32_t(rng() & 0xFFu);
+    Aabb parts[8];
+    const uint32_t reached = clip_triangle_octants(a, b, c, kUnit, mid, candidates, parts);
+    EXPECT_EQ(reached & ~candidates, 0u);
+    for (uint32_t k = 0; k < 8; ++k) {
+      if (!((candidates >> k) & 1u)) continue;
+      Aabb cell = kUnit;
+      for (int ax = 0; ax < 3; ++ax) {
+        if (!(mid[ax] < inf)) continue;
+        if ((k >> ax) & 1u) cell.lo[ax] = mid[ax];
+        else cell.hi[ax] = mid[ax];
+      }
+      Aabb part;
+      const bool in = clip_triangle(a, b, c, cell, part);
+      ASSERT_EQ(in, ((reached >> k) & 1u) != 0u) << "trial " << trial << ", octant " << k;
+      if (!in) continue;
+      ++reached_total;
+      for (int ax = 0; ax < 3; ++ax) {
+        ASSERT_EQ(std::bit_cast<uint32_t>(part.lo[ax]), std::bit_cast<uint32_t>(parts[k].lo[ax])) << trial;
+        ASSERT_EQ(std::bit_cast<uint32_t>(part.hi[ax]), std::bit_cast<uint32_t>(parts[k].hi[ax])) << trial;
+      }
+    }
+    partial += reached != 0 && reached != candidates;
+  }
+  EXPECT_GT(reached_total, 4000);
+  EXPECT_GT(partial, 500);  // octants missed as well as reached
+}
+
 // The one-ulp steps are std::nextafter's, for every finite float of a
 // stride over all bit patterns and for the edges: zeros, subnormals, the
 // smallest normal, one, the largest finite float.

@@ -497,6 +497,16 @@ TEST(Octree, ClippedTrianglesAreFindableWithFewerReferences) {
   EXPECT_EQ(clipped.refs, again.refs);
   ASSERT_EQ(clipped.nodes.size(), again.nodes.size());
   EXPECT_EQ(std::memcmp(clipped.nodes.data(), again.nodes.data(), clipped.nodes.size() * sizeof(GpuOctreeNode)), 0);
+  // Clipped into every octant of a split at once (ClipOctantsFn, what a
+  // scene's meshes use): the same tree, node for node.
+  const ClipOctantsFn clip_octants = [&](uint32_t t, const Aabb& box, const glm::vec3& mid, uint32_t candidates,
+                                         Aabb parts[8]) {
+    return clip_triangle_octants(tris[t].a, tris[t].b, tris[t].c, box, mid, candidates, parts);
+  };
+  const Octree at_once = build_octree(boxes, {}, clip, clip_octants);
+  EXPECT_EQ(clipped.refs, at_once.refs);
+  ASSERT_EQ(clipped.nodes.size(), at_once.nodes.size());
+  EXPECT_EQ(std::memcmp(clipped.nodes.data(), at_once.nodes.data(), clipped.nodes.size() * sizeof(GpuOctreeNode)), 0);
   EXPECT_LE(clipped.refs.size(), 8 * tris.size());
   // What a ray pays: the references in every leaf whose box it crosses (no
   // early exit), over random rays through the scene.
