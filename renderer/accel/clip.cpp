@@ -121,21 +121,9 @@ struct OctantClip {
   Aabb* parts;
   uint32_t reached = 0;
 
-  // Octant k's cell (octree.cpp octant_cell: an axis whose mid is not
-  // finite is not split).
-  Aabb cell(uint32_t k) const {
-    Aabb c = box;
-    for (int a = 0; a < 3; ++a) {
-      if (!(mid[a] < std::numeric_limits<float>::infinity())) continue;
-      if ((k >> a) & 1) c.lo[a] = mid[a];
-      else c.hi[a] = mid[a];
-    }
-    return c;
-  }
-
   void descend(const Polygon& p, int axis, uint32_t octant) {
     if (axis == 3) {
-      const Aabb c = cell(octant);
+      const Aabb c = octant_cell(box, mid, octant);
       if (misses(lo, hi, c)) return;  // as clip_triangle rejects it before clipping
       parts[octant] = part_box(p, c);
       reached |= 1u << octant;
@@ -149,13 +137,23 @@ struct OctantClip {
         wanted |= (uint32_t(std::countr_zero(s)) & prefix) == next;
       if (!wanted) continue;
       Polygon a, b;
-      const Polygon& q = clip_axis(p, a, b, axis, cell(next));
+      const Polygon& q = clip_axis(p, a, b, axis, octant_cell(box, mid, next));
       if (q.n > 0) descend(q, axis + 1, next);
     }
   }
 };
 
 }  // namespace
+
+Aabb octant_cell(const Aabb& box, const glm::vec3& mid, uint32_t k) {
+  Aabb cell = box;
+  for (int a = 0; a < 3; ++a) {
+    if (!(mid[a] < std::numeric_limits<float>::infinity())) continue;
+    if ((k >> a) & 1) cell.lo[a] = mid[a];
+    else cell.hi[a] = mid[a];
+  }
+  return cell;
+}
 
 bool clip_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const Aabb& cell, Aabb& part) {
   const Polygon t = triangle(a, b, c);

@@ -17,6 +17,11 @@ namespace octrace {
 // polygon clipping") in double, so a thin triangle loses nothing.
 bool clip_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const Aabb& cell, Aabb& part);
 
+// Octant k of `box` split at `mid` (an axis whose mid is not finite is not
+// split: its whole extent is the low half; bit a of k set: the high side of
+// axis a).
+Aabb octant_cell(const Aabb& box, const glm::vec3& mid, uint32_t k);
+
 // The parts of triangle (a, b, c) in the octants of `box` split at `mid` (an
 // axis whose mid is not finite is not split: its whole extent is the low
 // half; octant k is on the high side of axis a where bit a of k is set),

@@ -13,6 +13,7 @@
 #include <string>
 #include <thread>
 
+#include "accel/clip.h"
 #include "core/clock.h"
 #include "core/errors.h"
 
@@ -68,18 +69,6 @@ BuildNode child_node(const BuildNode& parent, const Split& split, int k) {
   return {split.box[k], parent.depth + 1, parent.budget * split.count[k] / static_cast<double>(split.total)};
 }
 
-// Octant k of `box` split at `mid` (an axis not split has mid = +inf: its
-// whole extent is the low half).
-Box octant_cell(const Box& box, const glm::vec3& mid, int k) {
-  Box cell = box;
-  for (int a = 0; a < 3; ++a) {
-    if (!(mid[a] < std::numeric_limits<float>::infinity())) continue;
-    if ((k >> a) & 1) cell.lo[a] = mid[a];
-    else cell.hi[a] = mid[a];
-  }
-  return cell;
-}
-
 // Decides whether the node (references `refs`, box and depth in `node`) splits (octree.h
 // "How it is built"). If it does, fills `split` and the octant set of each
 // reference in `octants`.
@@ -124,7 +113,7 @@ bool plan_split(const Ref* refs, size_t n, const BuildNode& node, const OctreePa
       } else {
         for (uint32_t s = candidates; s != 0; s &= s - 1) {
           const int k = std::countr_zero(s);
-          if (clip(r.prim, octant_cell(box, mid, k), cut[k])) reached |= 1u << k;
+          if (clip(r.prim, octant_cell(box, mid, uint32_t(k)), cut[k])) reached |= 1u << k;
         }
       }
       for (uint32_t s = reached; s != 0; s &= s - 1) {
