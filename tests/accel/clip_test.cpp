@@ -121,6 +121,11 @@ TEST(ClipTriangleOctants, EachOctantAsClipTriangleGivesIt) {
   for (int trial = 0; trial < 4000; ++trial) {
     glm::vec3 a(pos(rng), pos(rng), pos(rng)), b(pos(rng), pos(rng), pos(rng)), c(pos(rng), pos(rng), pos(rng));
     if (trial % 4 == 1) b = a + 0.01f * (b - a), c = a + 0.01f * (c - a);  // small ones
+    if (trial % 8 == 3) {  // inside the box, across the split planes: cut both ways in one pass
+      a = 0.25f + 0.5f * (a + 0.5f) * 0.5f;
+      b = 0.25f + 0.5f * (b + 0.5f) * 0.5f;
+      c = 0.25f + 0.5f * (c + 0.5f) * 0.5f;
+    }
     if (trial % 4 == 2) a.x = b.x = c.x = 0.5f;                           // in a split plane
     glm::vec3 mid(0.5f, 0.375f, w(rng));
     if (trial % 5 == 3) mid.y = inf;                                        // an axis not split
