@@ -111,8 +111,8 @@ Aabb part_box(const Polygon& p, const Aabb& cell) {
   return part;
 }
 
-// clip_octants below, from `axis` on: `p` is the triangle cut to the planes
-// of axes before it on the sides `octant` names.
+// clip_triangle_octants below, from `axis` on: `p` is the triangle cut to
+// the planes of the axes before it, on the sides `octant` names.
 struct OctantClip {
   glm::dvec3 lo, hi;  // the whole triangle's bounds
   const Aabb& box;
