@@ -16,7 +16,9 @@ time instead (start to exit: device and pipeline creation, the write included);
 with `--metric write`, times_ms.write: encoding the image and writing its
 file (the format from the render's `-o`); with `--metric readback`,
 times_ms.readback: the accumulation read back from the device and resolved;
-with `--metric accel_build`, times_ms.accel_build: the acceleration
+with `--metric scene`, times_ms.scene: loading the scene (its file read
+and parsed, a glTF file's images decoded); with `--metric accel_build`,
+times_ms.accel_build: the acceleration
 structure's build on the host. Prints, per variant, the median, min and max
 over rounds, rays/s, and the ratio of the median to the first variant's;
 with --out, also writes that table as markdown (date and device included).
@@ -68,9 +70,9 @@ def main():
     ap.add_argument("--variant", action="append", required=True, help="LABEL=[ENV=VALUE ...] [-- flags]")
     ap.add_argument("--rounds", type=int, default=5)
     ap.add_argument("--out", help="markdown file to write the table to")
-    ap.add_argument("--metric", choices=["render", "wall", "write", "readback", "accel_build"], default="render",
+    ap.add_argument("--metric", choices=["render", "wall", "write", "readback", "scene", "accel_build"], default="render",
                     help="render: device time of the passes; wall: the whole process; write: the image's file; "
-                         "readback: the accumulation's read-back; accel_build: the acceleration structure's "
+                         "readback: the accumulation's read-back; scene: the scene's loading; accel_build: the acceleration structure's "
                          "build on the host")
     a = ap.parse_args()
     if a.rounds < 1:
@@ -92,7 +94,7 @@ def main():
     dev = info[variants[0][0]]["device"]
     date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     what = {"render": "times_ms.render", "wall": "whole-process wall time", "write": "times_ms.write",
-            "readback": "times_ms.readback", "accel_build": "times_ms.accel_build"}[a.metric]
+            "readback": "times_ms.readback", "scene": "times_ms.scene", "accel_build": "times_ms.accel_build"}[a.metric]
     # Variants may run on other devices or drivers (--device, VK_ICD_FILENAMES):
     # then each row names its own.
     device_of = {label: f"{info[label]['device']['name']} ({info[label]['device']['driver']})"

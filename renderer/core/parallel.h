@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <exception>
 #include <mutex>
@@ -50,6 +51,19 @@ void parallel_ranges(size_t n, size_t ranges, F&& f) {
     run(0);
   }
   if (error) std::rethrow_exception(error);
+}
+
+// Calls f(i) for every i in [0, n), on up to one thread per hardware
+// thread (the caller's among them), each taking the next i when it is done
+// with its last: for items of unequal cost (images to decode). Returns when
+// all are done; an exception thrown by f is rethrown here (the first of
+// several) after every thread has stopped taking items.
+template <class F>
+void parallel_items(size_t n, F&& f) {
+  std::atomic<size_t> next{0};
+  parallel_ranges(parallel_range_count(n, 1), parallel_range_count(n, 1), [&](size_t, size_t, size_t) {
+    for (size_t i = next++; i < n; i = next++) f(i);
+  });
 }
 
 }  // namespace octrace

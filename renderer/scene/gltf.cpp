@@ -9,6 +9,15 @@
 // is checked where it is used, each error naming its glTF path.
 //
 // Section numbers refer to the glTF 2.0 specification (Khronos, 2021).
+
+// Before tiny_gltf.h: it includes nlohmann/json.hpp under `#pragma GCC
+// visibility push(hidden)`, and a system header first included there would
+// declare hidden what it declares (unistd.h's syscall, which the threads of
+// core/parallel.h call through libstdc++'s atomic waits: the link failed).
+#include <atomic>
+#include <thread>
+#include <unistd.h>
+
 #define TINYGLTF_IMPLEMENTATION
 #define TINYGLTF_NO_STB_IMAGE        // images go through decode_image below
 #define TINYGLTF_NO_STB_IMAGE_WRITE  // octrace writes no glTF
@@ -34,6 +43,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/errors.h"
+#include "core/parallel.h"
 #include "core/text.h"
 #include "io/file.h"
 #include "io/image.h"
@@ -355,20 +365,37 @@ std::string decode_rgba8(tinygltf::Image& image, size_t index, const unsigned ch
   return {};
 }
 
-// tinygltf's image callback, for images in a file or a data URI. An image in
-// a bufferView is left to decode_view_images: tinygltf hands over the view's
-// bytes without checking that the view lies inside its buffer (a crash found
-// by tests/fuzz/fuzz_gltf.cpp). `user` is a std::string that receives the
-// error, so that it comes out as written here rather than after tinygltf's own
-// lines.
-bool decode_image(tinygltf::Image* image, int index, std::string* err, std::string*, int, int,
-                  const unsigned char* bytes, int size, void* user) {
+// The images of a file to decode once it is loaded, on the host's threads
+// (optimisation log 109): images[index] from `bytes`.
+struct PendingImage {
+  size_t index;
+  std::vector<unsigned char> bytes;
+};
+
+// Decodes each pending image into images[index]; the first failure in
+// `pending`'s order, or nothing.
+std::string decode_images(std::vector<tinygltf::Image>& images, const std::vector<PendingImage>& pending) {
+  std::vector<std::string> errors(pending.size());
+  parallel_items(pending.size(), [&](size_t k) {
+    const PendingImage& p = pending[k];
+    errors[k] = decode_rgba8(images[p.index], p.index, p.bytes.data(), p.bytes.size());
+  });
+  for (const std::string& e : errors)
+    if (!e.empty()) return e;
+  return {};
+}
+
+// tinygltf's image callback, for images in a file or a data URI: their bytes
+// kept (`user`: the std::vector<PendingImage>) to be decoded after loading.
+// An image in a bufferView is left to open_gltf, after its view's checks:
+// tinygltf hands over the view's bytes without checking that the view lies
+// inside its buffer (a crash found by tests/fuzz/fuzz_gltf.cpp).
+bool keep_image(tinygltf::Image* image, int index, std::string*, std::string*, int, int, const unsigned char* bytes,
+                int size, void* user) {
   if (image->bufferView >= 0) return true;
-  std::string& error = *static_cast<std::string*>(user);
-  error = decode_rgba8(*image, size_t(index), bytes, size_t(size));
-  if (error.empty()) return true;
-  if (err) *err += error + "\n";
-  return false;
+  auto& pending = *static_cast<std::vector<PendingImage>*>(user);
+  pending.push_back({size_t(index), std::vector<unsigned char>(bytes, bytes + std::max(size, 0))});
+  return true;
 }
 
 struct File {
@@ -425,13 +452,16 @@ File open_gltf(const std::string& bytes, const std::string& path) {
   doc = Json();  // tinygltf parses its own copy
 
   tinygltf::TinyGLTF loader;
-  std::string image_error;
-  loader.SetImageLoader(&decode_image, &image_error);
+  std::vector<PendingImage> pending;
+  loader.SetImageLoader(&keep_image, &pending);
   std::string err, warn;
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
   const bool ok = binary ? loader.LoadBinaryFromMemory(&f.model, &err, &warn, data, unsigned(bytes.size()), dir)
                          : loader.LoadASCIIFromString(&f.model, &err, &warn, bytes.data(), unsigned(bytes.size()), dir);
-  if (!image_error.empty()) throw InputError(path + ": " + image_error);
+  // A broken image is reported before what tinygltf says of the rest, as
+  // when it was decoded inside tinygltf's loading, which stopped there.
+  if (std::string error = decode_images(f.model.images, pending); !error.empty())
+    throw InputError(path + ": " + error);
   if (!ok || !err.empty()) {
     // tinygltf lists every problem, one per line; the first is the one to fix first.
     std::string first = err.substr(0, err.find('\n'));
@@ -440,14 +470,15 @@ File open_gltf(const std::string& bytes, const std::string& path) {
   }
   check_buffer_views(f);
   // The images in bufferViews, now that every view is known to lie inside its buffer.
+  pending.clear();
   for (size_t i = 0; i < f.model.images.size(); ++i) {
-    tinygltf::Image& image = f.model.images[i];
+    const tinygltf::Image& image = f.model.images[i];
     if (image.bufferView < 0) continue;
     const tinygltf::BufferView& v = f.get(f.model.bufferViews, image.bufferView, "bufferViews", item("images", i) + ".bufferView");
-    const std::string error =
-        decode_rgba8(image, i, f.model.buffers[size_t(v.buffer)].data.data() + v.byteOffset, v.byteLength);
-    if (!error.empty()) throw InputError(path + ": " + error);
+    const unsigned char* view = f.model.buffers[size_t(v.buffer)].data.data() + v.byteOffset;
+    pending.push_back({i, std::vector<unsigned char>(view, view + v.byteLength)});
   }
+  if (std::string error = decode_images(f.model.images, pending); !error.empty()) throw InputError(path + ": " + error);
   return f;
 }
 

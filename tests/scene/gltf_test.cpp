@@ -966,6 +966,54 @@ TEST(GltfErrors, AnImageThatCannotBeDecoded) {
   EXPECT_EQ(load_error(b, "junk.gltf"), "PATH: images[0]: cannot be decoded (unknown image type)");
 }
 
+// A file's images are decoded on the host's threads (optimisation log 109):
+// each into its own texture, in data URIs and in bufferViews alike, and of
+// several broken images the first by index is the one named, however the
+// threads finish.
+TEST(Gltf, ManyImagesDecodeEachIntoItsOwnTexture) {
+  for (const bool in_views : {false, true}) {
+    GltfBuilder b = test::quad_gltf();
+    for (int i = 0; i < 12; ++i) {
+      const std::vector<uint8_t> texels = {uint8_t(10 * i), 1, 2, 255, 3, uint8_t(200 - i), 4, 255};
+      const std::string png = test::png(2, 1, texels);
+      if (in_views) {
+        const int view = b.add_view(png.data(), png.size());
+        b.add("images", {{"bufferView", view}, {"mimeType", "image/png"}});
+        b.add("textures", {{"source", i}});
+      } else {
+        b.add_texture(png);
+      }
+      b.add("materials", {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", i}}}, {"metallicFactor", 0}}}});
+    }
+    const Scene s = load(b, in_views ? "views.glb" : "uris.gltf");
+    ASSERT_EQ(s.textures.size(), 12u);
+    for (uint32_t i = 0; i < 12; ++i) {
+      const Texture& t = s.textures.at(*s.materials.at(i).base_color_texture);
+      EXPECT_EQ(t.texels, (std::vector<uint32_t>{0xff020100u | (10 * i), 0xff040000u | ((200 - i) << 8) | 3u}))
+          << (in_views ? "view " : "uri ") << i;
+    }
+  }
+}
+
+TEST(GltfErrors, OfSeveralBrokenImagesTheFirstIsNamed) {
+  const std::string junk = "not an image at all";
+  for (const bool in_views : {false, true}) {
+    GltfBuilder b = test::quad_gltf();
+    for (int i = 0; i < 12; ++i) {
+      const std::string bytes = i == 5 || i == 9 ? junk : test::png(2, 1, kTwoTexels);
+      if (in_views) {
+        const int view = b.add_view(bytes.data(), bytes.size());
+        b.add("images", {{"bufferView", view}, {"mimeType", "image/png"}});
+      } else {
+        b.add("images", {{"uri", "data:image/png;base64," +
+                                     test::base64(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size())}});
+      }
+    }
+    EXPECT_EQ(load_error(b, in_views ? "views.glb" : "uris.gltf"), "PATH: images[5]: cannot be decoded (unknown image type)")
+        << (in_views ? "views" : "uris");
+  }
+}
+
 TEST(GltfErrors, TexturesSamplersAndEmission) {
   const GltfBuilder textured = test::textured_quad_gltf(test::png(2, 1, kTwoTexels));
   GltfBuilder b = textured;
