@@ -61,7 +61,8 @@ void parallel_ranges(size_t n, size_t ranges, F&& f) {
 template <class F>
 void parallel_items(size_t n, F&& f) {
   std::atomic<size_t> next{0};
-  parallel_ranges(parallel_range_count(n, 1), parallel_range_count(n, 1), [&](size_t, size_t, size_t) {
+  const size_t threads = parallel_range_count(n, 1);
+  parallel_ranges(threads, threads, [&](size_t, size_t, size_t) {  // one "item" per thread: its loop
     for (size_t i = next++; i < n; i = next++) f(i);
   });
 }

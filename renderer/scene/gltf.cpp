@@ -32,6 +32,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <span>
 #include <string_view>
 #include <tuple>
 
@@ -366,10 +367,14 @@ std::string decode_rgba8(tinygltf::Image& image, size_t index, const unsigned ch
 }
 
 // The images of a file to decode once it is loaded, on the host's threads
-// (optimisation log 109): images[index] from `bytes`.
+// (optimisation log 109): images[index] from the bytes tinygltf handed over
+// (`kept`: a file's or data URI's, which it frees after the call) or from
+// the model's own buffer (a bufferView's image, not copied).
 struct PendingImage {
   size_t index;
-  std::vector<unsigned char> bytes;
+  std::vector<unsigned char> kept;
+  std::span<const unsigned char> view;
+  std::span<const unsigned char> bytes() const { return view.data() ? view : std::span<const unsigned char>(kept); }
 };
 
 // Decodes each pending image into images[index]; the first failure in
@@ -378,7 +383,7 @@ std::string decode_images(std::vector<tinygltf::Image>& images, const std::vecto
   std::vector<std::string> errors(pending.size());
   parallel_items(pending.size(), [&](size_t k) {
     const PendingImage& p = pending[k];
-    errors[k] = decode_rgba8(images[p.index], p.index, p.bytes.data(), p.bytes.size());
+    errors[k] = decode_rgba8(images[p.index], p.index, p.bytes().data(), p.bytes().size());
   });
   for (const std::string& e : errors)
     if (!e.empty()) return e;
@@ -394,7 +399,7 @@ bool keep_image(tinygltf::Image* image, int index, std::string*, std::string*, i
                 int size, void* user) {
   if (image->bufferView >= 0) return true;
   auto& pending = *static_cast<std::vector<PendingImage>*>(user);
-  pending.push_back({size_t(index), std::vector<unsigned char>(bytes, bytes + std::max(size, 0))});
+  pending.push_back({size_t(index), std::vector<unsigned char>(bytes, bytes + std::max(size, 0)), {}});
   return true;
 }
 
@@ -476,7 +481,7 @@ File open_gltf(const std::string& bytes, const std::string& path) {
     if (image.bufferView < 0) continue;
     const tinygltf::BufferView& v = f.get(f.model.bufferViews, image.bufferView, "bufferViews", item("images", i) + ".bufferView");
     const unsigned char* view = f.model.buffers[size_t(v.buffer)].data.data() + v.byteOffset;
-    pending.push_back({i, std::vector<unsigned char>(view, view + v.byteLength)});
+    pending.push_back({i, {}, {view, v.byteLength}});
   }
   if (std::string error = decode_images(f.model.images, pending); !error.empty()) throw InputError(path + ": " + error);
   return f;
