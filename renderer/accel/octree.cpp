@@ -297,8 +297,6 @@ std::vector<uint32_t> find_big_primitives(std::span<const Aabb> boxes) {
 }
 
 void check_params(const OctreeParams& params) {
-  if (params.leaf_size < 1)
-    throw SettingError("octree.leaf_size", ": must be >= 1, got " + std::to_string(params.leaf_size));
   if (params.max_depth < 1 || params.max_depth > kMaxOctreeDepth)
     throw SettingError("octree.max_depth", ": must be in 1.." + std::to_string(kMaxOctreeDepth) + ", got " +
                      std::to_string(params.max_depth));
@@ -309,9 +307,11 @@ void check_params(const OctreeParams& params) {
 
 }  // namespace
 
-Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params, const ClipFn& clip,
+Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& requested, const ClipFn& clip,
                     const ClipOctantsFn& clip_octants) {
-  check_params(params);
+  check_params(requested);
+  OctreeParams params = requested;
+  if (params.leaf_size == 0) params.leaf_size = kOctreeLeaf;
   const auto start = Clock::now();
   Octree tree;
 
@@ -417,6 +417,7 @@ Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params, con
   }
 
   finish_tree_stats(tree, boxes.size(), ms_since(start));
+  tree.stats.leaf_size = params.leaf_size;
   return tree;
 }
 

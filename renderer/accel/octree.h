@@ -32,8 +32,14 @@ enum class SphereOrder { Auto, Tree, Scene };
 // most kAutoBakeExtraTriangles, else Keep (optimisation log 68).
 enum class Instancing { Auto, Keep, Bake };
 
+// The leaf size of OctreeParams::leaf_size = 0 (auto) where the device's
+// rule does not replace it (render/path_tracer.h default_octree_leaf).
+inline constexpr uint32_t kOctreeLeaf = 10;
+
 struct OctreeParams {
-  uint32_t leaf_size = 10;  // a node with more references than this splits ...
+  // A node with more references than this splits ... (0: auto, kOctreeLeaf
+  // here; the tracer puts the device's rule in first)
+  uint32_t leaf_size = 0;
   uint32_t max_depth = 16;  // ... while its tree depth (root = 0) is below this, 1..20
   // The BVH's (`--accel bvh`, accel/bvh.h) children per node, at most: 2 or
   // 4 for every tree of the scene, or 0 for the device's default
@@ -68,6 +74,7 @@ struct OctreeStats {
   double refs_per_primitive = 0;      // refs / primitive count (0 for an empty scene)
   double bytes_per_primitive = 0;     // bytes / primitive count (0 for an empty scene)
   uint64_t bytes = 0;                 // nodes * 32 + refs * 4: what the GPU holds for the octree
+  uint32_t leaf_size = 0;             // the octree's OctreeParams::leaf_size as built (auto resolved); 0 for a BVH
   // A scene's BVH (render/gpu_scene.cpp): the most children a node of its
   // top level, and of its meshes' trees, may have (2 or 4); 0 otherwise.
   uint32_t bvh_top_width = 0, bvh_mesh_width = 0;
@@ -197,7 +204,7 @@ using ClipOctantsFn =
 // Builds the octree over `boxes` (finite, non-empty; primitive i is boxes[i]).
 // Uses the hardware threads; the result depends only on the input.
 // Throws SettingError ("octree.leaf_size", "octree.max_depth",
-// "octree.max_refs") for bad params.
+// "octree.max_refs") for bad params; a leaf size of 0 builds with kOctreeLeaf.
 Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params, const ClipFn& clip = {},
                     const ClipOctantsFn& clip_octants = {});
 

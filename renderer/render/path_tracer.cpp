@@ -329,11 +329,13 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
   State& s = *state_;
   s.settings = settings;
   s.scene_features = scene_features(scene);
+  if (s.settings.octree.leaf_size == 0)
+    s.settings.octree.leaf_size = default_octree_leaf(ctx.info, s.scene_features.triangles);
   s.every_feature = all_features(scene);
   check_precision(scene, settings.precision);
   s.create_accumulation();
   create_buffer(s.stats, ctx, sizeof(gpu::RenderStats), false, "statistics buffer");
-  upload_scene(s.scene, ctx, scene, settings.accel, settings.octree,
+  upload_scene(s.scene, ctx, scene, settings.accel, s.settings.octree,
                3 * s.pixels() * sizeof(glm::vec4) + sizeof(gpu::RenderStats) + s.tail_values.size +
                    s.tail_queue.size);
   s.timings.accel_build_ms = s.scene.accel_build_ms;
@@ -732,6 +734,10 @@ void PathTracer::finish_result(RenderResult& r, Clock::time_point start) {
 
 bool default_octant_culling(const DeviceInfo& device, bool triangles) {
   return triangles || device.llvmpipe_release < 2500;
+}
+
+uint32_t default_octree_leaf(const DeviceInfo& device, bool triangles) {
+  return default_octant_culling(device, triangles) ? kOctreeLeaf : kOctreeLeafUnculled;
 }
 
 std::string software_loop_limit_warning(const DeviceInfo& device, const Scene& scene, const RenderSettings& settings) {

@@ -461,6 +461,22 @@ TEST(Octree, SameInputSameOutput) {
   expect_same_hits(a, spheres, 500);
 }
 
+// OctreeParams::leaf_size 0 (auto; the tracer puts the device's rule in
+// first, render_test) builds with kOctreeLeaf, and the stats say which size
+// the build used.
+TEST(Octree, LeafSizeZeroIsTheDefault) {
+  const auto boxes = sphere_boxes(rtiow(8000, 0.1f));
+  const Octree automatic = build_octree(boxes, {.leaf_size = 0});
+  const Octree ten = build_octree(boxes, {.leaf_size = kOctreeLeaf});
+  const Octree sixteen = build_octree(boxes, {.leaf_size = 16});
+  EXPECT_EQ(automatic.stats.leaf_size, kOctreeLeaf);
+  EXPECT_EQ(sixteen.stats.leaf_size, 16u);
+  ASSERT_EQ(automatic.nodes.size(), ten.nodes.size());
+  EXPECT_EQ(std::memcmp(automatic.nodes.data(), ten.nodes.data(), ten.nodes.size() * sizeof(GpuOctreeNode)), 0);
+  EXPECT_EQ(automatic.refs, ten.refs);
+  EXPECT_LT(sixteen.nodes.size(), ten.nodes.size());  // the sizes make other trees here
+}
+
 TEST(Octree, AtMost64BytesPerSphere) {
   for (const RtiowCase c : {RtiowCase{488, 0.2f}, RtiowCase{8000, 0.1f}, RtiowCase{1000000, 0.01f}}) {
     const Octree tree = build_octree(sphere_boxes(rtiow(c.spheres, c.radius)), {});
@@ -576,7 +592,7 @@ TEST(Octree, BadParametersNameTheSetting) {
     }
     return "no error";
   };
-  EXPECT_EQ(message({0, 16}), "octree.leaf_size | octree.leaf_size: must be >= 1, got 0");
+  EXPECT_EQ(message({0, 16}), "no error");  // auto: kOctreeLeaf (LeafSizeZeroIsTheDefault)
   EXPECT_EQ(message({8, 0}), "octree.max_depth | octree.max_depth: must be in 1..20, got 0");
   EXPECT_EQ(message({8, 21}), "octree.max_depth | octree.max_depth: must be in 1..20, got 21");
   EXPECT_EQ(message({.max_refs = 0}), "octree.max_refs | octree.max_refs: must be in 1..64, got 0");

@@ -329,6 +329,36 @@ TEST(OctantCulling, AutoIsOffOnlyForSpheresOnLavapipeFromMesa25) {
   EXPECT_TRUE(default_octant_culling(mesa25, true));
 }
 
+// Auto leaf size (optimisation log 110): 16 exactly where the culling's auto
+// is off, kOctreeLeaf elsewhere; the tracer builds with it.
+TEST(OctreeLeaf, AutoIsSixteenOnlyWhereTheCullingIsOff) {
+  DeviceInfo gpu, mesa22, mesa25, mesa26;
+  mesa22.software = mesa25.software = mesa26.software = true;
+  mesa22.llvmpipe_release = 2203;
+  mesa25.llvmpipe_release = 2500;
+  mesa26.llvmpipe_release = 2601;
+  for (bool triangles : {false, true}) {
+    EXPECT_EQ(default_octree_leaf(gpu, triangles), kOctreeLeaf);
+    EXPECT_EQ(default_octree_leaf(mesa22, triangles), kOctreeLeaf);
+  }
+  EXPECT_EQ(default_octree_leaf(mesa25, false), 16u);
+  EXPECT_EQ(default_octree_leaf(mesa26, false), 16u);
+  EXPECT_EQ(default_octree_leaf(mesa25, true), kOctreeLeaf);
+}
+
+TEST_F(RenderTest, OctreeLeafResolvedForTheDevice) {
+  VulkanContext& ctx = test::shared_context();
+  const Scene scene = make_rtiow_scene({400, 0.2f, 3});
+  RenderSettings s;
+  s.width = 16;
+  s.height = 8;
+  EXPECT_EQ(PathTracer(ctx, scene, s).octree_stats().leaf_size, default_octree_leaf(ctx.info, false));
+  s.octree.leaf_size = 3;
+  EXPECT_EQ(PathTracer(ctx, scene, s).octree_stats().leaf_size, 3u);
+  s.accel = Accel::Bvh;
+  EXPECT_EQ(PathTracer(ctx, scene, s).octree_stats().leaf_size, 0u);  // a BVH has no leaf size of this kind
+}
+
 TEST_F(RenderTest, OctantCullingResolvedForTheDevice) {
   VulkanContext& ctx = test::shared_context();
   const Scene scene = make_rtiow_scene({40, 0.2f, 3});
