@@ -312,14 +312,22 @@ TEST(SampleLanes, AutoIsFourAndEightOnlyForTrianglesInWholePaths) {
   EXPECT_EQ(sample_lanes(8, true, true, 8, 65535), 8u);
 }
 
+// The devices the per-device rules tell apart: a GPU, and lavapipe of Mesa
+// 22.3, 25.0 and 26.1.
+struct RuleDevices {
+  DeviceInfo gpu, mesa22, mesa25, mesa26;
+  RuleDevices() {
+    mesa22.software = mesa25.software = mesa26.software = true;
+    mesa22.llvmpipe_release = 2203;
+    mesa25.llvmpipe_release = 2500;
+    mesa26.llvmpipe_release = 2601;
+  }
+};
+
 // Auto octant culling (optimisation log 106): off only for scenes without
 // triangles on lavapipe from Mesa 25; the tracer resolves the setting so.
 TEST(OctantCulling, AutoIsOffOnlyForSpheresOnLavapipeFromMesa25) {
-  DeviceInfo gpu, mesa22, mesa25, mesa26;
-  mesa22.software = mesa25.software = mesa26.software = true;
-  mesa22.llvmpipe_release = 2203;
-  mesa25.llvmpipe_release = 2500;
-  mesa26.llvmpipe_release = 2601;
+  const auto [gpu, mesa22, mesa25, mesa26] = RuleDevices();
   for (bool triangles : {false, true}) {
     EXPECT_TRUE(default_octant_culling(gpu, triangles));
     EXPECT_TRUE(default_octant_culling(mesa22, triangles));
@@ -332,11 +340,7 @@ TEST(OctantCulling, AutoIsOffOnlyForSpheresOnLavapipeFromMesa25) {
 // Auto leaf size (optimisation log 110): 16 exactly where the culling's auto
 // is off, kOctreeLeaf elsewhere; the tracer builds with it.
 TEST(OctreeLeaf, AutoIsSixteenOnlyWhereTheCullingIsOff) {
-  DeviceInfo gpu, mesa22, mesa25, mesa26;
-  mesa22.software = mesa25.software = mesa26.software = true;
-  mesa22.llvmpipe_release = 2203;
-  mesa25.llvmpipe_release = 2500;
-  mesa26.llvmpipe_release = 2601;
+  const auto [gpu, mesa22, mesa25, mesa26] = RuleDevices();
   for (bool triangles : {false, true}) {
     EXPECT_EQ(default_octree_leaf(gpu, triangles), kOctreeLeaf);
     EXPECT_EQ(default_octree_leaf(mesa22, triangles), kOctreeLeaf);
@@ -346,30 +350,31 @@ TEST(OctreeLeaf, AutoIsSixteenOnlyWhereTheCullingIsOff) {
   EXPECT_EQ(default_octree_leaf(mesa25, true), kOctreeLeaf);
 }
 
-TEST_F(RenderTest, OctreeLeafResolvedForTheDevice) {
+// The tracer resolves the per-device autos (the octant culling, log 106; the
+// octree's leaf size, log 110) with the rules above, and takes a setting as
+// given.
+TEST_F(RenderTest, AutoCullingAndLeafSizeResolvedForTheDevice) {
   VulkanContext& ctx = test::shared_context();
   const Scene scene = make_rtiow_scene({400, 0.2f, 3});
   RenderSettings s;
   s.width = 16;
   s.height = 8;
-  EXPECT_EQ(PathTracer(ctx, scene, s).octree_stats().leaf_size, default_octree_leaf(ctx.info, false));
-  s.octree.leaf_size = 3;
-  EXPECT_EQ(PathTracer(ctx, scene, s).octree_stats().leaf_size, 3u);
-  s.accel = Accel::Bvh;
-  EXPECT_EQ(PathTracer(ctx, scene, s).octree_stats().leaf_size, 0u);  // a BVH has no leaf size of this kind
-}
-
-TEST_F(RenderTest, OctantCullingResolvedForTheDevice) {
-  VulkanContext& ctx = test::shared_context();
-  const Scene scene = make_rtiow_scene({40, 0.2f, 3});
-  RenderSettings s;
-  s.width = 16;
-  s.height = 8;
-  EXPECT_EQ(PathTracer(ctx, scene, s).octant_culling(), default_octant_culling(ctx.info, false));
+  {
+    const PathTracer tracer(ctx, scene, s);
+    EXPECT_EQ(tracer.octant_culling(), default_octant_culling(ctx.info, false));
+    EXPECT_EQ(tracer.octree_stats().leaf_size, default_octree_leaf(ctx.info, false));
+  }
   s.octant_culling = OctantCulling::On;
-  EXPECT_TRUE(PathTracer(ctx, scene, s).octant_culling());
+  s.octree.leaf_size = 3;
+  {
+    const PathTracer tracer(ctx, scene, s);
+    EXPECT_TRUE(tracer.octant_culling());
+    EXPECT_EQ(tracer.octree_stats().leaf_size, 3u);
+  }
   s.octant_culling = OctantCulling::Off;
   EXPECT_FALSE(PathTracer(ctx, scene, s).octant_culling());
+  s.accel = Accel::Bvh;
+  EXPECT_EQ(PathTracer(ctx, scene, s).octree_stats().leaf_size, 0u);  // a BVH has no leaf size of this kind
 }
 
 // The seam of the preview window: a tracer made once renders another camera,
