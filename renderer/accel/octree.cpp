@@ -6,16 +6,15 @@
 #include "accel/octree.h"
 
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <limits>
 #include <numeric>
 #include <string>
-#include <thread>
 
 #include "accel/clip.h"
 #include "core/clock.h"
 #include "core/errors.h"
+#include "core/parallel.h"
 
 namespace octrace {
 namespace {
@@ -382,19 +381,12 @@ Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& requested, 
   std::stable_sort(schedule.begin(), schedule.end(),
                    [&](size_t a, size_t b) { return pending[a].refs.size() > pending[b].refs.size(); });
   std::vector<Subtree> subtrees(pending.size());
-  std::atomic<size_t> next{0};
-  const auto work = [&] {
-    SubtreeBuilder builder(params, clip, clip_octants);
-    for (size_t i; (i = next++) < schedule.size();) {
-      const Pending& p = pending[schedule[i]];
-      subtrees[schedule[i]] = builder.build(p.refs, p.node);
-    }
-  };
-  const size_t threads = std::min<size_t>(std::max(1u, std::thread::hardware_concurrency()), pending.size());
-  std::vector<std::jthread> helpers;
-  for (size_t t = 1; t < threads; ++t) helpers.emplace_back(work);
-  work();
-  helpers.clear();
+  parallel_items(
+      schedule.size(), [&] { return SubtreeBuilder(params, clip, clip_octants); },
+      [&](SubtreeBuilder& builder, size_t i) {
+        const Pending& p = pending[schedule[i]];
+        subtrees[schedule[i]] = builder.build(p.refs, p.node);
+      });
 
   // Append each subtree: its root replaces the pending node, the rest follows.
   for (size_t i = 0; i < pending.size(); ++i) {

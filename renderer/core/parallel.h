@@ -53,18 +53,27 @@ void parallel_ranges(size_t n, size_t ranges, F&& f) {
   if (error) std::rethrow_exception(error);
 }
 
-// Calls f(i) for every i in [0, n), on up to one thread per hardware
+// Calls f(state, i) for every i in [0, n), on up to one thread per hardware
 // thread (the caller's among them), each taking the next i when it is done
-// with its last: for items of unequal cost (images to decode). Returns when
-// all are done; an exception thrown by f is rethrown here (the first of
-// several) after every thread has stopped taking items.
-template <class F>
-void parallel_items(size_t n, F&& f) {
+// with its last: for items of unequal cost (images to decode, the octree's
+// subtrees). Each thread makes its own `state` once (make()) and hands it to
+// every call it makes: buffers a thread reuses from item to item. Returns
+// when all are done; an exception thrown by make or f is rethrown here (the
+// first of several) after every thread has stopped taking items.
+template <class Make, class F>
+void parallel_items(size_t n, Make&& make, F&& f) {
   std::atomic<size_t> next{0};
   const size_t threads = parallel_range_count(n, 1);
   parallel_ranges(threads, threads, [&](size_t, size_t, size_t) {  // one "item" per thread: its loop
-    for (size_t i = next++; i < n; i = next++) f(i);
+    auto state = make();
+    for (size_t i = next++; i < n; i = next++) f(state, i);
   });
+}
+
+// parallel_items without a thread's state: f(i).
+template <class F>
+void parallel_items(size_t n, F&& f) {
+  parallel_items(n, [] { return 0; }, [&](int, size_t i) { f(i); });
 }
 
 }  // namespace octrace
