@@ -48,8 +48,8 @@ class Builder {
  public:
   // `clip` (may be empty): the primitives' shapes, for spatial splits.
   // Nodes above `parallel_depth` build their subtrees on two threads.
-  Builder(Octree& tree, const ClipFn& clip, uint32_t parallel_depth)
-      : tree_(tree), clip_(clip), parallel_depth_(parallel_depth) {}
+  Builder(Octree& tree, const ClipFn& clip, double node_cost, uint32_t parallel_depth)
+      : tree_(tree), clip_(clip), node_cost_(node_cost), parallel_depth_(parallel_depth) {}
 
   // Node `index` over `items`, at `depth`; its subtree may add `extra`
   // references by spatial splits.
@@ -109,7 +109,7 @@ class Builder {
   Octree subtree(std::vector<Item> items, uint32_t depth, double extra) const {
     Octree t;
     t.nodes.push_back({});
-    Builder b(t, clip_, parallel_depth_);
+    Builder b(t, clip_, node_cost_, parallel_depth_);
     b.root_area_ = root_area_;
     b.build(0, std::move(items), depth, extra);
     return t;
@@ -160,7 +160,7 @@ class Builder {
       if (overlaps && half_area(overlap) > kBvhSpatialOverlap * root_area_) spatial = spatial_split(items, box);
     }
     const double best = std::min(object.cost, spatial.cost);
-    const double split_cost = kBvhNodeCost + (area > 0.0 ? best / area : 0.0);
+    const double split_cost = node_cost_ + (area > 0.0 ? best / area : 0.0);
     if (split_cost >= static_cast<double>(n) && n <= kBvhMaxLeaf) return;
     if (spatial.cost < object.cost && partition_spatial(items, box, spatial, extra, left, right)) return;
     left.clear();
@@ -326,6 +326,7 @@ class Builder {
 
   Octree& tree_;
   const ClipFn& clip_;
+  double node_cost_;
   uint32_t parallel_depth_;
   double root_area_ = 0.0;  // the root's half area (Stich et al.'s alpha is relative to it)
 };
@@ -387,8 +388,10 @@ class Collapser {
 
 }  // namespace
 
+uint32_t default_bvh_parallel_depth() { return bvh_parallel_depth(std::max(1u, std::thread::hardware_concurrency())); }
+
 Octree build_bvh(std::span<const Aabb> boxes, uint32_t width, const ClipFn& clip, double spatial_refs,
-                 uint32_t parallel_depth) {
+                 double node_cost, uint32_t parallel_depth) {
   const auto start = Clock::now();
   Octree tree;
   if (width < 2 || width > kBvhWidth)
@@ -407,7 +410,7 @@ Octree build_bvh(std::span<const Aabb> boxes, uint32_t width, const ClipFn& clip
   } else {
     Octree binary;
     binary.nodes.push_back({});
-    Builder(binary, clip, parallel_depth).build(0, std::move(items), 0, static_cast<double>(boxes.size()) * (spatial_refs - 1.0));
+    Builder(binary, clip, node_cost, parallel_depth).build(0, std::move(items), 0, static_cast<double>(boxes.size()) * (spatial_refs - 1.0));
     tree.refs = std::move(binary.refs);
     tree.stats.leaves = binary.stats.leaves;
     Collapser(binary, width, tree).collapse(0, 0, 0);

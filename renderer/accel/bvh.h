@@ -43,8 +43,9 @@ namespace octrace {
 // centroids are binned
 // into kBvhBins equal bins along each axis of the centroids' box; for each of
 // the kBvhBins - 1 planes between bins the surface area heuristic cost
-//   C = kBvhNodeCost + (A_left * N_left + A_right * N_right) / A
-// (MacDonald and Booth 1990; A = half area of a box, a primitive test costs 1)
+//   C = node_cost + (A_left * N_left + A_right * N_right) / A
+// (MacDonald and Booth 1990; A = half area of a box, a primitive test costs 1;
+// node_cost: kBvhNodeCost or kBvhTopNodeCost below)
 // is evaluated by a sweep over the bins, and the cheapest plane over the
 // three axes wins (ties: lower axis, then lower plane). With the shapes
 // (a ClipFn), where the best such split leaves its two sides overlapping by
@@ -103,7 +104,16 @@ struct BvhWidths {
 inline constexpr BvhWidths default_bvh_widths(bool software, bool has_spheres) {
   return software ? BvhWidths{2, 2} : BvhWidths{has_spheres ? 2 : kBvhWidth, kBvhWidth};
 }
-inline constexpr double kBvhNodeCost = 1.0;   // a binary node's visit (two box tests) in primitive tests
+// A binary node's visit (two box tests) in primitive tests, the SAH's
+// node cost: 1 for triangles (the meshes' trees), 2 for the top level
+// (spheres and instances), whose sphere test is the cheaper. Why (log 107,
+// H100, the top level's cost alone varied): 2 took 2.0% off the peer's
+// scene and 1.8% off 488 spheres, left 1M spheres as they were and cost
+// 8,000 spheres 0.6%; 3 gained a little more on the sparse fields and cost
+// 8,000 spheres 2.4%. Over triangles 2 cost the balloon 2.5% and the
+// engine 0.3%. On llvmpipe every value from 0.5 to 2 was within the spreads.
+inline constexpr double kBvhNodeCost = 1.0;
+inline constexpr double kBvhTopNodeCost = 2.0;
 // Spatial splits (with a ClipFn): looked for where the object split's
 // children overlap by more than this fraction of the root's area (Stich et
 // al. 2009's alpha), while the references stay within kBvhSpatialRefs per
@@ -112,13 +122,27 @@ inline constexpr double kBvhSpatialOverlap = 1e-5;
 inline constexpr double kBvhSpatialRefs = 1.5;
 static_assert(OctreeParams{}.bvh_spatial_refs == kBvhSpatialRefs);
 // Nodes this shallow and this large build their two subtrees on two
-// threads (up to 2^kBvhParallelDepth at once); the result is the same.
+// threads (up to 2^depth at once); the result is the same. The depth
+// (default_bvh_parallel_depth): enough levels for one subtree per hardware
+// thread, at least kBvhParallelDepth, since the subtrees finish unevenly.
 // Deeper costs memory (each subtree's arrays are copied into its parent's
 // at every level): on a 1M-triangle sheet (tools/make_grid_glb.py 708) the
 // 2-core machine's peak was 373 MB on one thread, 480 MB at depth 2 and
-// 580 MB at depth 4, each building in 0.70 s (1.07 s on one thread).
+// 580 MB at depth 4, each building in 0.70 s (1.07 s on one thread). On
+// the 16-thread GPU machine (log 105) depth 4 built the engine in 0.47x
+// and the sheet in 0.62x of depth 2's time, for 14% and 18% more peak
+// memory; depths 5 and 6 gained no more, for 23% and more.
 inline constexpr uint32_t kBvhParallelDepth = 2;
 inline constexpr size_t kBvhParallelItems = 4096;
+// The smallest depth whose 2^depth subtrees are at least `threads`, and at
+// least kBvhParallelDepth.
+inline constexpr uint32_t bvh_parallel_depth(uint32_t threads) {
+  uint32_t depth = kBvhParallelDepth;
+  while (depth < 31 && (uint32_t(1) << depth) < threads) ++depth;
+  return depth;
+}
+// bvh_parallel_depth of this host's hardware threads.
+uint32_t default_bvh_parallel_depth();
 
 // Builds the BVH over `boxes` (finite; primitive i is boxes[i]). Returns the
 // octree's struct: the same arrays, big_count = 0, and the same statistics
@@ -128,9 +152,12 @@ inline constexpr size_t kBvhParallelItems = 4096;
 // `clip` (octree.h ClipFn; may be empty): the primitives' shapes, which
 // allow spatial splits, up to `spatial_refs` references per primitive in all
 // (1: none; OctreeParams::bvh_spatial_refs).
+// `node_cost`: the SAH's cost of a node's visit in primitive tests
+// (kBvhNodeCost for triangles, kBvhTopNodeCost for the top level).
 // `parallel_depth`: the levels whose nodes build their two subtrees on two
 // threads (0: all on the calling thread); the tree is the same (bvh_test).
 Octree build_bvh(std::span<const Aabb> boxes, uint32_t width = kBvhWidth, const ClipFn& clip = {},
-                 double spatial_refs = kBvhSpatialRefs, uint32_t parallel_depth = kBvhParallelDepth);
+                 double spatial_refs = kBvhSpatialRefs, double node_cost = kBvhNodeCost,
+                 uint32_t parallel_depth = default_bvh_parallel_depth());
 
 }  // namespace octrace

@@ -12,9 +12,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <random>
+#include <thread>
 #include <vector>
 
 namespace octrace {
@@ -304,7 +306,7 @@ TEST(Bvh, SpatialSplitsCoverEveryTriangleWithinTheBudget) {
   expect_same_tree(a, b);
 }
 
-// The top levels' subtrees build on threads (kBvhParallelDepth, for nodes of
+// The top levels' subtrees build on threads (default_bvh_parallel_depth, for nodes of
 // at least kBvhParallelItems references) and are appended in the order one
 // thread writes them: the tree, with spatial splits or without, is the one a
 // build on the calling thread makes, byte for byte, however deep the threads go.
@@ -313,15 +315,41 @@ TEST(Bvh, ThreadsBuildTheOneThreadTree) {
   const std::vector<Aabb> boxes = random_boxes(12 * kBvhParallelItems, 29);
   for (uint32_t width : {2u, 4u}) {
     SCOPED_TRACE(width);
-    const Octree one = build_bvh(s.boxes, width, s.clip, kBvhSpatialRefs, 0);
-    const Octree plain_one = build_bvh(boxes, width, {}, kBvhSpatialRefs, 0);
+    const Octree one = build_bvh(s.boxes, width, s.clip, kBvhSpatialRefs, kBvhNodeCost, 0);
+    const Octree plain_one = build_bvh(boxes, width, {}, kBvhSpatialRefs, kBvhNodeCost, 0);
     EXPECT_GT(one.refs.size(), s.boxes.size());  // spatial splits happened
-    for (uint32_t depth : {kBvhParallelDepth, kBvhParallelDepth + 2}) {
+    for (uint32_t depth : {kBvhParallelDepth, kBvhParallelDepth + 2, bvh_parallel_depth(16)}) {
       SCOPED_TRACE(depth);
-      expect_same_tree(build_bvh(s.boxes, width, s.clip, kBvhSpatialRefs, depth), one);
-      expect_same_tree(build_bvh(boxes, width, {}, kBvhSpatialRefs, depth), plain_one);
+      expect_same_tree(build_bvh(s.boxes, width, s.clip, kBvhSpatialRefs, kBvhNodeCost, depth), one);
+      expect_same_tree(build_bvh(boxes, width, {}, kBvhSpatialRefs, kBvhNodeCost, depth), plain_one);
     }
   }
+}
+
+// The threads' depth follows the host: one subtree per hardware thread at
+// least, never fewer than kBvhParallelDepth's four (log 105: two cores
+// unchanged, sixteen at depth 4).
+TEST(Bvh, ParallelDepthCoversTheThreads) {
+  for (uint32_t threads : {1u, 2u, 3u, 4u}) EXPECT_EQ(bvh_parallel_depth(threads), kBvhParallelDepth) << threads;
+  EXPECT_EQ(bvh_parallel_depth(5), 3u);
+  EXPECT_EQ(bvh_parallel_depth(8), 3u);
+  EXPECT_EQ(bvh_parallel_depth(16), 4u);
+  EXPECT_EQ(bvh_parallel_depth(17), 5u);
+  EXPECT_EQ(bvh_parallel_depth(0xffffffffu), 31u);
+  EXPECT_EQ(default_bvh_parallel_depth(), bvh_parallel_depth(std::max(1u, std::thread::hardware_concurrency())));
+}
+
+// The SAH's node cost: a dearer node makes fewer, larger leaves (the top
+// level's kBvhTopNodeCost against the meshes' kBvhNodeCost), every one
+// within kBvhMaxLeaf, over every primitive once.
+TEST(Bvh, DearerNodesMakeFewerLeaves) {
+  const std::vector<Aabb> boxes = random_boxes(5000, 31);
+  const Octree cheap = build_bvh(boxes, 2, {}, kBvhSpatialRefs, kBvhNodeCost);
+  const Octree dear = build_bvh(boxes, 2, {}, kBvhSpatialRefs, kBvhTopNodeCost);
+  check_tree(cheap, boxes, 2);
+  check_tree(dear, boxes, 2);
+  EXPECT_LT(dear.stats.leaves, cheap.stats.leaves);
+  EXPECT_LT(dear.nodes.size(), cheap.nodes.size());
 }
 
 // At most 1 reference per triangle: no spatial splits, the tree of the

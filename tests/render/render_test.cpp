@@ -7,7 +7,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "accel/bvh.h"
 #include "render/camera.h"
+#include "render/gpu_scene.h"
 #include "test_util.h"
 
 namespace octrace {
@@ -375,6 +377,21 @@ TEST_F(RenderTest, AutoCullingAndLeafSizeResolvedForTheDevice) {
   EXPECT_FALSE(PathTracer(ctx, scene, s).octant_culling());
   s.accel = Accel::Bvh;
   EXPECT_EQ(PathTracer(ctx, scene, s).octree_stats().leaf_size, 0u);  // a BVH has no leaf size of this kind
+}
+
+// A BVH's top level over spheres is built with the top level's node cost
+// (bvh.h kBvhTopNodeCost), which makes another tree than the meshes' cost.
+TEST_F(RenderTest, TopLevelBvhTakesTheTopNodeCost) {
+  VulkanContext& ctx = test::shared_context();
+  const Scene scene = make_rtiow_scene({400, 0.2f, 3});
+  RenderSettings s;
+  s.width = 16;
+  s.height = 8;
+  s.accel = Accel::Bvh;
+  const std::vector<Aabb> boxes = primitive_boxes(scene);
+  const uint32_t top = build_bvh(boxes, 2, {}, kBvhSpatialRefs, kBvhTopNodeCost).stats.leaves;
+  ASSERT_NE(top, build_bvh(boxes, 2, {}, kBvhSpatialRefs, kBvhNodeCost).stats.leaves);
+  EXPECT_EQ(PathTracer(ctx, scene, s).octree_stats().leaves, top);
 }
 
 // The seam of the preview window: a tracer made once renders another camera,
