@@ -1,0 +1,3 @@
+# Run 4 (typed on the warm machine after run 2, 14:02 UTC): the BVH's node
+# cost over spheres again, 7 rounds (log 107's probe binary). Carried: .gl, .gpub, .assets.
+source tools/gpu_run.sh; B=build-gpu/octrace-leaf; V=(--variant "base=" --variant "cost15=OCTRACE_BVH_NODECOST=1.5" --variant "cost2=OCTRACE_BVH_NODECOST=2" --variant "cost3=OCTRACE_BVH_NODECOST=3"); P="--scene tools/scenes/peer_field.json --size 1920x1080 --spp 64 --depth 50 --rr-depth 1 --device gpu"; AB_ROUNDS=7 AB_TIMEOUT=150 ab peer_bvh $P --accel bvh; AB_ROUNDS=7 AB_TIMEOUT=100 ab peer_bvh_d1 $P --accel bvh --depth 1; AB_ROUNDS=7 AB_TIMEOUT=100 ab s488_bvh $S --spheres 488 --radius 0.1 --accel bvh; AB_ROUNDS=7 AB_TIMEOUT=100 ab s8000_bvh $S --spheres 8000 --radius 0.1 --accel bvh; gpu_finish
