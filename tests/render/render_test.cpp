@@ -354,8 +354,9 @@ TEST(OctreeLeaf, AutoIsSixteenOnlyWhereTheCullingIsOff) {
 
 // The tracer resolves the per-device autos (the octant culling, log 106; the
 // octree's leaf size, log 110) with the rules above, and takes a setting as
-// given.
-TEST_F(RenderTest, AutoCullingAndLeafSizeResolvedForTheDevice) {
+// given; a BVH's top level takes the top level's node cost (bvh.h
+// kBvhTopNodeCost, log 112), which makes another tree than the meshes' cost.
+TEST_F(RenderTest, TreeSettingsResolvedForTheDeviceAndLevel) {
   VulkanContext& ctx = test::shared_context();
   const Scene scene = make_rtiow_scene({400, 0.2f, 3});
   RenderSettings s;
@@ -376,22 +377,12 @@ TEST_F(RenderTest, AutoCullingAndLeafSizeResolvedForTheDevice) {
   s.octant_culling = OctantCulling::Off;
   EXPECT_FALSE(PathTracer(ctx, scene, s).octant_culling());
   s.accel = Accel::Bvh;
-  EXPECT_EQ(PathTracer(ctx, scene, s).octree_stats().leaf_size, 0u);  // a BVH has no leaf size of this kind
-}
-
-// A BVH's top level over spheres is built with the top level's node cost
-// (bvh.h kBvhTopNodeCost), which makes another tree than the meshes' cost.
-TEST_F(RenderTest, TopLevelBvhTakesTheTopNodeCost) {
-  VulkanContext& ctx = test::shared_context();
-  const Scene scene = make_rtiow_scene({400, 0.2f, 3});
-  RenderSettings s;
-  s.width = 16;
-  s.height = 8;
-  s.accel = Accel::Bvh;
+  const OctreeStats bvh = PathTracer(ctx, scene, s).octree_stats();
+  EXPECT_EQ(bvh.leaf_size, 0u);  // a BVH has no leaf size of this kind
   const std::vector<Aabb> boxes = primitive_boxes(scene);
   const uint32_t top = build_bvh(boxes, 2, {}, kBvhSpatialRefs, kBvhTopNodeCost).stats.leaves;
   ASSERT_NE(top, build_bvh(boxes, 2, {}, kBvhSpatialRefs, kBvhNodeCost).stats.leaves);
-  EXPECT_EQ(PathTracer(ctx, scene, s).octree_stats().leaves, top);
+  EXPECT_EQ(bvh.leaves, top);
 }
 
 // The seam of the preview window: a tracer made once renders another camera,
