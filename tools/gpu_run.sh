@@ -2,7 +2,8 @@
 # machine, in the checkout's copy there, with the carried folders .gl (the
 # amd64 debs of the Vulkan loader and GL libraries: docs/reliability.md) and
 # .gpub (bin.txz or bin.tgz: build-gpu's binaries and a COMMIT file; xz -9
-# keeps several near-identical variant binaries small):
+# keeps several near-identical variant binaries small; tools/gpu_pack.sh
+# builds it):
 #   - unpacks it into build-gpu and installs .gl's debs;
 #   - A=build-gpu/octrace-base, B=build-gpu/app/octrace; points the Vulkan
 #     loader at the NVIDIA ICD if B does not find a device without it;
