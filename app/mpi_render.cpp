@@ -22,6 +22,7 @@
 
 #include "core/clock.h"
 #include "core/errors.h"
+#include "core/parallel.h"
 #include "render/multi_device.h"
 #include "vk/context.h"
 
@@ -946,7 +947,7 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
   // Every rank copies or merges on all of the host's cores: sharing them out
   // among the host's ranks made the merge 2x slower and the reduce no
   // faster (optimisation log 28).
-  const size_t threads = std::max(1u, std::thread::hardware_concurrency());
+  const size_t threads = host_threads();
   // Large slices when every state comes through the window (see kSharedGroup).
   const size_t slice = shared && job.node_ranks.size() == size_t(job.size) ? kSlice * kSharedGroup : kSlice;
   if (job.prefault.joinable()) job.prefault.join();

@@ -8,6 +8,7 @@
 
 #include "core/clock.h"
 #include "core/errors.h"
+#include "core/parallel.h"
 
 namespace octrace {
 namespace {
@@ -388,7 +389,7 @@ class Collapser {
 
 }  // namespace
 
-uint32_t default_bvh_parallel_depth() { return bvh_parallel_depth(std::max(1u, std::thread::hardware_concurrency())); }
+uint32_t default_bvh_parallel_depth() { return bvh_parallel_depth(host_threads()); }
 
 Octree build_bvh(std::span<const Aabb> boxes, uint32_t width, const ClipFn& clip, double spatial_refs,
                  double node_cost, uint32_t parallel_depth) {

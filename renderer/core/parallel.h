@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -11,11 +12,13 @@
 
 namespace octrace {
 
+// This host's hardware threads (at least 1, where the library cannot tell).
+inline uint32_t host_threads() { return std::max(1u, std::thread::hardware_concurrency()); }
+
 // How many ranges to split n items into for parallel_ranges: one per
 // hardware thread, each of at least min_items (at least 1 range).
 inline size_t parallel_range_count(size_t n, size_t min_items) {
-  const size_t threads = std::max(1u, std::thread::hardware_concurrency());
-  return std::max<size_t>(1, std::min(threads, n / std::max<size_t>(1, min_items)));
+  return std::max<size_t>(1, std::min<size_t>(host_threads(), n / std::max<size_t>(1, min_items)));
 }
 
 // How many ranges parallel_ranges makes of n items when asked for `ranges`:

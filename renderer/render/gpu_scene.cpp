@@ -122,7 +122,9 @@ static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& sce
   // A BVH's widths per level, kept in its stats (below), which the
   // pipeline's SPEC_BVH_TOP_WIDE and SPEC_BVH_MESH_WIDE follow.
   const BvhWidths widths = bvh_widths(ctx, scene, params);
-  SceneOctree t{accel == Accel::Bvh ? build_bvh(boxes, widths.top, {}, kBvhSpatialRefs, kBvhTopNodeCost) : build_octree(boxes, params), gpu_meshes(scene)};
+  SceneOctree t{accel == Accel::Bvh ? build_bvh(boxes, widths.top, {}, kBvhSpatialRefs, kBvhTopNodeCost)
+                                    : build_octree(boxes, params),
+                gpu_meshes(scene)};
   Octree& octree = t.octree;
   OctreeStats& st = octree.stats;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {

@@ -9,6 +9,7 @@
 #include "accel/bvh.h"
 #include "accel/clip.h"
 #include "core/errors.h"
+#include "core/parallel.h"
 
 #include <gtest/gtest.h>
 
@@ -16,7 +17,6 @@
 #include <bit>
 #include <cstring>
 #include <random>
-#include <thread>
 #include <vector>
 
 namespace octrace {
@@ -336,7 +336,7 @@ TEST(Bvh, ParallelDepthCoversTheThreads) {
   EXPECT_EQ(bvh_parallel_depth(16), 4u);
   EXPECT_EQ(bvh_parallel_depth(17), 5u);
   EXPECT_EQ(bvh_parallel_depth(0xffffffffu), 31u);
-  EXPECT_EQ(default_bvh_parallel_depth(), bvh_parallel_depth(std::max(1u, std::thread::hardware_concurrency())));
+  EXPECT_EQ(default_bvh_parallel_depth(), bvh_parallel_depth(host_threads()));
 }
 
 // The SAH's node cost: a dearer node makes fewer, larger leaves (the top
