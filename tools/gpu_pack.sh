@@ -65,7 +65,8 @@ for p in "${probes[@]}"; do
   git -C "$tree" checkout --quiet -- .
 done
 mkdir -p "$(dirname "$out")"
+(cd "$stage" && tar cf - . | xz -9 -T0 > "$work/pack.txz")  # no partial pack at $out if this fails
 [ -f "$out" ] && mv "$out" "$out.old"
-(cd "$stage" && tar cf - . | xz -9 -T0 > "$out")
+mv "$work/pack.txz" "$out"
 cat "$stage/COMMIT"
 echo "gpu_pack: $out ($(du -h "$out" | cut -f1))"
