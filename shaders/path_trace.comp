@@ -324,8 +324,12 @@ bool trace_path(inout PathState p, uint pixel_index, uint sample_index, uint bou
 
 #include "shared/accumulate.glsl"
 
-// Samples that lanes traced, for their pixel's first lane to add in order.
-shared vec4 lane_sample[WORKGROUP_SIZE * WORKGROUP_SIZE];
+// Samples that lanes traced, for their pixel's first lane to add in order:
+// entry gl_LocalInvocationIndex of each invocation. The array's size is the
+// host's (render/path_tracer.h lane_sample_slots): the workgroup memory a
+// pipeline declares sets the registers NVIDIA's compiler gives it.
+layout(constant_id = SPEC_LANE_SAMPLE_SLOTS) const uint LANE_SAMPLE_SLOTS = WORKGROUP_SIZE * WORKGROUP_SIZE;
+shared vec4 lane_sample[LANE_SAMPLE_SLOTS];
 
 // --walk-stats: adds n to 64-bit count k of RenderStats.walk (shared.h), kept
 // as two words: the low word's atomic add returns what it held before, so

@@ -270,6 +270,7 @@ void PathTracer::State::create_stage(ComputePipeline& p, uint32_t stage, const u
                            {gpu::SPEC_PBR, f.pbr},
                            {gpu::SPEC_DEFOCUS, f.defocus},
                            {gpu::SPEC_SAMPLE_LANES, s.sample_lanes_enabled()},
+                           {gpu::SPEC_LANE_SAMPLE_SLOTS, lane_sample_slots(s.ctx.info)},
                            {gpu::SPEC_OCTANT_CULLING, s.octant_culling()},
                            {gpu::SPEC_BIG_LEAF, s.big_leaf(f)},
                            {gpu::SPEC_OCTREE_HOLD_NEAREST, s.hold_nearest()},
@@ -737,7 +738,13 @@ bool default_octant_culling(const DeviceInfo& device, bool triangles) {
 }
 
 uint32_t default_octree_leaf(const DeviceInfo& device, bool triangles) {
-  return default_octant_culling(device, triangles) ? kOctreeLeaf : kOctreeLeafUnculled;
+  if (!default_octant_culling(device, triangles)) return kOctreeLeafUnculled;
+  return device.software || triangles ? kOctreeLeaf : kOctreeLeafGpuSpheres;
+}
+
+uint32_t lane_sample_slots(const DeviceInfo& device) {
+  const uint32_t invocations = gpu::WORKGROUP_SIZE * gpu::WORKGROUP_SIZE;
+  return device.nvidia ? 2 * invocations : invocations;
 }
 
 std::string software_loop_limit_warning(const DeviceInfo& device, const Scene& scene, const RenderSettings& settings) {

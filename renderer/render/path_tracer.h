@@ -106,8 +106,23 @@ bool default_octant_culling(const DeviceInfo& device, bool triangles);
 // node visits around them, and larger leaves took 4-5% off the default
 // scene's and 8,000 spheres' passes on Mesa 25.0.7, 1M spheres within 0.1%;
 // on Mesa 22.3.6, with the culling, 16 was 2.6% slower (optimisation log 110).
+// And 24 for a scene without triangles on a GPU: on the H100 the peer's scene
+// 6.0% faster than at 10, 8,000 spheres 5.0%, 488 1.1%, 1M within 0.7%; 32
+// cost 488 spheres 17% (optimisation log 115). Scenes with triangles keep 10
+// (the leaf measured on the meshes: logs 30 and 56; 24 was not).
 uint32_t default_octree_leaf(const DeviceInfo& device, bool triangles);
 inline constexpr uint32_t kOctreeLeafUnculled = 16;
+inline constexpr uint32_t kOctreeLeafGpuSpheres = 24;
+
+// The entries of path_trace.comp's workgroup array lane_sample (its
+// SPEC_LANE_SAMPLE_SLOTS): one per invocation is all it uses, but twice that
+// on NVIDIA's driver, whose compiler budgets the pipeline's registers by the
+// workgroup memory it declares: 40 registers with 1,792 bytes, 47 with
+// 2,048, and the walks 3.5-4.1% faster on the H100 (the peer's scene with
+// either structure; 8,000 spheres 2%, the meshes within 1%); eight times the
+// entries gave 50-56 registers and 57-72% slower passes, one more word
+// nothing (optimisation log 114). The image is the same.
+uint32_t lane_sample_slots(const DeviceInfo& device);
 
 // Called after each batch of passes: passes done, total passes.
 using ProgressFn = std::function<void(uint32_t done, uint32_t total)>;

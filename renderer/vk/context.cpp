@@ -207,6 +207,7 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index, const std::functi
     info.driver = std::string(driver.driverName) + " " + driver.driverInfo;
     if (driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE)
       info.llvmpipe_release = mesa_release(driver.driverInfo);
+    info.nvidia = driver.driverID == VK_DRIVER_ID_NVIDIA_PROPRIETARY;
     info.subgroup_size = subgroup.subgroupSize;
     static const char kHex[] = "0123456789abcdef";
     for (uint8_t byte : id.deviceUUID) {

@@ -41,6 +41,9 @@ struct DeviceInfo {
   // is 0.0.1), e.g. 2203 for 22.3.6 (Debian 12) and 2500 for 25.0.7; 0 for
   // every other driver.
   uint32_t llvmpipe_release = 0;
+  // NVIDIA's own driver (driverID NVIDIA_PROPRIETARY), whose shader compiler
+  // some per-device rules are measured against (render/path_tracer.h).
+  bool nvidia = false;
   bool vulkan12 = false;         // device API >= 1.2 (we need it)
   bool compute = false;          // a queue family with compute
   bool timestamps = false;       // timestamps on the compute queue

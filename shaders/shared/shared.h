@@ -239,6 +239,9 @@ OCT_CONST(uint, SPEC_SPHERES_IN_TREE_ORDER, 33u);
 // (accel/closest_hit.glsl). The image is the same either way. Off in the
 // general pipeline (`--effects all`).
 OCT_CONST(uint, SPEC_ONE_INSTANCE, 34u);
+// The entries of path_trace.comp's workgroup array lane_sample: at least one
+// per invocation (render/path_tracer.h lane_sample_slots says why more).
+OCT_CONST(uint, SPEC_LANE_SAMPLE_SLOTS, 35u);
 // Whether the walks count what they do (RenderSettings::walk_stats,
 // RenderStats.walk); off, the counting compiles out.
 OCT_CONST(uint, SPEC_WALK_STATS, 28u);

@@ -339,17 +339,27 @@ TEST(OctantCulling, AutoIsOffOnlyForSpheresOnLavapipeFromMesa25) {
   EXPECT_TRUE(default_octant_culling(mesa25, true));
 }
 
-// Auto leaf size (optimisation log 110): 16 exactly where the culling's auto
-// is off, kOctreeLeaf elsewhere; the tracer builds with it.
-TEST(OctreeLeaf, AutoIsSixteenOnlyWhereTheCullingIsOff) {
+// Auto leaf size (optimisation logs 110 and 115): 16 exactly where the
+// culling's auto is off, 24 over spheres alone on a GPU, kOctreeLeaf
+// elsewhere; the tracer builds with it.
+TEST(OctreeLeaf, AutoIsSixteenWhereTheCullingIsOffAndLargerForGpuSpheres) {
   const auto [gpu, mesa22, mesa25, mesa26] = RuleDevices();
-  for (bool triangles : {false, true}) {
-    EXPECT_EQ(default_octree_leaf(gpu, triangles), kOctreeLeaf);
-    EXPECT_EQ(default_octree_leaf(mesa22, triangles), kOctreeLeaf);
-  }
+  EXPECT_EQ(default_octree_leaf(gpu, false), 24u);
+  EXPECT_EQ(default_octree_leaf(gpu, true), kOctreeLeaf);
+  for (bool triangles : {false, true}) EXPECT_EQ(default_octree_leaf(mesa22, triangles), kOctreeLeaf);
   EXPECT_EQ(default_octree_leaf(mesa25, false), 16u);
   EXPECT_EQ(default_octree_leaf(mesa26, false), 16u);
   EXPECT_EQ(default_octree_leaf(mesa25, true), kOctreeLeaf);
+}
+
+// lane_sample's workgroup array (optimisation log 114): twice the
+// invocations on NVIDIA's driver, one entry each elsewhere.
+TEST(LaneSampleSlots, TwiceTheInvocationsOnlyOnNvidiasDriver) {
+  auto [gpu, mesa22, mesa25, mesa26] = RuleDevices();
+  const uint32_t invocations = gpu::WORKGROUP_SIZE * gpu::WORKGROUP_SIZE;
+  for (const DeviceInfo& d : {gpu, mesa22, mesa25, mesa26}) EXPECT_EQ(lane_sample_slots(d), invocations);
+  gpu.nvidia = true;
+  EXPECT_EQ(lane_sample_slots(gpu), 2 * invocations);
 }
 
 // The tracer resolves the per-device autos (the octant culling, log 106; the
