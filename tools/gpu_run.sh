@@ -19,7 +19,8 @@
 #   - suite NAME LIMIT: build-gpu/tests/NAME with a time limit of LIMIT
 #     seconds, into $R/NAME.txt, its rc and gtest's PASSED/FAILED lines in $T;
 #   - gpu_suites: the GPU suites at once (the hard cases in four shards,
-#     accel_test, render_test's tail-queue case; 240 s each at most) while
+#     accel_test, render_test's tail-queue case; 400 s each at most, each
+#     with its exit status) while
 #     the peer builds (.peers/karim, when carried), one line each in $T;
 #   - peer NAME [RENDER FLAGS]: tools/peer/compare.py side by side into
 #     $R/NAME, its two rows in $T;
@@ -47,7 +48,8 @@ same_image() {
   rm -f "$R/same_1.pfm" "$R/same_2.pfm"
 }
 # gtest's PASSED/FAILED lines of a test's output FILE, on one line.
-gtest_result() { grep -E '^\[  (PASSED|FAILED)' "$1" | tr '\n' ' '; }
+# With gpu_suites' exit status line (124: its time limit cut it off).
+gtest_result() { grep -E '^\[  (PASSED|FAILED|rc=)' "$1" | tr '\n' ' '; }
 suite() {
   timeout "$2" "build-gpu/tests/$1" > "$R/$1.txt" 2>&1
   echo "$1 rc=$? $(gtest_result "$R/$1.txt")" >> "$T"
@@ -57,10 +59,12 @@ gpu_suites() {
   mkdir -p build-gpu/tests/tmp
   local k
   for k in 0 1 2 3; do
-    GTEST_TOTAL_SHARDS=4 GTEST_SHARD_INDEX=$k timeout 240 build-gpu/tests/hardcases_test > "$R/hardcases_$k.txt" 2>&1 &
+    (GTEST_TOTAL_SHARDS=4 GTEST_SHARD_INDEX=$k timeout 400 build-gpu/tests/hardcases_test > "$R/hardcases_$k.txt" 2>&1
+     echo "[  rc=$? ]" >> "$R/hardcases_$k.txt") &
   done
-  timeout 240 build-gpu/tests/accel_test > "$R/accel_test.txt" 2>&1 &
-  timeout 240 build-gpu/tests/render_test --gtest_filter='*TailQueue*' > "$R/render_test.txt" 2>&1 &
+  (timeout 400 build-gpu/tests/accel_test > "$R/accel_test.txt" 2>&1; echo "[  rc=$? ]" >> "$R/accel_test.txt") &
+  (timeout 400 build-gpu/tests/render_test --gtest_filter='*TailQueue*' > "$R/render_test.txt" 2>&1
+   echo "[  rc=$? ]" >> "$R/render_test.txt") &
   [ -d .peers/karim ] && (cd .peers/karim && ./build.sh > "$R/peer_build.log" 2>&1) &
   wait
   for k in 0 1 2 3; do echo "hardcases shard $k: $(gtest_result "$R/hardcases_$k.txt")" >> "$T"; done
