@@ -159,7 +159,8 @@ struct RenderOptions {
         ->capture_default_str();
     cmd.add_option("--octree-leaf", settings.octree.leaf_size,
                    "Octree: split cells holding more primitives than this (0: auto, 10; 16 where the octant culling's "
-                   "auto is off: scenes without triangles on lavapipe from Mesa 25); same image, other speed")
+                   "auto is off: scenes without triangles on lavapipe from Mesa 25; 24 for scenes without triangles "
+                   "on a GPU); same image, other speed")
         ->capture_default_str();
     cmd.add_option("--octree-depth", settings.octree.max_depth, "Octree: maximum depth")->capture_default_str();
     cmd.add_option("--octree-refs", settings.octree.max_refs,
