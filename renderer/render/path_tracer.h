@@ -117,11 +117,13 @@ inline constexpr uint32_t kOctreeLeafGpuSpheres = 24;
 // The entries of path_trace.comp's workgroup array lane_sample (its
 // SPEC_LANE_SAMPLE_SLOTS): one per invocation is all it uses, but twice that
 // on NVIDIA's driver, whose compiler budgets the pipeline's registers by the
-// workgroup memory it declares: 40 registers with 1,792 bytes, 47 with
-// 2,048, and the walks 3.5-4.1% faster on the H100 (the peer's scene with
-// either structure; 8,000 spheres 2%, the meshes within 1%); eight times the
-// entries gave 50-56 registers and 57-72% slower passes, one more word
-// nothing (optimisation log 114). The image is the same.
+// workgroup memory it declares: below 96 entries (64 invocations) it gives
+// 40 registers and adds 768 bytes of workgroup memory of its own, from 96 to
+// 160 47 registers and none, and the walks are 3.5-4.8% faster on the H100
+// (the peer's scene with either structure; 8,000 spheres 2%, the meshes
+// within 1%); from 192 entries 57 registers and slower again (eight times
+// the entries: 57-72% slower). 128 sits inside the plateau (optimisation
+// log 114). The image is the same.
 uint32_t lane_sample_slots(const DeviceInfo& device);
 
 // Called after each batch of passes: passes done, total passes.
