@@ -54,17 +54,22 @@ suite() {
   timeout "$2" "build-gpu/tests/$1" > "$R/$1.txt" 2>&1
   echo "$1 rc=$? $(gtest_result "$R/$1.txt")" >> "$T"
 }
+# gpu_suites' runner: COMMAND... with a 400 s limit into FILE, its exit
+# status (124: the limit cut it off) as FILE's last line.
+suite_logged() {
+  local file=$1; shift
+  timeout 400 "$@" > "$file" 2>&1
+  echo "[  rc=$? ]" >> "$file"
+}
 gpu_suites() {
   export OCTRACE_TEST_DEVICE=gpu
   mkdir -p build-gpu/tests/tmp
   local k
   for k in 0 1 2 3; do
-    (GTEST_TOTAL_SHARDS=4 GTEST_SHARD_INDEX=$k timeout 400 build-gpu/tests/hardcases_test > "$R/hardcases_$k.txt" 2>&1
-     echo "[  rc=$? ]" >> "$R/hardcases_$k.txt") &
+    GTEST_TOTAL_SHARDS=4 GTEST_SHARD_INDEX=$k suite_logged "$R/hardcases_$k.txt" build-gpu/tests/hardcases_test &
   done
-  (timeout 400 build-gpu/tests/accel_test > "$R/accel_test.txt" 2>&1; echo "[  rc=$? ]" >> "$R/accel_test.txt") &
-  (timeout 400 build-gpu/tests/render_test --gtest_filter='*TailQueue*' > "$R/render_test.txt" 2>&1
-   echo "[  rc=$? ]" >> "$R/render_test.txt") &
+  suite_logged "$R/accel_test.txt" build-gpu/tests/accel_test &
+  suite_logged "$R/render_test.txt" build-gpu/tests/render_test --gtest_filter='*TailQueue*' &
   [ -d .peers/karim ] && (cd .peers/karim && ./build.sh > "$R/peer_build.log" 2>&1) &
   wait
   for k in 0 1 2 3; do echo "hardcases shard $k: $(gtest_result "$R/hardcases_$k.txt")" >> "$T"; done

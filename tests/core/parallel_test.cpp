@@ -37,10 +37,7 @@ TEST(ParallelItems, StatePerThreadKeptAcrossItems) {
   std::atomic<bool> foreign{false};
   parallel_items(
       kItems,
-      [&] {
-        Counter c;
-        return c;
-      },
+      [] { return Counter{}; },
       [&](Counter& c, size_t i) {
         if (c.items == 0) {
           std::lock_guard<std::mutex> lock(m);

@@ -363,7 +363,7 @@ TEST(LaneSampleSlots, TwiceTheInvocationsOnlyOnNvidiasDriver) {
 }
 
 // The tracer resolves the per-device autos (the octant culling, log 106; the
-// octree's leaf size, log 110) with the rules above, and takes a setting as
+// octree's leaf size, logs 110 and 115) with the rules above, and takes a setting as
 // given; a BVH's top level takes the top level's node cost (bvh.h
 // kBvhTopNodeCost, log 112), which makes another tree than the meshes' cost.
 TEST_F(RenderTest, TreeSettingsResolvedForTheDeviceAndLevel) {
