@@ -208,7 +208,8 @@ struct RenderOptions {
         ->capture_default_str();
     cmd.add_option("--sample-lanes", settings.sample_lanes,
                    "Invocations sharing a pixel's samples in a dispatch: 1, 2, 4, 8 (0: auto: 4, 8 for "
-                   "triangles without the tail queue, 1 on a CPU device); same image")
+                   "triangles without the tail queue, 2 or 1 where a dispatch's samples would leave 4 lanes "
+                   "idle, 1 on a CPU device); same image")
         ->capture_default_str();
     cmd.add_option("--octant-culling", octant_culling,
                    "Octree walk: skip children in octants the ray cannot reach: auto | on | off (auto: on, but "

@@ -249,8 +249,9 @@ uint32_t next_batch(double per_pass_ms, uint32_t lanes, double target_ms = 250.0
 // most `count`, a power of two, and few enough that the workgroup count
 // stays within the guaranteed 65535. Auto (0): 4, and 8 for scenes with
 // triangles rendered in whole paths (no tail queue: `staged` false;
-// optimisation logs 14, 31 and 71). Lanes decide which invocation traces
-// which sample, never the image.
+// optimisation logs 14, 31 and 71); with the tail queue 2 or 1 where 4
+// would leave lanes of the last round idle (10 samples: 2; log 116). Lanes
+// decide which invocation traces which sample, never the image.
 uint32_t sample_lanes(uint32_t setting, bool triangles, bool staged, uint32_t count, uint32_t height);
 
 // What a caller may do to a render while it runs.

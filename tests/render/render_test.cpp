@@ -299,15 +299,26 @@ TEST_F(RenderTest, CpuDeviceBatchesAreWholeImagesPerThread) {
 }
 
 // Auto lanes: 4, and 8 only for triangles in whole paths (optimisation log
-// 71); never more than the dispatch's samples, and few enough rows of
-// workgroups for the guaranteed 65535.
-TEST(SampleLanes, AutoIsFourAndEightOnlyForTrianglesInWholePaths) {
+// 71), fewer with the tail queue where 4 would leave lanes idle (log 116);
+// never more than the dispatch's samples, and few enough rows of workgroups
+// for the guaranteed 65535.
+TEST(SampleLanes, AutoIsFourEightForTrianglesInWholePathsFewerWhereLanesIdle) {
   EXPECT_EQ(sample_lanes(0, false, true, 8, 800), 4u);   // spheres, tail queue
   EXPECT_EQ(sample_lanes(0, false, false, 8, 800), 4u);  // spheres, whole paths
   EXPECT_EQ(sample_lanes(0, true, true, 8, 800), 4u);    // triangles, tail queue
   EXPECT_EQ(sample_lanes(0, true, false, 8, 800), 8u);   // triangles, whole paths
   EXPECT_EQ(sample_lanes(2, true, false, 8, 800), 2u);   // the setting wins
-  EXPECT_EQ(sample_lanes(0, false, true, 3, 800), 2u);   // at most the samples, a power of two
+  // With the tail queue, fewer lanes where 4 would leave some of the last
+  // round's idle (log 116): 10 samples in 2 lanes, 5 rounds, none idle.
+  EXPECT_EQ(sample_lanes(0, false, true, 10, 800), 2u);
+  EXPECT_EQ(sample_lanes(0, true, true, 10, 800), 2u);
+  EXPECT_EQ(sample_lanes(0, false, true, 16, 800), 4u);
+  EXPECT_EQ(sample_lanes(0, false, true, 6, 800), 2u);
+  EXPECT_EQ(sample_lanes(0, false, true, 3, 800), 1u);
+  EXPECT_EQ(sample_lanes(0, false, false, 10, 800), 4u);  // whole paths: a dispatch in whole rounds
+  EXPECT_EQ(sample_lanes(0, true, false, 10, 800), 8u);
+  EXPECT_EQ(sample_lanes(4, false, true, 10, 800), 4u);   // the setting wins
+  EXPECT_EQ(sample_lanes(0, false, false, 3, 800), 2u);   // at most the samples, a power of two
   EXPECT_EQ(sample_lanes(8, true, true, 1, 800), 1u);
   // 8 lanes make workgroups one row high: 70,000 rows would be 70,000 of them.
   EXPECT_EQ(sample_lanes(8, true, true, 8, 70000), 4u);
