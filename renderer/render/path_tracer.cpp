@@ -152,10 +152,9 @@ void PathTracer::State::create_accumulation() {
   create_buffer(s.accum_comp, s.ctx, bytes, false, "accumulation buffer");
   create_buffer(s.accum_sq, s.ctx, bytes, false, "accumulation buffer");
   // The tail queue: as many samples per head dispatch as tail_values holds
-  // (in whole rounds of lanes, at most 16), and a queue for a quarter of them, at most
-  // what one indirect dispatch of 65535 workgroups covers. A head that
-  // finds the queue full finishes its path itself: the size is a matter of
-  // speed, not of the image.
+  // (in whole rounds of lanes, at most 16), and a queue for part of their
+  // paths (tail_queue_entries). A head that finds the queue full finishes
+  // its path itself: the size is a matter of speed, not of the image.
   s.tail_samples = s.tail_capacity = 0;
   // With tail levels, two halves: a level reads one and queues into the other.
   const uint64_t halves = s.tail_step() > 0 ? 2 : 1;
@@ -178,13 +177,9 @@ void PathTracer::State::create_accumulation() {
     if (granule > 1 && s.tail_samples >= granule) s.tail_samples -= s.tail_samples % granule;
     // No more than a dispatch takes.
     if (s.samples_per_dispatch()) s.tail_samples = std::min(s.tail_samples, s.samples_per_dispatch());
-    const uint64_t group = gpu::WORKGROUP_SIZE * gpu::WORKGROUP_SIZE;
-    // With tail levels the queue is two halves of this many entries, and
-    // both fit one buffer.
     if (s.tail_depth() > 0)
-      s.tail_capacity = uint32_t(std::min<uint64_t>({std::max<uint64_t>(s.pixels() * s.tail_samples / 4, group),
-                                                     65535 * group, budget / sizeof(gpu::GpuTailPath),
-                                                     limit / (halves * sizeof(gpu::GpuTailPath))}));
+      s.tail_capacity = tail_queue_entries(s.pixels() * s.tail_samples, !s.ctx.info.software,
+                                           s.ctx.info.software ? budget : device_memory(s.ctx).bytes, limit, halves);
     if (s.settings.tail_queue_entries) s.tail_capacity = std::min(s.tail_capacity, s.settings.tail_queue_entries);
   }
   create_buffer(s.tail_values, s.ctx, uint64_t(s.tail_samples) * s.pixels() * sizeof(glm::vec4), false,
@@ -192,6 +187,12 @@ void PathTracer::State::create_accumulation() {
   create_buffer(s.tail_queue, s.ctx, halves * s.tail_capacity * sizeof(gpu::GpuTailPath), false, "tail queue");
   create_buffer(s.tail_control, s.ctx, gpu::MAX_TAIL_LEVELS * sizeof(gpu::TailControl), false,
                 "tail queue's control");
+}
+
+uint32_t tail_queue_entries(uint64_t paths, bool gpu, uint64_t bytes, uint64_t limit, uint64_t halves) {
+  const uint64_t entry = sizeof(gpu::GpuTailPath), group = gpu::WORKGROUP_SIZE * gpu::WORKGROUP_SIZE;
+  const uint64_t wanted = gpu ? std::min(paths / 2, bytes / 8 / (halves * entry)) : std::min(paths / 4, bytes / entry);
+  return uint32_t(std::min<uint64_t>({std::max(wanted, group), 65535 * group, limit / (halves * entry)}));
 }
 
 void PathTracer::State::bind_accumulation() {

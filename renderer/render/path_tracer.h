@@ -244,6 +244,18 @@ void resolve_accumulation(const Accumulation& acc, RenderResult& r);
 // still waits no longer than that.
 uint32_t next_batch(double per_pass_ms, uint32_t lanes, double target_ms = 250.0);
 
+// The tail queue's entries (each of its `halves`, which share one buffer)
+// for head dispatches of `paths` paths. On a GPU half the paths, the whole
+// queue in an eighth of the device's memory `bytes`: a path that finds the
+// queue full finishes in its head, and where more than the queue's share
+// of paths outlive the head's bounces the heads run long (8,000 spheres at
+// 16 samples a dispatch, 1200x800: 26% faster with the 4.19M entries an
+// indirect dispatch covers than with the 2.8M of the values' 256 MiB
+// budget; optimisation log 117). On a CPU device a quarter of the paths in
+// `bytes` a half. At least one workgroup's, at most what an indirect
+// dispatch of 65535 workgroups covers and a buffer of `limit` bytes holds.
+uint32_t tail_queue_entries(uint64_t paths, bool gpu, uint64_t bytes, uint64_t limit, uint64_t halves);
+
 // Invocations per pixel for a dispatch of `count` samples (PassParams) of an
 // image `height` rows high: the setting (RenderSettings::sample_lanes), at
 // most `count`, a power of two, and few enough that the workgroup count

@@ -298,6 +298,25 @@ TEST_F(RenderTest, CpuDeviceBatchesAreWholeImagesPerThread) {
   }
 }
 
+// The tail queue's entries (optimisation log 117): on a GPU up to half a
+// dispatch's paths where the whole queue (two halves with tail levels) fits
+// an eighth of the device's memory; on a CPU device a quarter in the
+// budget a half; never fewer than a workgroup's, more than an indirect
+// dispatch's 65535 workgroups cover or a buffer holds.
+TEST(TailQueue, EntriesUpToHalfTheDispatchsPathsOnAGpu) {
+  const uint64_t entry = sizeof(gpu::GpuTailPath), gib = uint64_t(1) << 30, big = uint64_t(80) << 30;
+  const uint64_t most = 65535 * 64;  // an indirect dispatch's workgroups of 64
+  EXPECT_EQ(tail_queue_entries(1200 * 800 * 16, true, big, 4 * gib, 2), most);  // 1200x800, 16 samples
+  EXPECT_EQ(tail_queue_entries(1200 * 800 * 8, true, big, 4 * gib, 2), 1200 * 800 * 8 / 2);
+  EXPECT_EQ(tail_queue_entries(1200 * 800 * 8, true, 4 * gib, 4 * gib, 2), 4 * gib / 8 / (2 * entry));  // 4 GiB
+  EXPECT_EQ(tail_queue_entries(1200 * 800 * 8, true, 2 * gib, 4 * gib, 1), 2 * gib / 8 / entry);
+  EXPECT_EQ(tail_queue_entries(1200 * 800 * 8, true, big, gib / 8, 2), gib / 8 / (2 * entry));  // the buffer
+  EXPECT_EQ(tail_queue_entries(100, true, big, 4 * gib, 2), 64u);                                // a workgroup
+  const uint64_t cpu_budget = uint64_t(32) << 20;
+  EXPECT_EQ(tail_queue_entries(160 * 90 * 8, false, cpu_budget, 4 * gib, 2), 160 * 90 * 8 / 4);
+  EXPECT_EQ(tail_queue_entries(1600 * 900 * 8, false, cpu_budget, 4 * gib, 2), cpu_budget / entry);
+}
+
 // Auto lanes: 4, and 8 only for triangles in whole paths (optimisation log
 // 71), fewer with the tail queue where 4 would leave lanes idle (log 116);
 // never more than the dispatch's samples, and few enough rows of workgroups
