@@ -24,6 +24,12 @@
 #     the peer builds (.peers/karim, when carried), one line each in $T;
 #   - peer NAME [RENDER FLAGS]: tools/peer/compare.py side by side into
 #     $R/NAME, its two rows in $T;
+#   - peer_both: the peer built (unless gpu_suites built it) and side by
+#     side with `--accel bvh` and the octree (peer_bvh, peer_octree);
+#   - bench_goals: `bench` of the goals' rows (488 / 8,000 / 1M spheres
+#     with both structures, the balloon and the engine, 10M with the BVH)
+#     into $OUT/spheres.log, meshes.log and spheres10m.log, their figures
+#     in $T;
 #   - gpu_finish: $R tarred into $OUT/results.tgz, $T printed.
 set -u
 rm -rf build-gpu; mkdir build-gpu; tar xf "$(ls .gpub/bin.txz .gpub/bin.tgz 2>/dev/null | head -1)" -C build-gpu
@@ -81,5 +87,24 @@ peer() {
   local name=$1; shift
   timeout 70 python3 tools/peer/compare.py --peer .peers/karim --octrace "$B" --out "$R/$name" ${1:+--octrace-args "$*"} > "$R/$name.log" 2>&1
   echo "$name rc=$?: $(grep -E '\| (CUDA|octrace)' "$R/$name/peer_compare.md" | tr '\n' ' ')" >> "$T"
+}
+peer_both() {
+  if [ ! -f "$R/peer_build.log" ]; then
+    (cd .peers/karim && ./build.sh > "$R/peer_build.log" 2>&1); echo "peer build rc=$?" >> "$T"
+  fi
+  peer peer_bvh --accel bvh
+  peer peer_octree --accel octree
+}
+# One `bench` of the goals' rows: NAME, a time limit in seconds, the lines
+# of its log that go into $T (a grep pattern), then bench's flags.
+bench_logged() {
+  local name=$1 limit=$2 pattern=$3; shift 3
+  timeout "$limit" "$B" bench --device gpu "$@" > "$OUT/$name.log" 2>&1
+  echo "bench $name rc=$?" >> "$T"; grep -E "$pattern" "$OUT/$name.log" | grep -v '^[#|]' >> "$T"
+}
+bench_goals() {
+  bench_logged spheres 150 " ms" --accel octree,bvh --spheres 488,8000,1000000 --radius 0.1
+  bench_logged meshes 90 "rays/s$" --accel octree,bvh --scene .assets/balloon/scene.gltf,.assets/2CylinderEngine.glb
+  bench_logged spheres10m 150 " ms" --accel bvh --spheres 10000000 --radius 0.1
 }
 gpu_finish() { tar czf "$OUT/results.tgz" -C /tmp res; cat "$T"; }
