@@ -1,4 +1,5 @@
-# Prepared in session 35, for the next session with a GPU (after next1.sh):
+# Prepared in session 35 for the next session, then run in session 35
+# itself as run 8 (18:02 UTC, its last GPU time; log 117):
 # log 117's queue past the 4,194,240 entries that 65535 workgroups cover.
 # NVIDIA's driver allows 2^31 - 1 workgroups along x; a probe
 # (tail_groups_env.patch: OCTRACE_TAIL_GROUPS) lets the queue take up to
