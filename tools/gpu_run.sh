@@ -9,7 +9,8 @@
 #     loader at the NVIDIA ICD if B does not find a device without it;
 #   - links /work/main to the checkout (the tests' data paths);
 #   - R=/tmp/res for raw results, T=$OUT/summary.txt started with the date,
-#     build-gpu/COMMIT and the GPU; S = the goals' render settings;
+#     build-gpu/COMMIT and the GPU; S = the goals' render settings, BENCH
+#     `bench` on the GPU;
 #   - ab NAME FLAGS...: tools/ab_render.py of the variants in the array V
 #     (set by the script: V=(--variant base=BIN=$A --variant new=)),
 #     AB_ROUNDS rounds (5 unless set), into $R/ab_NAME.md, one line per
@@ -41,6 +42,7 @@ mkdir -p /work; [ -e /work/main ] || ln -s "$PWD" /work/main
 R=/tmp/res; rm -rf "$R"; mkdir -p "$R"; T=$OUT/summary.txt
 { date -u; cat build-gpu/COMMIT; nvidia-smi --query-gpu=name,driver_version,clocks.max.sm --format=csv,noheader; } > "$T"
 S="--size 1200x800 --spp 10 --depth 50 --device gpu"
+BENCH="bench --device gpu"
 ab() {
   local name=$1; shift
   local labels; labels=$(printf '%s\n' "${V[@]}" | grep -v '^--variant$' | sed 's/=.*//' | paste -sd'|')
@@ -99,7 +101,7 @@ peer_both() {
 # of its log that go into $T (a grep pattern), then bench's flags.
 bench_logged() {
   local name=$1 limit=$2 pattern=$3; shift 3
-  timeout "$limit" "$B" bench --device gpu "$@" > "$OUT/$name.log" 2>&1
+  timeout "$limit" "$B" $BENCH "$@" > "$OUT/$name.log" 2>&1
   echo "bench $name rc=$?" >> "$T"; grep -E "$pattern" "$OUT/$name.log" | grep -v '^[#|]' >> "$T"
 }
 bench_goals() {
