@@ -22,7 +22,8 @@
 #   - gpu_suites: the GPU suites at once (the hard cases in four shards,
 #     accel_test, render_test's tail-queue case; 400 s each at most, each
 #     with its exit status) while
-#     the peer builds (.peers/karim, when carried), one line each in $T;
+#     the peer builds (.peers/karim, when carried; peer_build), one line
+#     each in $T;
 #   - peer NAME [RENDER FLAGS]: tools/peer/compare.py side by side into
 #     $R/NAME, its two rows in $T;
 #   - peer_both: the peer built (unless gpu_suites built it) and side by
@@ -69,6 +70,8 @@ suite_logged() {
   timeout 400 "$@" > "$file" 2>&1
   echo "[  rc=$? ]" >> "$file"
 }
+# The peer's build (.peers/karim) into $R/peer_build.log, its exit status in $T.
+peer_build() { (cd .peers/karim && ./build.sh > "$R/peer_build.log" 2>&1); echo "peer build rc=$?" >> "$T"; }
 gpu_suites() {
   export OCTRACE_TEST_DEVICE=gpu
   mkdir -p build-gpu/tests/tmp
@@ -78,7 +81,7 @@ gpu_suites() {
   done
   suite_logged "$R/accel_test.txt" build-gpu/tests/accel_test &
   suite_logged "$R/render_test.txt" build-gpu/tests/render_test --gtest_filter='*TailQueue*' &
-  [ -d .peers/karim ] && (cd .peers/karim && ./build.sh > "$R/peer_build.log" 2>&1) &
+  [ -d .peers/karim ] && peer_build &
   wait
   for k in 0 1 2 3; do echo "hardcases shard $k: $(gtest_result "$R/hardcases_$k.txt")" >> "$T"; done
   echo "accel_test: $(gtest_result "$R/accel_test.txt")" >> "$T"
@@ -91,9 +94,7 @@ peer() {
   echo "$name rc=$?: $(grep -E '\| (CUDA|octrace)' "$R/$name/peer_compare.md" | tr '\n' ' ')" >> "$T"
 }
 peer_both() {
-  if [ ! -f "$R/peer_build.log" ]; then
-    (cd .peers/karim && ./build.sh > "$R/peer_build.log" 2>&1); echo "peer build rc=$?" >> "$T"
-  fi
+  [ -f "$R/peer_build.log" ] || peer_build
   peer peer_bvh --accel bvh
   peer peer_octree --accel octree
 }
