@@ -130,8 +130,8 @@ struct RenderSettings {
   static constexpr uint32_t kTailAuto = UINT32_MAX;
   // Paths the tail queue holds per dispatch (0: auto, tail_queue_entries
   // in render/path_tracer.h: on a GPU up to half the dispatch's paths); a
-  // path past it finishes in the head. The image is the same;
-  // tests use a small one.
+  // path past it finishes in the head. The image is the same; tests use a
+  // small one.
   uint32_t tail_queue_entries = 0;
   // Tail levels (shaders/path_trace.comp tail_pass): the first tail
   // dispatch traces its paths this many bounces on, each next one twice as
