@@ -13,8 +13,8 @@ AB_TIMEOUT=300 ab s1m_bvh $S --spheres 1000000 --radius 0.1 --accel bvh
 ab s8000_bvh $S --spheres 8000 --radius 0.1 --accel bvh
 # The image: the probe's tree against HEAD's, bit for bit.
 env OCTRACE_SPATIAL_ALL=1 OCTRACE_SPATIAL_Y=1 OCTRACE_SPATIAL_F=0.2 OCTRACE_SPHERE_REFS=4 \
-  "$P" render $S --spheres 1000000 --radius 0.1 --accel bvh --walk-stats --json -o "$R/y.pfm" > "$R/y.json" 2>&1
-"$B" render $S --spheres 1000000 --radius 0.1 --accel bvh --walk-stats --json -o "$R/b.pfm" > "$R/b.json" 2>&1
+  "$P" render $S --spheres 1000000 --radius 0.1 --accel bvh --walk-stats --json -o "$R/y.pfm" > "$R/y.json" 2> "$R/y.err"
+"$B" render $S --spheres 1000000 --radius 0.1 --accel bvh --walk-stats --json -o "$R/b.pfm" > "$R/b.json" 2> "$R/b.err"
 cmp -s "$R/y.pfm" "$R/b.pfm" && echo "s1m identical (probe vs base)" >> "$T" || echo "s1m DIFFERENT (probe vs base)" >> "$T"
 python3 - "$R/b.json" "$R/y.json" >> "$T" <<'PY'
 import json, sys
