@@ -13,8 +13,9 @@
 #     `bench` on the GPU;
 #   - ab NAME FLAGS...: tools/ab_render.py of the variants in the array V
 #     (set by the script: V=(--variant base=BIN=$A --variant new=)),
-#     AB_ROUNDS rounds (5 unless set), into $R/ab_NAME.md, one line per
-#     variant in $T;
+#     AB_ROUNDS rounds (5 unless set), AB_METRIC (ab_render.py's
+#     --metric: device time unless set, `wall` for the whole process),
+#     into $R/ab_NAME.md, one line per variant in $T;
 #   - same_image LABEL BIN1 BIN2 FLAGS...: renders FLAGS with both
 #     binaries and says in $T whether the two PFM files are identical;
 #   - suite NAME LIMIT: build-gpu/tests/NAME with a time limit of LIMIT
@@ -47,7 +48,8 @@ BENCH="bench --device gpu"
 ab() {
   local name=$1; shift
   local labels; labels=$(printf '%s\n' "${V[@]}" | grep -v '^--variant$' | sed 's/=.*//' | paste -sd'|')
-  timeout ${AB_TIMEOUT:-90} python3 tools/ab_render.py --octrace "$B" --rounds ${AB_ROUNDS:-5} --render "$*" "${V[@]}" --out "$R/ab_$name.md" > "$R/ab_$name.log" 2>&1
+  timeout ${AB_TIMEOUT:-90} python3 tools/ab_render.py --octrace "$B" --rounds ${AB_ROUNDS:-5} ${AB_METRIC:+--metric "$AB_METRIC"} \
+    --render "$*" "${V[@]}" --out "$R/ab_$name.md" > "$R/ab_$name.log" 2>&1
   echo "$name rc=$?: $(grep -E "^\| ($labels) " "$R/ab_$name.md" | cut -d'|' -f2,5,6,7,9 | tr '\n' ' ')" >> "$T"
 }
 same_image() {
