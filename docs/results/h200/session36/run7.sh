@@ -15,8 +15,8 @@ ab peer_d1_bvh ${P/--depth 50/--depth 1} --accel bvh
 ab s488_bvh $S --spheres 488 --radius 0.1 --accel bvh
 ab s8000_bvh $S --spheres 8000 --radius 0.1 --accel bvh
 AB_TIMEOUT=120 ab s1m_bvh $S --spheres 1000000 --radius 0.1 --accel bvh
-$X render $P --accel bvh --pipeline-stats --json -q -o "$R/x.pfm" > "$R/axis_stats.json" 2>&1
-$B render $P --accel bvh --pipeline-stats --json -q -o "$R/y.pfm" > "$R/base_stats.json" 2>&1
+$X render $P --accel bvh --pipeline-stats --json -q -o "$R/x.pfm" > "$R/axis_stats.json" 2> "$R/axis_stats.err"
+$B render $P --accel bvh --pipeline-stats --json -q -o "$R/y.pfm" > "$R/base_stats.json" 2> "$R/base_stats.err"
 cmp -s "$R/x.pfm" "$R/y.pfm" && echo "peer identical" >> "$T" || echo "peer DIFFERENT" >> "$T"
 python3 - "$R/base_stats.json" "$R/axis_stats.json" >> "$T" <<'PY'
 import json, sys
