@@ -15,6 +15,9 @@ sizes only. This reads the code itself, in two steps:
      "NVVM", then the driver's shader object ("NVuc"), a table of sections
      (sections() below). Writes the code section of each as
      DIR/pipeline_N.code and prints its size, registers and local memory.
+     (Where the GPU machine's python cannot import zstandard, as its 3.12
+     could not with Debian 12's package in session 36, bring FILE back and
+     unpack it here; step 3 needs only the .code files.)
   3. tools/nvidia_sass.py disasm DIR --nvdisasm PATH [--arch SM90]
      nvdisasm -b ARCH (raw code) on each .code file -> DIR/pipeline_N.sass,
      on the GPU machine (nvdisasm comes with the CUDA toolkit).
