@@ -139,6 +139,7 @@ struct RenderOptions {
   std::string effects = "auto";
   std::string nee = "on";
   std::string octant_culling = "auto";
+  std::string bvh_walk = "auto";
   std::string tail_depth = "auto";
   std::string tail_step = "auto";
   std::string tail_fill = "auto";
@@ -215,6 +216,11 @@ struct RenderOptions {
                    "Octree walk: skip children in octants the ray cannot reach: auto | on | off (auto: on, but "
                    "off for scenes without triangles on lavapipe from Mesa 25); same image, other speed")
         ->capture_default_str();
+    cmd.add_option("--bvh-walk", bvh_walk,
+                   "BVH (--accel bvh): the top level's binary walk: auto | one-loop | while-while (auto: "
+                   "while-while on a GPU where its leaves hold 4 or more references on average, as in dense "
+                   "sphere fields; one loop otherwise); same image, other speed")
+        ->capture_default_str();
     cmd.add_option("--tail-depth", tail_depth,
                    "Tail queue: paths still going at this bounce finish in a dispatch of their own: auto | off | "
                    "BOUNCE (auto: " + std::to_string(kTailDepthDefault) +
@@ -275,6 +281,9 @@ struct RenderOptions {
     s.octant_culling = octant_culling == "auto" ? OctantCulling::Auto
                        : octant_culling == "on" ? OctantCulling::On
                                                 : OctantCulling::Off;
+    if (bvh_walk != "auto" && bvh_walk != "one-loop" && bvh_walk != "while-while")
+      throw SettingError("bvh_walk", ": expected auto, one-loop or while-while, got \"" + bvh_walk + "\"");
+    s.bvh_walk = bvh_walk == "auto" ? BvhWalk::Auto : bvh_walk == "one-loop" ? BvhWalk::OneLoop : BvhWalk::WhileWhile;
     s.tail_depth = parse_tail_count(tail_depth, "tail_depth", "a bounce");
     s.tail_step = parse_tail_count(tail_step, "tail_step", "a bounce count");
     s.tail_fill = parse_tail_count(tail_fill, "tail_fill", "a path count", 1000000000);
@@ -308,6 +317,7 @@ std::string message_for_cli(const SettingError& e) {
       {"effects", "--effects"},
       {"nee", "--nee"},
       {"octant_culling", "--octant-culling"},
+      {"bvh_walk", "--bvh-walk"},
       {"tail_depth", "--tail-depth"},
       {"tail_step", "--tail-step"},
       {"tail_fill", "--tail-fill"},
@@ -755,7 +765,9 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
                   {"bytes_per_primitive", o.bytes_per_primitive},
                   {"width", {{"top", o.bvh_top_width}, {"meshes", o.bvh_mesh_width}}},
                   {"spatial_refs", settings.octree.bvh_spatial_refs},
-                  {"sphere_order", sphere_order_name(o.bvh_sphere_order ? SphereOrder::Tree : SphereOrder::Scene)}};
+                  {"sphere_order", sphere_order_name(o.bvh_sphere_order ? SphereOrder::Tree : SphereOrder::Scene)},
+                  {"top_refs_per_leaf", o.top_leaves ? double(o.top_refs) / o.top_leaves : 0.0},
+                  {"top_walk", result.bvh_top_while ? "while-while" : "one-loop"}};
     }
     if (settings.accel == Accel::Octree) {
       const OctreeStats& o = result.octree;
@@ -800,10 +812,11 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       std::printf("buffers   the scene's arrays split over %u buffers of at most %s (larger than one storage buffer)\n",
                   result.buffer_parts, mib_string(result.buffer_part_bytes).c_str());
     if (settings.accel == Accel::Bvh)
-      std::printf("bvh       %u nodes, %u leaves, depth %u, %.1f bytes/primitive, %u-wide top level, %u-wide meshes%s\n",
+      std::printf("bvh       %u nodes, %u leaves, depth %u, %.1f bytes/primitive, %u-wide top level, %u-wide meshes%s%s\n",
                   result.octree.nodes, result.octree.leaves, result.octree.max_depth_reached,
                   result.octree.bytes_per_primitive, result.octree.bvh_top_width, result.octree.bvh_mesh_width,
-                  result.octree.bvh_sphere_order ? ", spheres in its order" : "");
+                  result.octree.bvh_sphere_order ? ", spheres in its order" : "",
+                  result.bvh_top_while ? ", while-while top walk" : "");
     std::printf("times     scene %.1f ms, %s build %.1f ms, upload %.1f ms, pipeline %.1f ms, render %.1f ms (device)\n",
                 scene_ms, accel_name(settings.accel), t.accel_build_ms, t.upload_ms, t.pipeline_ms,
                 t.render_device_ms);

@@ -81,6 +81,10 @@ struct OctreeStats {
   // A BVH over spheres alone: whether the device holds the spheres in its
   // reference order (render/gpu_scene.cpp device_sphere_order).
   bool bvh_sphere_order = false;
+  // A scene's tree (render/gpu_scene.cpp): the top level's leaves and
+  // references (the meshes' trees come after them in the arrays).
+  uint32_t top_leaves = 0;
+  uint64_t top_refs = 0;
 };
 
 // ---------------------------------------------------------------------------

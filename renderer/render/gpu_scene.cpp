@@ -127,6 +127,8 @@ static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& sce
                 gpu_meshes(scene)};
   Octree& octree = t.octree;
   OctreeStats& st = octree.stats;
+  st.top_leaves = st.leaves;
+  st.top_refs = octree.refs.size();
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const Mesh& mesh = scene.meshes[m];
     // Triangles are clipped to the cells they reach (octree.h ClipFn), and

@@ -59,6 +59,14 @@ struct PathTracer::State {
     if (settings.octant_culling != OctantCulling::Auto) return settings.octant_culling == OctantCulling::On;
     return default_octant_culling(ctx.info, scene_features.triangles);
   }
+  // RenderSettings::bvh_walk for this device and tree: whether the top
+  // level's binary BVH walk is in while-while form.
+  bool bvh_top_while() const {
+    if (scene.tree != Accel::Bvh) return false;
+    if (settings.bvh_walk != BvhWalk::Auto) return settings.bvh_walk == BvhWalk::WhileWhile;
+    const OctreeStats& o = scene.octree;
+    return default_bvh_top_while(ctx.info, o.top_leaves ? double(o.top_refs) / o.top_leaves : 0.0);
+  }
   // RenderSettings::nearest_child for this device: whether the octree walk holds it.
   bool hold_nearest() const {
     if (settings.nearest_child != NearestChild::Auto) return settings.nearest_child == NearestChild::Held;
@@ -277,6 +285,7 @@ void PathTracer::State::create_stage(ComputePipeline& p, uint32_t stage, const u
                            {gpu::SPEC_OCTREE_HOLD_NEAREST, s.hold_nearest()},
                            {gpu::SPEC_BVH_TOP_WIDE, g.tree == Accel::Bvh && g.octree.bvh_top_width > 2},
                            {gpu::SPEC_BVH_MESH_WIDE, g.tree == Accel::Bvh && g.octree.bvh_mesh_width > 2},
+                           {gpu::SPEC_BVH_TOP_WHILE, s.bvh_top_while()},
                            {gpu::SPEC_SPHERES_IN_TREE_ORDER, g.octree.bvh_sphere_order},
                            {gpu::SPEC_ONE_INSTANCE, one_instance()},
                            {gpu::SPEC_WALK_STATS, settings.walk_stats},
@@ -735,6 +744,7 @@ void PathTracer::finish_result(RenderResult& r, Clock::time_point start) {
   r.buffer_part_bytes = buffer_part_bytes();
   r.features = s.features;
   r.octant_culling = s.octant_culling();
+  r.bvh_top_while = s.bvh_top_while();
   r.tail_depth = s.tail_depth();
   r.tail_step = s.tail_step();
   r.tail_fill = s.tail_fill();
@@ -743,6 +753,10 @@ void PathTracer::finish_result(RenderResult& r, Clock::time_point start) {
 
 bool default_octant_culling(const DeviceInfo& device, bool triangles) {
   return triangles || device.llvmpipe_release < 2500;
+}
+
+bool default_bvh_top_while(const DeviceInfo& device, double refs_per_leaf) {
+  return !device.software && refs_per_leaf >= kBvhWhileRefsPerLeaf;
 }
 
 uint32_t default_octree_leaf(const DeviceInfo& device, bool triangles) {

@@ -82,6 +82,7 @@ struct RenderResult {
   uint32_t buffer_parts = 0;
   uint64_t buffer_part_bytes = 0;
   bool octant_culling = true;  // RenderSettings::octant_culling in force
+  bool bvh_top_while = false;  // RenderSettings::bvh_walk in force: while-while (a BVH's top level)
   uint32_t tail_depth = 0;   // the tail queue's bounce in force (RenderSettings::tail_depth; 0: off)
   uint32_t tail_step = 0;    // bounces per tail level in force (RenderSettings::tail_step; 0: one level)
   uint32_t tail_fill = 0;    // RenderSettings::tail_fill in force (0: every level queues its survivors)
@@ -99,6 +100,16 @@ struct RenderResult {
 // elsewhere: on Mesa 22.3.6 culling off is 44% slower, on the H100 1.5-8.6%
 // (logs 29 and 106). Between 22.3 and 25.0 no release was measured.
 bool default_octant_culling(const DeviceInfo& device, bool triangles);
+
+// RenderSettings::bvh_walk's auto: whether the top level's binary BVH walk
+// takes its while-while form on `device`, for a top level whose leaves hold
+// `refs_per_leaf` references on average. On a GPU where that is at least
+// kBvhWhileRefsPerLeaf: on the H200 the 1M-sphere field (r = 0.1, leaves of
+// 6.7 spheres, 6.4 tested a leaf) 19.7% faster, the sparse fields of 1.8-3.1
+// a leaf 1.3-4.0% slower (the peer's scene +4.0%, 488 spheres +3.5%, 8,000
+// +1.3%; optimisation log 123). One loop on CPU devices (not measured there).
+bool default_bvh_top_while(const DeviceInfo& device, double refs_per_leaf);
+inline constexpr double kBvhWhileRefsPerLeaf = 4.0;
 
 // RenderSettings::octree.leaf_size's auto (0): kOctreeLeaf (10), but 16 where
 // default_octant_culling is off (scenes without triangles on lavapipe from

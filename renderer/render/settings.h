@@ -51,6 +51,8 @@ enum class BigList { Auto, FirstLeaf, OwnLoop };
 enum class NearestChild { Auto, Pushed, Held };
 // Whether the octree walk culls children by octant (RenderSettings::octant_culling).
 enum class OctantCulling { Auto, On, Off };
+// The form of the top level's binary BVH walk (RenderSettings::bvh_walk).
+enum class BvhWalk { Auto, OneLoop, WhileWhile };
 
 struct RenderSettings {
   Accel accel = Accel::Octree;
@@ -96,6 +98,14 @@ struct RenderSettings {
   // without triangles on lavapipe from Mesa 25 (default_octant_culling), on
   // otherwise.
   OctantCulling octant_culling = OctantCulling::Auto;
+  // The top level's binary BVH walk (`--accel bvh`; shaders/accel/bvh_walk.glsl):
+  // one loop whose every step is a node or a leaf, or while-while (node
+  // steps until the invocation holds a leaf, then the leaf, so that a
+  // subgroup tests its leaves together). The image is the same either way.
+  // Auto: while-while on a GPU where the top level's leaves hold at least
+  // kBvhWhileRefsPerLeaf references on average (render/path_tracer.h
+  // default_bvh_top_while), one loop otherwise.
+  BvhWalk bvh_walk = BvhWalk::Auto;
   // Where the octree walks test a tree's big list (primitives too large for
   // its cells; shaders/accel/octree_walk.glsl): as the walk's first leaf, or
   // in a loop of the caller's. The image is the same either way. Auto: its

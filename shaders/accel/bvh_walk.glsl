@@ -84,8 +84,53 @@ uvec2 bvh_stack[BVH_STACK_SIZE];
 uint bvh_sp = 0;
 uint bvh_first = bvh_root.first, bvh_count = bvh_root.count_or_mask;
 bool bvh_have = hit_box(bvh_root.lo, bvh_root.hi, sr, hit.t, bvh_t);
-while (bvh_have) {
-  if (bvh_count < OCTREE_INTERNAL) {
+// One node step (bvh_first, bvh_count an internal node): the nearer child
+// met becomes the node, the farther is pushed; where neither is met the
+// next node is popped, and where the stack is empty the walk ends
+// (bvh_have false, then `break`).
+#define BVH_BINARY_NODE_STEP                                                                                  \
+  if (WALK_STATS) {                                                                                           \
+    ++walk_nodes;                                                                                             \
+    walk_node_slots += walk_slots();                                                                          \
+    walk_boxes += 2u;                                                                                         \
+  }                                                                                                           \
+  GpuOctreeNode left = node_at(bvh_first);                                                                    \
+  GpuOctreeNode right = node_at(bvh_first + 1u);                                                              \
+  float t_left, t_right;                                                                                      \
+  bool hit_left = hit_box(left.lo, left.hi, sr, hit.t, t_left);                                               \
+  bool hit_right = hit_box(right.lo, right.hi, sr, hit.t, t_right);                                           \
+  if (hit_left && hit_right) {                                                                                \
+    /* The farther pushed; equal entries keep the left child nearer. */                                       \
+    bool right_first = t_right < t_left;                                                                      \
+    bvh_stack[bvh_sp] = right_first ? uvec2(left.first, left.count_or_mask) : uvec2(right.first, right.count_or_mask); \
+    ++bvh_sp;                                                                                                 \
+  }                                                                                                           \
+  if (hit_left || hit_right) {                                                                                \
+    bool bvh_right = hit_right && (!hit_left || t_right < t_left);                                            \
+    bvh_first = bvh_right ? right.first : left.first;                                                         \
+    bvh_count = bvh_right ? right.count_or_mask : left.count_or_mask;                                         \
+  } else {                                                                                                    \
+    if (bvh_sp == 0u) {                                                                                       \
+      bvh_have = false;                                                                                       \
+      break;                                                                                                  \
+    }                                                                                                         \
+    --bvh_sp;                                                                                                 \
+    bvh_first = bvh_stack[bvh_sp].x;                                                                          \
+    bvh_count = bvh_stack[bvh_sp].y;                                                                          \
+  }
+if (OCTREE_BVH_WHILE) {
+  // While-while (Aila & Laine 2009, as the octree walks since log 38): the
+  // inner loop steps through internal nodes until this invocation holds a
+  // leaf, and the leaf is tested after it, so the invocations of a
+  // subgroup test their leaves together. The same nodes in the same order
+  // as the one loop below. Where leaves hold many primitives (the dense
+  // sphere fields) it is the faster form; where they hold one or two, the
+  // one loop (optimisation log 123; RenderSettings::bvh_walk).
+  while (bvh_have) {
+    while (bvh_count >= OCTREE_INTERNAL) {
+      BVH_BINARY_NODE_STEP
+    }
+    if (!bvh_have) break;
     if (WALK_STATS && bvh_count > 0u) ++walk_leaves;
     for (uint k = bvh_first; k < bvh_first + bvh_count; ++k)
       OCTREE_LEAF(k);
@@ -93,33 +138,22 @@ while (bvh_have) {
     --bvh_sp;
     bvh_first = bvh_stack[bvh_sp].x;
     bvh_count = bvh_stack[bvh_sp].y;
-    continue;
   }
-  if (WALK_STATS) {
-    ++walk_nodes;
-    walk_node_slots += walk_slots();
-    walk_boxes += 2u;
-  }
-  GpuOctreeNode left = node_at(bvh_first);
-  GpuOctreeNode right = node_at(bvh_first + 1u);
-  float t_left, t_right;
-  bool hit_left = hit_box(left.lo, left.hi, sr, hit.t, t_left);
-  bool hit_right = hit_box(right.lo, right.hi, sr, hit.t, t_right);
-  if (hit_left && hit_right) {
-    // The farther pushed; equal entries keep the left child nearer.
-    bool right_first = t_right < t_left;
-    bvh_stack[bvh_sp] = right_first ? uvec2(left.first, left.count_or_mask) : uvec2(right.first, right.count_or_mask);
-    ++bvh_sp;
-  }
-  if (hit_left || hit_right) {
-    bool bvh_right = hit_right && (!hit_left || t_right < t_left);
-    bvh_first = bvh_right ? right.first : left.first;
-    bvh_count = bvh_right ? right.count_or_mask : left.count_or_mask;
-  } else {
-    if (bvh_sp == 0u) break;
-    --bvh_sp;
-    bvh_first = bvh_stack[bvh_sp].x;
-    bvh_count = bvh_stack[bvh_sp].y;
+} else {
+  // One loop: a step is either a leaf or a node.
+  while (bvh_have) {
+    if (bvh_count < OCTREE_INTERNAL) {
+      if (WALK_STATS && bvh_count > 0u) ++walk_leaves;
+      for (uint k = bvh_first; k < bvh_first + bvh_count; ++k)
+        OCTREE_LEAF(k);
+      if (bvh_sp == 0u) break;
+      --bvh_sp;
+      bvh_first = bvh_stack[bvh_sp].x;
+      bvh_count = bvh_stack[bvh_sp].y;
+      continue;
+    }
+    BVH_BINARY_NODE_STEP
   }
 }
+#undef BVH_BINARY_NODE_STEP
 #endif

@@ -175,6 +175,7 @@ void test_instance_triangle(Ray oray, RayShear osh, InstanceRef ir, uint local, 
 
 #define OCTREE_WALK_NAME traverse_mesh
 #define OCTREE_BVH_WIDE BVH_MESH_WIDE
+#define OCTREE_BVH_WHILE false
 #define OCTREE_CHILD_PAIRS true
 #define OCTREE_SLAB FusedSlabRay
 #define OCTREE_SLAB_MAKE fused_slab_ray
@@ -182,6 +183,7 @@ void test_instance_triangle(Ray oray, RayShear osh, InstanceRef ir, uint local, 
 #include "accel/octree_walk.glsl"
 #undef OCTREE_WALK_NAME
 #undef OCTREE_BVH_WIDE
+#undef OCTREE_BVH_WHILE
 #undef OCTREE_CHILD_PAIRS
 #undef OCTREE_SLAB
 #undef OCTREE_SLAB_MAKE
@@ -246,6 +248,7 @@ void test_primitive_at(Ray ray, SlabRay sr, uint k, uint from_prim, bool into_fr
 
 #define OCTREE_WALK_NAME traverse_top
 #define OCTREE_BVH_WIDE BVH_TOP_WIDE
+#define OCTREE_BVH_WHILE BVH_TOP_WHILE
 #define OCTREE_CHILD_PAIRS false
 #define OCTREE_SLAB SlabRay
 #define OCTREE_SLAB_MAKE slab_ray
@@ -253,6 +256,7 @@ void test_primitive_at(Ray ray, SlabRay sr, uint k, uint from_prim, bool into_fr
 #include "accel/octree_walk.glsl"
 #undef OCTREE_WALK_NAME
 #undef OCTREE_BVH_WIDE
+#undef OCTREE_BVH_WHILE
 #undef OCTREE_CHILD_PAIRS
 #undef OCTREE_SLAB
 #undef OCTREE_SLAB_MAKE
@@ -327,6 +331,7 @@ void test_primitive_any_at(Ray ray, SlabRay sr, uint k, uint from_prim, bool int
 
 #define OCTREE_WALK_NAME traverse_top_any
 #define OCTREE_BVH_WIDE BVH_TOP_WIDE
+#define OCTREE_BVH_WHILE false
 #define OCTREE_CHILD_PAIRS false
 #define OCTREE_SLAB SlabRay
 #define OCTREE_SLAB_MAKE slab_ray
@@ -334,6 +339,7 @@ void test_primitive_any_at(Ray ray, SlabRay sr, uint k, uint from_prim, bool int
 #include "accel/octree_walk.glsl"
 #undef OCTREE_WALK_NAME
 #undef OCTREE_BVH_WIDE
+#undef OCTREE_BVH_WHILE
 #undef OCTREE_CHILD_PAIRS
 #undef OCTREE_SLAB
 #undef OCTREE_SLAB_MAKE

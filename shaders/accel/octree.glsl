@@ -30,6 +30,9 @@ layout(constant_id = SPEC_OCTREE_HOLD_NEAREST) const bool HOLD_NEAREST = false;
 // takes at each level.
 layout(constant_id = SPEC_BVH_TOP_WIDE) const bool BVH_TOP_WIDE = false;
 layout(constant_id = SPEC_BVH_MESH_WIDE) const bool BVH_MESH_WIDE = false;
+// Whether the top level's binary BVH walk is in while-while form
+// (SPEC_BVH_TOP_WHILE; accel/bvh_walk.glsl).
+layout(constant_id = SPEC_BVH_TOP_WHILE) const bool BVH_TOP_WHILE = false;
 
 const float WIDEN = 1.0 + 2.0 * (3.0 * 5.96046448e-8) / (1.0 - 3.0 * 5.96046448e-8);
 

@@ -242,6 +242,10 @@ OCT_CONST(uint, SPEC_ONE_INSTANCE, 34u);
 // The entries of path_trace.comp's workgroup array lane_sample: at least one
 // per invocation (render/path_tracer.h lane_sample_slots says why more).
 OCT_CONST(uint, SPEC_LANE_SAMPLE_SLOTS, 35u);
+// Whether the top level's binary BVH walk takes its while-while form
+// (accel/bvh_walk.glsl; RenderSettings::bvh_walk, render/path_tracer.h
+// default_bvh_top_while). The image is the same either way.
+OCT_CONST(uint, SPEC_BVH_TOP_WHILE, 36u);
 // Whether the walks count what they do (RenderSettings::walk_stats,
 // RenderStats.walk); off, the counting compiles out.
 OCT_CONST(uint, SPEC_WALK_STATS, 28u);

@@ -238,7 +238,9 @@ std::pair<double, double> agreement(const RenderResult& a, const RenderResult& b
 // the BVH binary, four-wide, and in the device's default widths
 // (OctreeParams::bvh_width), and binary with the spheres in the other order
 // than the device's own (OctreeParams::bvh_sphere_order: the tree's on a
-// GPU, the scene's on a CPU device).
+// GPU, the scene's on a CPU device), and binary with the top level's walk
+// in while-while form (RenderSettings::bvh_walk; auto takes it for dense
+// top levels on a GPU only, which these small scenes are not).
 TEST_P(AccelTest, TreeImagesMatchBruteForce) {
   Scene scene = GetParam().make();
   for (uint32_t depth : {8u, 50u}) {
@@ -258,6 +260,7 @@ TEST_P(AccelTest, TreeImagesMatchBruteForce) {
       uint32_t max_refs = 8;
       NearestChild nearest = NearestChild::Auto;
       SphereOrder order = SphereOrder::Auto;
+      BvhWalk walk = BvhWalk::Auto;
     };
     const NearestChild other_form =
         test::shared_context().info.software ? NearestChild::Pushed : NearestChild::Held;
@@ -267,7 +270,9 @@ TEST_P(AccelTest, TreeImagesMatchBruteForce) {
                       Variant{Accel::Octree, true, BigList::FirstLeaf, 0, 8, other_form},
                       Variant{Accel::Bvh, false, BigList::Auto, 0},
                       Variant{Accel::Bvh, false, BigList::Auto, 2}, Variant{Accel::Bvh, false, BigList::Auto, 4},
-                      Variant{Accel::Bvh, false, BigList::Auto, 2, 8, NearestChild::Auto, other_order}}) {
+                      Variant{Accel::Bvh, false, BigList::Auto, 2, 8, NearestChild::Auto, other_order},
+                      Variant{Accel::Bvh, false, BigList::Auto, 2, 8, NearestChild::Auto, SphereOrder::Auto,
+                              BvhWalk::WhileWhile}}) {
       if (v.big_list == BigList::OwnLoop && scene.instances.empty()) continue;
       // The BVH's auto widths on a CPU device are all binary (accel/bvh.h): width 2 again.
       if (v.accel == Accel::Bvh && v.bvh_width == 0 && test::shared_context().info.software) continue;
@@ -279,6 +284,7 @@ TEST_P(AccelTest, TreeImagesMatchBruteForce) {
       s.octree.bvh_width = v.bvh_width;
       s.octree.max_refs = v.max_refs;
       s.octree.bvh_sphere_order = v.order;
+      s.bvh_walk = v.walk;
       RenderResult tree = render(test::shared_context(), scene, s);
       ASSERT_EQ(tree.nonfinite_samples, 0u);
       auto [identical, mean_diff] = agreement(tree, brute);
@@ -292,6 +298,7 @@ TEST_P(AccelTest, TreeImagesMatchBruteForce) {
                                (v.order != SphereOrder::Auto
                                     ? std::string(" (spheres in the ") + sphere_order_name(v.order) + "'s order)"
                                     : "") +
+                               (v.walk == BvhWalk::WhileWhile ? " (top walk while-while)" : "") +
                                ", depth " + std::to_string(depth);
       if (depth <= 8) {
         EXPECT_EQ(identical, 1.0) << what << ": only " << identical * 100 << "% bit-identical";

@@ -99,6 +99,8 @@ const BadInput BAD_INPUTS[] = {
     {"precision_unknown", "--precision fp8", "--precision: expected fp32, fp16 or fp16-all"},
     {"effects_unknown", "--effects some", "--effects: expected auto or all"},
     {"octant_culling_unknown", "--octant-culling maybe", "--octant-culling: expected auto, on or off, got \"maybe\""},
+    {"bvh_walk_unknown", "--accel bvh --bvh-walk twice",
+     "--bvh-walk: expected auto, one-loop or while-while, got \"twice\""},
     {"tail_depth_unknown", "--tail-depth soon", "--tail-depth: expected auto, off or a bounce from 1 to 100000, got \"soon\""},
     {"tail_depth_zero", "--tail-depth 0", "--tail-depth: expected auto, off or a bounce from 1 to 100000, got \"0\""},
     {"tail_step_zero", "--tail-step 0", "--tail-step: expected auto, off or a bounce count from 1 to 100000, got \"0\""},

@@ -356,6 +356,21 @@ struct RuleDevices {
   }
 };
 
+// RenderSettings::bvh_walk's auto (optimisation log 123): while-while for
+// a top level whose leaves hold 4 references or more on average, on a GPU.
+TEST(BvhWalk, AutoIsWhileWhileOnAGpuWhereLeavesHoldFourOrMore) {
+  DeviceInfo gpu;
+  gpu.software = false;
+  DeviceInfo cpu;
+  cpu.software = true;
+  EXPECT_TRUE(default_bvh_top_while(gpu, kBvhWhileRefsPerLeaf));
+  EXPECT_TRUE(default_bvh_top_while(gpu, 6.7));  // 1M spheres of r = 0.1
+  EXPECT_FALSE(default_bvh_top_while(gpu, 3.9));
+  EXPECT_FALSE(default_bvh_top_while(gpu, 2.2));  // the peer's scene
+  EXPECT_FALSE(default_bvh_top_while(cpu, 6.7));
+  EXPECT_FALSE(default_bvh_top_while(gpu, 0.0));  // no top level
+}
+
 // Auto octant culling (optimisation log 106): off only for scenes without
 // triangles on lavapipe from Mesa 25; the tracer resolves the setting so.
 TEST(OctantCulling, AutoIsOffOnlyForSpheresOnLavapipeFromMesa25) {
