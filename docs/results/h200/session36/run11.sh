@@ -1,0 +1,23 @@
+# Session 36, run 11: a4d762f (log 123: the top level's binary BVH walk in
+# while-while form where its leaves hold >= 4 references on average, on a
+# GPU): the GPU suites; auto against `--bvh-walk one-loop` where the rule
+# takes while-while (1M and 128,000 spheres, r = 0.1; 10M) and where it
+# does not (1M at r = 0.01, 3.4 a leaf: the same pipeline, so within
+# noise); the peer side by side (its scene keeps the one loop); `bench`
+# of the goals' rows. Expectations: expected.md ("run11.sh").
+# Carried: .gl, .gpub, .assets, .peers.
+source tools/gpu_run.sh
+gpu_suites
+V=(--variant "auto=" --variant "one=-- --bvh-walk one-loop")
+AB_TIMEOUT=150 ab s1m_bvh $S --spheres 1000000 --radius 0.1 --accel bvh
+ab s128k_bvh $S --spheres 128000 --radius 0.1 --accel bvh
+AB_TIMEOUT=150 ab s1m_r001_bvh $S --spheres 1000000 --radius 0.01 --accel bvh
+AB_TIMEOUT=300 ab s10m_bvh $S --spheres 10000000 --radius 0.1 --accel bvh
+same_image s1m "$B" "$B" $S --spheres 1000000 --radius 0.1 --accel bvh --bvh-walk one-loop
+"$B" render $S --spheres 1000000 --radius 0.1 --accel bvh -q -o "$R/a.pfm"
+"$B" render $S --spheres 1000000 --radius 0.1 --accel bvh --bvh-walk one-loop -q -o "$R/b.pfm"
+cmp -s "$R/a.pfm" "$R/b.pfm" && echo "s1m auto = one-loop, identical" >> "$T" || echo "s1m auto vs one-loop DIFFERENT" >> "$T"
+rm -f "$R/a.pfm" "$R/b.pfm"
+peer_both
+bench_goals
+gpu_finish
