@@ -1,4 +1,10 @@
-# Session 36, run 11: a4d762f (log 123: the top level's binary BVH walk in
+# Prepared in session 36 as run 11 and rehearsed (tools/gpu_dry_run.sh),
+# never run: the H100 was not lent at 19:53, 20:05 and 20:06 UTC, and the
+# failed calls left too little device time to start an H200. For the next
+# session with a GPU, first. Pack: .gpub/bin.txz = 8f968ef (a4d762f's code)
+# with session 34's topcost probe; if it is gone: tools/gpu_pack.sh
+# topcost=docs/results/h200/session34/topcost_env.patch.
+# a4d762f (log 123: the top level's binary BVH walk in
 # while-while form where its leaves hold >= 4 references on average, on a
 # GPU): the GPU suites; auto against `--bvh-walk one-loop` where the rule
 # takes while-while (1M and 128,000 spheres, r = 0.1; 10M) and where it
