@@ -118,6 +118,16 @@ bool bvh_have = hit_box(bvh_root.lo, bvh_root.hi, sr, hit.t, bvh_t);
     bvh_first = bvh_stack[bvh_sp].x;                                                                          \
     bvh_count = bvh_stack[bvh_sp].y;                                                                          \
   }
+// The leaf (bvh_first, bvh_count) tested, then the next node popped; where
+// the stack is empty the walk ends (`break`).
+#define BVH_BINARY_LEAF                                              \
+  if (WALK_STATS && bvh_count > 0u) ++walk_leaves;                   \
+  for (uint k = bvh_first; k < bvh_first + bvh_count; ++k)           \
+    OCTREE_LEAF(k);                                                  \
+  if (bvh_sp == 0u) break;                                           \
+  --bvh_sp;                                                          \
+  bvh_first = bvh_stack[bvh_sp].x;                                   \
+  bvh_count = bvh_stack[bvh_sp].y;
 if (OCTREE_BVH_WHILE) {
   // While-while (Aila & Laine 2009, as the octree walks since log 38): the
   // inner loop steps through internal nodes until this invocation holds a
@@ -131,29 +141,18 @@ if (OCTREE_BVH_WHILE) {
       BVH_BINARY_NODE_STEP
     }
     if (!bvh_have) break;
-    if (WALK_STATS && bvh_count > 0u) ++walk_leaves;
-    for (uint k = bvh_first; k < bvh_first + bvh_count; ++k)
-      OCTREE_LEAF(k);
-    if (bvh_sp == 0u) break;
-    --bvh_sp;
-    bvh_first = bvh_stack[bvh_sp].x;
-    bvh_count = bvh_stack[bvh_sp].y;
+    BVH_BINARY_LEAF
   }
 } else {
   // One loop: a step is either a leaf or a node.
   while (bvh_have) {
     if (bvh_count < OCTREE_INTERNAL) {
-      if (WALK_STATS && bvh_count > 0u) ++walk_leaves;
-      for (uint k = bvh_first; k < bvh_first + bvh_count; ++k)
-        OCTREE_LEAF(k);
-      if (bvh_sp == 0u) break;
-      --bvh_sp;
-      bvh_first = bvh_stack[bvh_sp].x;
-      bvh_count = bvh_stack[bvh_sp].y;
+      BVH_BINARY_LEAF
       continue;
     }
     BVH_BINARY_NODE_STEP
   }
 }
 #undef BVH_BINARY_NODE_STEP
+#undef BVH_BINARY_LEAF
 #endif
