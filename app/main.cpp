@@ -766,7 +766,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
                   {"width", {{"top", o.bvh_top_width}, {"meshes", o.bvh_mesh_width}}},
                   {"spatial_refs", settings.octree.bvh_spatial_refs},
                   {"sphere_order", sphere_order_name(o.bvh_sphere_order ? SphereOrder::Tree : SphereOrder::Scene)},
-                  {"top_refs_per_leaf", o.top_leaves ? double(o.top_refs) / o.top_leaves : 0.0},
+                  {"top_refs_per_leaf", o.top_refs_per_leaf()},
                   {"top_walk", result.bvh_top_while ? "while-while" : "one-loop"}};
     }
     if (settings.accel == Accel::Octree) {

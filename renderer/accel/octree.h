@@ -85,6 +85,8 @@ struct OctreeStats {
   // references (the meshes' trees come after them in the arrays).
   uint32_t top_leaves = 0;
   uint64_t top_refs = 0;
+  // The top level's references per leaf (0 without a top level).
+  double top_refs_per_leaf() const { return top_leaves ? double(top_refs) / top_leaves : 0.0; }
 };
 
 // ---------------------------------------------------------------------------

@@ -64,8 +64,7 @@ struct PathTracer::State {
   bool bvh_top_while() const {
     if (scene.tree != Accel::Bvh) return false;
     if (settings.bvh_walk != BvhWalk::Auto) return settings.bvh_walk == BvhWalk::WhileWhile;
-    const OctreeStats& o = scene.octree;
-    return default_bvh_top_while(ctx.info, o.top_leaves ? double(o.top_refs) / o.top_leaves : 0.0);
+    return default_bvh_top_while(ctx.info, scene.octree.top_refs_per_leaf());
   }
   // RenderSettings::nearest_child for this device: whether the octree walk holds it.
   bool hold_nearest() const {
