@@ -145,6 +145,7 @@ struct RenderOptions {
   std::string tail_fill = "auto";
   std::string bvh_sphere_order = "auto";
   std::string instancing = "auto";
+  std::string hidden_parts = "auto";
   RenderSettings settings;
   std::string device = "auto";
   bool validation = false;
@@ -187,6 +188,12 @@ struct RenderOptions {
                    "Meshes placed several times: keep (stored once, walked in object space), bake (a world-space "
                    "copy per placement: more memory; the octree faster, a GPU's four-wide BVH a little slower), "
                    "auto (bake where that at most doubles the stored triangles and adds at most 2^20)")
+        ->capture_default_str();
+    cmd.add_option("--hidden-parts", hidden_parts,
+                   "Spheres that overlap opaque ones: cull (the trees hold only the parts no opaque sphere "
+                   "covers: a dense field tests a few spheres a ray instead of a hundred), keep (whole spheres), "
+                   "auto (cull where the camera stays: render and bench; keep in view, whose camera moves); "
+                   "same image, other speed")
         ->capture_default_str();
     cmd.add_option("--size", size, "Image size WIDTHxHEIGHT")->capture_default_str();
     cmd.add_option("--spp", settings.spp, "Samples (passes) per pixel")->capture_default_str();
@@ -265,8 +272,17 @@ struct RenderOptions {
     return uint32_t(v);
   }
 
-  RenderSettings parsed() const {
+  // `moving_camera`: for view, whose camera moves: auto keeps whole
+  // spheres there, and cull is refused.
+  RenderSettings parsed(bool moving_camera = false) const {
     RenderSettings s = settings;
+    if (hidden_parts != "auto" && hidden_parts != "cull" && hidden_parts != "keep")
+      throw SettingError("octree.hidden_parts", ": expected auto, cull or keep, got \"" + hidden_parts + "\"");
+    s.octree.hidden_parts = hidden_parts == "keep" || (hidden_parts == "auto" && moving_camera) ? HiddenParts::Keep
+                                                                                             : HiddenParts::Cull;
+    if (moving_camera && s.octree.hidden_parts == HiddenParts::Cull)
+      throw SettingError("octree.hidden_parts", ": cull needs a camera that stays where it is; view's moves "
+                                                "(use auto or keep)");
     s.accel = parse_accel(accel);
     s.precision = parse_precision(precision);
     if (effects != "auto" && effects != "all")
@@ -312,6 +328,7 @@ std::string message_for_cli(const SettingError& e) {
       {"octree.bvh_spatial_refs", "--bvh-spatial-refs"},
       {"octree.bvh_sphere_order", "--bvh-sphere-order"},
       {"octree.instancing", "--instancing"},
+      {"octree.hidden_parts", "--hidden-parts"},
       {"precision", "--precision"},
       {"accel", "--accel"},
       {"effects", "--effects"},
@@ -780,6 +797,13 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
                      {"bytes_per_sphere", o.bytes_per_primitive},
                      {"refs_per_primitive", o.refs_per_primitive}, {"bytes_per_primitive", o.bytes_per_primitive}};
     }
+    if (settings.accel != Accel::Brute) {
+      const OctreeStats& o = result.octree;
+      j["hidden_parts"] = {{"mode", hidden_parts_name(settings.octree.hidden_parts)},
+                           {"spheres_clipped", o.spheres_clipped},
+                           {"spheres_hidden", o.spheres_hidden},
+                           {"ms", o.hidden_parts_ms}};
+    }
     if (render_opts.pipeline_stats) {
       json stats = json::object();
       for (const auto& [name, value] : result.pipeline_statistics) stats[name] = value;
@@ -1143,7 +1167,7 @@ int main(int argc, char** argv) {
       view_opts.scene_file = scene_opts.scene_file;
       view_opts.device = render_opts.device;
       view_opts.validation = render_opts.validation;
-      RenderSettings settings = render_opts.parsed();
+      RenderSettings settings = render_opts.parsed(true);
       view_opts.stop = &g_stop;
       SignalGuard signals;
       code = run_view(scene_opts.load(), settings, view_opts);

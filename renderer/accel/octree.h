@@ -31,6 +31,12 @@ enum class SphereOrder { Auto, Tree, Scene };
 // every one where that at most doubles the triangles stored and adds at
 // most kAutoBakeExtraTriangles, else Keep (optimisation log 68).
 enum class Instancing { Auto, Keep, Bake };
+// What the top level's boxes hold of a sphere that overlaps opaque ones
+// (OctreeParams::hidden_parts): Cull, only the parts of its surface that no
+// opaque sphere holds (accel/hidden_parts.h; the scene's camera must stay
+// where it is: render/gpu_scene.cpp); Keep, the whole sphere. The image is
+// the same either way (optimisation log 125).
+enum class HiddenParts { Cull, Keep };
 
 // The leaf size of OctreeParams::leaf_size = 0 (auto) where the device's
 // rule does not replace it (render/path_tracer.h default_octree_leaf).
@@ -62,6 +68,10 @@ struct OctreeParams {
   // property of the tree: it decides which triangles the trees are built
   // over, the same for every structure.
   Instancing instancing = Instancing::Auto;
+  // What the top level's boxes hold of spheres inside opaque ones
+  // (`--hidden-parts`). Not a property of the tree either: it decides the
+  // boxes the tree is built over.
+  HiddenParts hidden_parts = HiddenParts::Cull;
 };
 
 struct OctreeStats {
@@ -85,6 +95,11 @@ struct OctreeStats {
   // references (the meshes' trees come after them in the arrays).
   uint32_t top_leaves = 0;
   uint64_t top_refs = 0;
+  // OctreeParams::hidden_parts = Cull (accel/hidden_parts.h): spheres whose
+  // box shrank, spheres with nothing left, and the time it took (part of
+  // build_ms).
+  uint64_t spheres_clipped = 0, spheres_hidden = 0;
+  double hidden_parts_ms = 0;
   // The top level's references per leaf (0 without a top level).
   double top_refs_per_leaf() const { return top_leaves ? double(top_refs) / top_leaves : 0.0; }
 };

@@ -2,6 +2,7 @@
 
 #include "accel/bvh.h"
 #include "accel/clip.h"
+#include "accel/hidden_parts.h"
 
 #include <algorithm>
 #include <bit>
@@ -118,7 +119,8 @@ static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& sce
   auto start = Clock::now();
   // The top level over spheres and instances, then one tree per mesh in
   // object space, appended: their `first` fields are moved by where they land.
-  const std::vector<Aabb> boxes = primitive_boxes(scene);
+  HiddenPartsStats hidden;
+  const std::vector<Aabb> boxes = primitive_boxes(scene, params.hidden_parts, &hidden);
   // A BVH's widths per level, kept in its stats (below), which the
   // pipeline's SPEC_BVH_TOP_WIDE and SPEC_BVH_MESH_WIDE follow.
   const BvhWidths widths = bvh_widths(ctx, scene, params);
@@ -128,6 +130,9 @@ static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& sce
   Octree& octree = t.octree;
   OctreeStats& st = octree.stats;
   st.top_leaves = st.leaves;
+  st.spheres_clipped = hidden.clipped;
+  st.spheres_hidden = hidden.hidden;
+  st.hidden_parts_ms = hidden.ms;
   st.top_refs = octree.refs.size();
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const Mesh& mesh = scene.meshes[m];
@@ -432,8 +437,43 @@ std::vector<gpu::GpuInstance> gpu_instances(const Scene& scene) {
   return out;
 }
 
-std::vector<Aabb> primitive_boxes(const Scene& scene) {
-  std::vector<Aabb> boxes = sphere_boxes(scene.spheres);
+bool occludes(const Material& m) {
+  switch (m.type) {
+    case MaterialType::Lambertian:
+    case MaterialType::Metal:
+    case MaterialType::Emissive: return true;
+    case MaterialType::Dielectric: return false;
+    case MaterialType::Pbr:
+      return !(m.transmission > 0.0f) && !m.transmission_texture && m.alpha_mode == AlphaMode::Opaque;
+  }
+  return false;
+}
+
+std::vector<uint8_t> sphere_occluders(const Scene& scene) {
+  std::vector<uint8_t> out(scene.spheres.size());
+  // A ray that starts inside an occluder could hit what it hides: a sphere
+  // that reaches the lens (with a margin of a thousandth of the distance)
+  // occludes nothing.
+  const glm::dvec3 eye(scene.camera.lookfrom);
+  const double lens = 0.5 * double(scene.camera.aperture);
+  for (size_t i = 0; i < scene.spheres.size(); ++i) {
+    const Sphere& s = scene.spheres[i];
+    const double d = glm::length(glm::dvec3(s.center) - eye);
+    out[i] = occludes(scene.materials[s.material]) && d > (double(s.radius) + lens) * 1.001 + 1e-6;
+  }
+  return out;
+}
+
+std::vector<Aabb> primitive_boxes(const Scene& scene, HiddenParts hidden, HiddenPartsStats* stats) {
+  std::vector<Aabb> boxes;
+  if (hidden == HiddenParts::Cull) {
+    std::vector<Ball> balls(scene.spheres.size());
+    for (size_t i = 0; i < balls.size(); ++i) balls[i] = {scene.spheres[i].center, scene.spheres[i].radius};
+    boxes = visible_sphere_boxes(balls, sphere_occluders(scene), stats);
+  } else {
+    boxes = sphere_boxes(scene.spheres);
+    if (stats) *stats = {};
+  }
   const std::vector<Aabb> inst = instance_boxes(scene);
   boxes.insert(boxes.end(), inst.begin(), inst.end());
   return boxes;

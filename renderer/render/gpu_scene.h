@@ -9,6 +9,7 @@
 
 #include <glm/vec2.hpp>
 
+#include "accel/hidden_parts.h"
 #include "accel/octree.h"
 #include "render/settings.h"
 #include "scene/scene.h"
@@ -93,8 +94,19 @@ std::vector<gpu::GpuMesh> gpu_meshes(const Scene& scene);  // roots not filled i
 std::vector<Aabb> mesh_triangle_boxes(const Mesh& mesh);
 std::vector<Aabb> instance_boxes(const Scene& scene);
 
-// The top level's boxes in id order: spheres, then instances.
-std::vector<Aabb> primitive_boxes(const Scene& scene);
+// Whether rays never enter a sphere of material m (lambertian, metal,
+// emissive; pbr without transmission or alpha): what may hide another
+// sphere's parts (accel/hidden_parts.h).
+bool occludes(const Material& m);
+// Per sphere: whether it occludes (opaque, and its ball keeps clear of the
+// camera's lens, from which rays start).
+std::vector<uint8_t> sphere_occluders(const Scene& scene);
+// The top level's boxes in id order: spheres, then instances. With
+// HiddenParts::Cull a sphere's box holds only the parts of it that no
+// occluder holds (visible_sphere_boxes), for the scene's camera; `stats`
+// says how many shrank.
+std::vector<Aabb> primitive_boxes(const Scene& scene, HiddenParts hidden = HiddenParts::Cull,
+                                  HiddenPartsStats* stats = nullptr);
 std::vector<Aabb> sphere_boxes(const std::vector<Sphere>& spheres);
 
 // The texture table and the texels of every texture, in the scene's order.

@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <bit>
 #include <numeric>
+#include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include "accumulate.h"
@@ -116,6 +118,14 @@ struct PathTracer::State {
     return ctx.info.software && !staged() ? 1u : 0u;
   }
   GpuScene scene;
+  // The lens the tree's boxes left hidden parts out for (HiddenParts::Cull,
+  // where some sphere's box shrank): a pass must start its rays there.
+  std::optional<Camera> culled_for;
+  void note_culling(const Scene& sc) {
+    const OctreeStats& o = scene.octree;
+    culled_for.reset();
+    if (scene.tree != Accel::Brute && (o.spheres_clipped > 0 || o.spheres_hidden > 0)) culled_for = sc.camera;
+  }
   Buffer accum_sum, accum_comp, accum_sq, stats;
   // With the tail queue: each sample's value per [sample of the dispatch]
   // [pixel], the queue and its TailControl (shared.h); 16-byte placeholders
@@ -350,6 +360,7 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
                    s.tail_queue.size);
   s.timings.accel_build_ms = s.scene.accel_build_ms;
   s.timings.upload_ms = s.scene.upload_ms;
+  s.note_culling(scene);
   s.create_pipeline();
   create_timer(s.timer, ctx);
   reset();
@@ -411,6 +422,7 @@ void PathTracer::reconfigure(const Scene& scene, Accel accel, Precision precisio
     if (accel != Accel::Brute && s.scene.tree != accel) {
       upload_octree(s.scene, s.ctx, scene, accel, s.settings.octree);
       s.timings.accel_build_ms = s.scene.accel_build_ms;
+      s.note_culling(scene);
     }
     s.create_pipeline();
   } catch (const InputError&) {
@@ -511,6 +523,11 @@ void PathTracer::State::record_staged_passes(VkCommandBuffer cmd, gpu::PassParam
 void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, uint32_t first_sample,
                                uint32_t count) const {
   const State& s = *state_;
+  // Rays from elsewhere could start inside an opaque sphere and meet what
+  // it hides, which the tree left out: a caller whose camera moves builds
+  // with HiddenParts::Keep (the preview does).
+  if (s.culled_for && (pass.camera.lookfrom != s.culled_for->lookfrom || pass.camera.aperture > s.culled_for->aperture))
+    throw std::logic_error("a camera moved from where the tree left hidden sphere parts out (HiddenParts::Cull)");
   const uint32_t width = uint32_t(s.settings.width), height = uint32_t(s.settings.height);
   gpu::PassParams pc{};
   set_pass_camera(pc, pass.camera, s.settings.width, s.settings.height);

@@ -121,6 +121,47 @@ Scene meshes_and_spheres() {
   return s;
 }
 
+// Overlapping spheres: a field denser than its spheres are wide (a
+// twentieth of them glass), where each sphere's box in the trees holds only
+// the parts of it no opaque sphere covers (OctreeParams::hidden_parts,
+// accel/hidden_parts.h), while brute force tests every sphere whole; and a
+// sphere wholly inside an opaque one (nothing of it left) beside one wholly
+// inside a glass one (seen through the glass).
+Scene dense_overlapping() {
+  Scene s = rtiow(1500, 0.35f, 8);
+  s.materials.push_back({MaterialType::Lambertian, {0.8f, 0.6f, 0.2f}});
+  const uint32_t opaque = uint32_t(s.materials.size() - 1);
+  s.materials.push_back({MaterialType::Dielectric, glm::vec3(1.0f), 0.0f, 1.5f});
+  const uint32_t glass = uint32_t(s.materials.size() - 1);
+  s.materials.push_back({MaterialType::Lambertian, {0.9f, 0.1f, 0.1f}});
+  const uint32_t red = uint32_t(s.materials.size() - 1);
+  s.spheres.push_back({{2.0f, 1.2f, 1.5f}, 0.8f, opaque});
+  s.spheres.push_back({{2.1f, 1.2f, 1.5f}, 0.3f, red});
+  s.spheres.push_back({{-1.5f, 1.2f, 2.0f}, 0.8f, glass});
+  s.spheres.push_back({{-1.4f, 1.2f, 2.0f}, 0.3f, red});
+  return s;
+}
+
+// The camera inside an opaque sphere, into which the field's spheres and the
+// ground reach, with a light: rays start inside it, so it hides nothing
+// (sphere_occluders in render/gpu_scene.cpp); were it an occluder, the parts
+// of the others inside it would be left out of the trees. Few spheres: on
+// lavapipe brute force's loop over the spheres must stay under llvmpipe's
+// 65535 iterations an invocation for paths this long (their last bounces'
+// shadow rays found nothing with 6,000).
+Scene camera_in_an_opaque_sphere() {
+  Scene s = rtiow(500, 0.6f, 9);
+  s.materials.push_back({MaterialType::Lambertian, {0.8f, 0.6f, 0.2f}});
+  s.camera.lookfrom = {3.0f, 0.6f, 2.0f};
+  s.camera.lookat = {2.0f, 0.2f, 1.0f};
+  s.camera.focus_dist = 1.0f;
+  s.camera.vfov = 60.0f;
+  s.spheres.push_back({s.camera.lookfrom, 1.5f, uint32_t(s.materials.size() - 1)});
+  s.materials.push_back(test::emitter(glm::vec3(6.0f, 5.0f, 4.0f)));  // a light inside with it
+  s.spheres.push_back({{2.6f, 1.3f, 1.5f}, 0.15f, uint32_t(s.materials.size() - 1)});
+  return s;
+}
+
 // Nothing but the sky; one sphere alone (a tree of one leaf).
 Scene empty() {
   Scene s = test::furnace_scene();
@@ -205,6 +246,8 @@ const AccelCase CASES[] = {
     {"coincident_many", coincident_many},
     {"emissive_spheres", emissive_spheres},
     {"one_huge_sphere", one_huge_sphere},
+    {"dense_overlapping", dense_overlapping},
+    {"camera_in_an_opaque_sphere", camera_in_an_opaque_sphere},
     {"camera_inside_root", camera_inside},
     {"camera_outside_root", [] { return rtiow(488, 0.2f, 1); }},
     {"axis_aligned_rays", axis_aligned},

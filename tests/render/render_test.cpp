@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstring>
 #include <numeric>
+#include <stdexcept>
 
 #include <tuple>
 
@@ -477,6 +478,47 @@ TEST_F(RenderTest, CameraBounceLimitAndSeedArePerPass) {
     tracer.run_passes(p, 0, 3);
     EXPECT_FALSE(same_bits(tracer.read_result().mean, per_pass.mean)) << what;
   }
+}
+
+// Spheres that overlap (a field denser than they are wide): with their
+// hidden parts left out of the trees (OctreeParams::hidden_parts, the
+// default) each structure tests far fewer spheres a query and renders every
+// pixel as with whole spheres; and a tree built so refuses a pass whose
+// camera moved (its rays could start inside an opaque sphere).
+TEST_F(RenderTest, HiddenPartsSpareTestsAndChangeNoPixel) {
+  VulkanContext& ctx = test::shared_context();
+  const Scene scene = make_rtiow_scene({3000, 1.0f, 4});
+  RenderSettings s;
+  s.width = 48;
+  s.height = 32;
+  s.spp = 2;
+  s.bounce_limit = 8;
+  s.walk_stats = true;
+  for (Accel accel : {Accel::Octree, Accel::Bvh}) {
+    SCOPED_TRACE(accel_name(accel));
+    s.accel = accel;
+    s.octree.hidden_parts = HiddenParts::Keep;
+    const RenderResult keep = render(ctx, scene, s);
+    EXPECT_EQ(keep.octree.spheres_clipped + keep.octree.spheres_hidden, 0u);
+    s.octree.hidden_parts = HiddenParts::Cull;
+    const RenderResult cull = render(ctx, scene, s);
+    EXPECT_GT(cull.octree.spheres_clipped, scene.spheres.size() / 2);
+    EXPECT_TRUE(same_bits(keep.mean, cull.mean));
+    ASSERT_EQ(keep.walk.queries, cull.walk.queries);
+    EXPECT_LT(3 * cull.walk.primitives, keep.walk.primitives)
+        << cull.walk.primitives << " sphere tests against " << keep.walk.primitives;
+  }
+  s.walk_stats = false;
+  Scene moved = scene;
+  orbit(moved.camera, 0.3f, 0.1f);
+  {
+    PathTracer tracer(ctx, scene, s);
+    tracer.run_passes(pass_settings(scene, s), 0, 1);
+    EXPECT_THROW(tracer.run_passes(pass_settings(moved, s), 0, 1), std::logic_error);
+  }
+  s.octree.hidden_parts = HiddenParts::Keep;
+  PathTracer tracer(ctx, scene, s);
+  tracer.run_passes(pass_settings(moved, s), 0, 1);
 }
 
 // A tracer resized and switched to another accel (the octree built on the
