@@ -25,10 +25,11 @@ struct OccluderGrid {
   double cell = 1.0;
   glm::ivec3 dims{1};
   std::vector<uint32_t> start;  // per cell, into items; start[cells] = items.size()
-  // The occluders by cell, copied so that a cell's are read in one run.
+  // The occluders by cell, copied so that a cell's are read in one run,
+  // each with its radius less the margin (reach, below).
   struct Item {
     glm::vec3 center;
-    float radius;
+    float reach;
     uint32_t index;
   };
   std::vector<Item> items;
@@ -62,6 +63,28 @@ double grid_cell(const glm::dvec3& ext, double count, double per_cell) {
   return cell > 0.0 && std::isfinite(cell) ? cell : 1.0;
 }
 
+// The margin by which a point must lie inside occluder b to count as hidden.
+double margin(const Ball& b) {
+  const glm::dvec3 c = glm::abs(glm::dvec3(b.center));
+  return 1e-4 * b.radius + 32.0 * double(std::numeric_limits<float>::epsilon()) * (std::max({c.x, c.y, c.z}) + b.radius);
+}
+
+// The float at or below / above x.
+float float_down(double x) {
+  const float f = float(x);
+  return double(f) > x ? next_float_down(f) : f;
+}
+float float_up(double x) {
+  const float f = float(x);
+  return double(f) < x ? next_float_up(f) : f;
+}
+
+// An occluder's radius less the margin: how far from its centre a point
+// counts as hidden; rounded down to a float for the grid's copy (a smaller
+// reach hides less: never wrong).
+double reach(const Ball& b) { return double(b.radius) - margin(b); }
+float reach_down(const Ball& b) { return float_down(reach(b)); }
+
 // The q-quantile (0..1) of v, which it reorders.
 double quantile(std::vector<double>& v, double q) {
   const size_t k = std::min(v.size() - 1, size_t(q * double(v.size() - 1)));
@@ -81,10 +104,15 @@ OccluderGrid make_grid(std::span<const Ball> balls, std::span<const uint8_t> occ
   // The grid spans the centres' 1st to 99th percentiles per axis, so that a
   // few far ones (the rtiow ground's centre lies 1000 below the field) do
   // not make its cells huge; centres outside fall into the border cells.
-  std::vector<double> coord(occ.size());
+  // Percentiles (and the median radius, below) of every step-th occluder:
+  // a grid is only a way to find neighbours, and any grid finds them.
+  const size_t step = std::max<size_t>(1, occ.size() / 65536);
+  std::vector<double> coord;
+  coord.reserve(occ.size() / step + 1);
   glm::dvec3 lo, hi;
   for (int a = 0; a < 3; ++a) {
-    for (size_t q = 0; q < occ.size(); ++q) coord[q] = balls[occ[q]].center[a];
+    coord.clear();
+    for (size_t q = 0; q < occ.size(); q += step) coord.push_back(balls[occ[q]].center[a]);
     lo[a] = quantile(coord, 0.01);
     hi[a] = quantile(coord, 0.99);
   }
@@ -100,7 +128,8 @@ OccluderGrid make_grid(std::span<const Ball> balls, std::span<const uint8_t> occ
     g.cell *= 1.25;
   }
   // The large ones, largest first, at most kMaxLargeOccluders (the rest occlude nothing: boxes only grow).
-  for (size_t q = 0; q < occ.size(); ++q) coord[q] = balls[occ[q]].radius;
+  coord.clear();
+  for (size_t q = 0; q < occ.size(); q += step) coord.push_back(balls[occ[q]].radius);
   const double large = kLargeRadii * quantile(coord, 0.5);
   std::vector<uint32_t> small;
   for (uint32_t j : occ) (double(balls[j].radius) > large ? g.large : small).push_back(j);
@@ -108,12 +137,18 @@ OccluderGrid make_grid(std::span<const Ball> balls, std::span<const uint8_t> occ
   if (g.large.size() > kMaxLargeOccluders) g.large.resize(kMaxLargeOccluders);
   const size_t cells = size_t(g.dims.x) * g.dims.y * g.dims.z;
   g.start.assign(cells + 1, 0);
-  for (uint32_t j : small) ++g.start[g.index(g.cell_of(glm::dvec3(balls[j].center))) + 1];
+  std::vector<uint32_t> cell_of(small.size());
+  parallel_ranges(small.size(), parallel_range_count(small.size(), 65536), [&](size_t, size_t begin, size_t end) {
+    for (size_t q = begin; q < end; ++q) cell_of[q] = uint32_t(g.index(g.cell_of(glm::dvec3(balls[small[q]].center))));
+  });
+  for (uint32_t c : cell_of) ++g.start[c + 1];
   for (size_t c = 0; c < cells; ++c) g.start[c + 1] += g.start[c];
   g.items.resize(small.size());
   std::vector<uint32_t> fill(g.start.begin(), g.start.end() - 1);
-  for (uint32_t j : small)
-    g.items[fill[g.index(g.cell_of(glm::dvec3(balls[j].center)))]++] = {balls[j].center, balls[j].radius, j};
+  for (size_t q = 0; q < small.size(); ++q) {
+    const Ball& b = balls[small[q]];
+    g.items[fill[cell_of[q]]++] = {b.center, reach_down(b), small[q]};
+  }
   return g;
 }
 
@@ -147,29 +182,12 @@ bool clip_box(glm::dvec3& lo, glm::dvec3& hi, const Cut& c, bool& cut) {
   return lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z;
 }
 
-// The margin by which a point must lie inside occluder b to count as hidden.
-double margin(const Ball& b) {
-  const glm::dvec3 c = glm::abs(glm::dvec3(b.center));
-  return 1e-4 * b.radius + 32.0 * double(std::numeric_limits<float>::epsilon()) * (std::max({c.x, c.y, c.z}) + b.radius);
-}
-
-// The float at or below / above x.
-float float_down(double x) {
-  const float f = float(x);
-  return double(f) > x ? next_float_down(f) : f;
-}
-float float_up(double x) {
-  const float f = float(x);
-  return double(f) < x ? next_float_up(f) : f;
-}
-
 }  // namespace
 
 std::vector<Aabb> visible_sphere_boxes(std::span<const Ball> balls, std::span<const uint8_t> occludes,
                                        HiddenPartsStats* stats) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<Aabb> boxes(balls.size());
-  for (size_t i = 0; i < balls.size(); ++i) boxes[i] = {balls[i].center - balls[i].radius, balls[i].center + balls[i].radius};
   const OccluderGrid grid = make_grid(balls, occludes);
   const size_t ranges = parallel_range_count(balls.size(), 4096);
   std::vector<HiddenPartsStats> per_range(clamp_ranges(balls.size(), ranges));
@@ -177,16 +195,15 @@ std::vector<Aabb> visible_sphere_boxes(std::span<const Ball> balls, std::span<co
     std::vector<Cut> cuts;
     for (size_t i = begin; i < end; ++i) {
       const Ball& s = balls[i];
+      boxes[i] = {s.center - s.radius, s.center + s.radius};
       const glm::dvec3 c(s.center);
       const double r = s.radius;
       glm::dvec3 lo(-r), hi(r);
       bool alive = true, any_cut = false;
       cuts.clear();
-      const auto consider = [&](uint32_t j, const Ball& o) {
-        if (j == i || !alive) return;
-        const double big_r = double(o.radius) - margin(o);
-        if (big_r <= 0.0) return;
-        const glm::dvec3 e = glm::dvec3(o.center) - c;
+      const auto consider = [&](uint32_t j, const glm::vec3& center, double big_r) {
+        if (j == i || !alive || big_r <= 0.0) return;
+        const glm::dvec3 e = glm::dvec3(center) - c;
         const double d2 = glm::dot(e, e);
         if (d2 >= (r + big_r) * (r + big_r)) return;  // no point of the surface inside by the margin
         const Cut cut{e, 0.5 * (d2 + r * r - big_r * big_r)};
@@ -212,11 +229,11 @@ std::vector<Aabb> visible_sphere_boxes(std::span<const Ball> balls, std::span<co
               const size_t at = grid.index(cell);
               for (uint32_t q = grid.start[at]; q < grid.start[at + 1]; ++q) {
                 const OccluderGrid::Item& it = grid.items[q];
-                consider(it.index, Ball{it.center, it.radius});
+                consider(it.index, it.center, it.reach);
               }
             }
       }
-      for (uint32_t j : grid.large) consider(j, balls[j]);
+      for (uint32_t j : grid.large) consider(j, balls[j].center, reach(balls[j]));
       // A second pass over the cuts: each was applied to the box as it was then.
       for (size_t q = 0; alive && q < cuts.size(); ++q) {
         bool did = false;
