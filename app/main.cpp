@@ -841,6 +841,11 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
                   result.octree.bytes_per_primitive, result.octree.bvh_top_width, result.octree.bvh_mesh_width,
                   result.octree.bvh_sphere_order ? ", spheres in its order" : "",
                   result.bvh_top_while ? ", while-while top walk" : "");
+    if (settings.accel != Accel::Brute && (result.octree.spheres_clipped > 0 || result.octree.spheres_hidden > 0))
+      std::printf("hidden    %llu spheres' boxes shrunk to the parts no opaque sphere covers, %llu wholly covered "
+                  "(--hidden-parts; %.1f ms of the build)\n",
+                  (unsigned long long)result.octree.spheres_clipped, (unsigned long long)result.octree.spheres_hidden,
+                  result.octree.hidden_parts_ms);
     std::printf("times     scene %.1f ms, %s build %.1f ms, upload %.1f ms, pipeline %.1f ms, render %.1f ms (device)\n",
                 scene_ms, accel_name(settings.accel), t.accel_build_ms, t.upload_ms, t.pipeline_ms,
                 t.render_device_ms);
