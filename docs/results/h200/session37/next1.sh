@@ -11,6 +11,7 @@ source tools/gpu_run.sh
 # hidden-parts case.
 gpu_suites
 suite_logged "$R/render_hidden.txt" build-gpu/tests/render_test --gtest_filter='*HiddenParts*'
+echo "render_test hidden parts: $(gtest_result "$R/render_hidden.txt")" >> "$T"
 # Log 125 on the GPU: whole spheres (keep) against their visible parts
 # (cull, the default) where spheres overlap (1M and 10M at r = 0.1), and
 # where none do (8,000 at r = 0.1: the same trees, so within noise).
