@@ -124,7 +124,8 @@ struct PathTracer::State {
   void note_culling(const Scene& sc) {
     const OctreeStats& o = scene.octree;
     culled_for.reset();
-    if (scene.tree != Accel::Brute && (o.spheres_clipped > 0 || o.spheres_hidden > 0)) culled_for = sc.camera;
+    if (settings.accel != Accel::Brute && scene.tree != Accel::Brute && (o.spheres_clipped > 0 || o.spheres_hidden > 0))
+      culled_for = sc.camera;
   }
   Buffer accum_sum, accum_comp, accum_sq, stats;
   // With the tail queue: each sample's value per [sample of the dispatch]
@@ -422,11 +423,12 @@ void PathTracer::reconfigure(const Scene& scene, Accel accel, Precision precisio
     if (accel != Accel::Brute && s.scene.tree != accel) {
       upload_octree(s.scene, s.ctx, scene, accel, s.settings.octree);
       s.timings.accel_build_ms = s.scene.accel_build_ms;
-      s.note_culling(scene);
     }
+    s.note_culling(scene);  // brute force walks no tree: any camera
     s.create_pipeline();
   } catch (const InputError&) {
     s.settings = previous;
+    s.note_culling(scene);
     s.create_pipeline();
     throw;
   }
