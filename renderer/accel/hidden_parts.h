@@ -35,9 +35,11 @@ struct HiddenPartsStats {
 // a point of some sphere's surface that no occluder holds; so the nearest
 // hit of every such ray lies on such a point, and a tree that references
 // each sphere where those points are finds it (a hit elsewhere on a
-// referenced sphere is still a hit of that sphere). Occluders are the
-// spheres rays never enter: opaque materials; a sphere that holds the
-// camera's lens must not be one (the caller's rule, render/gpu_scene.cpp).
+// referenced sphere is still a hit of that sphere). That is exact
+// arithmetic: a ray that starts a few ulps inside a neighbour at a seam can
+// differ (optimisation log 125). Occluders are the spheres rays never
+// enter: opaque materials; a sphere that holds the camera's lens must not
+// be one (the caller's rule, render/gpu_scene.cpp).
 //
 // How: a point p of sphere i's surface lies inside occluder j exactly when
 // it is on j's side of their radical plane (|p - c_j|^2 - r_j^2 <

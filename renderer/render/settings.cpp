@@ -53,12 +53,6 @@ Instancing parse_instancing(const std::string& name) {
 
 const char* hidden_parts_name(HiddenParts h) { return h == HiddenParts::Keep ? "keep" : "cull"; }
 
-HiddenParts parse_hidden_parts(const std::string& name) {
-  for (HiddenParts h : {HiddenParts::Cull, HiddenParts::Keep})
-    if (name == hidden_parts_name(h)) return h;
-  throw SettingError("octree.hidden_parts", ": expected cull or keep, got \"" + name + "\"");
-}
-
 bool bakes_every_instance(Instancing instancing, uint64_t stored, uint64_t placed) {
   if (instancing != Instancing::Auto) return instancing == Instancing::Bake;
   const uint64_t extra = placed > stored ? placed - stored : 0;

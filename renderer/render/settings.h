@@ -22,10 +22,9 @@ SphereOrder parse_sphere_order(const std::string& name);
 // SettingError("octree.instancing").
 const char* instancing_name(Instancing i);
 Instancing parse_instancing(const std::string& name);
-// "cull" | "keep" (OctreeParams::hidden_parts); parse throws
-// SettingError("octree.hidden_parts").
+// "cull" | "keep" (OctreeParams::hidden_parts; the command line parses
+// its own auto | cull | keep: app/main.cpp RenderOptions::parsed).
 const char* hidden_parts_name(HiddenParts h);
-HiddenParts parse_hidden_parts(const std::string& name);
 
 // The extra triangles (placed - stored) up to which Instancing::Auto bakes
 // every instance: at most some 180 MB more on the device (a triangle, its
