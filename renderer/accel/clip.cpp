@@ -1,6 +1,8 @@
 #include "accel/clip.h"
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 
@@ -144,6 +146,54 @@ struct OctantClip {
 };
 
 }  // namespace
+
+bool clip_sphere_surface(const glm::vec3& c, float r, const Aabb& cell, Aabb& part) {
+  const glm::dvec3 center(c);
+  double scale = double(r);
+  for (int a = 0; a < 3; ++a)
+    scale = std::max({scale, std::abs(center[a]), std::abs(double(cell.lo[a])), std::abs(double(cell.hi[a]))});
+  const double eps = std::ldexp(scale, -19);
+  const double outer2 = (double(r) + eps) * (double(r) + eps);
+  const double inner = std::max(0.0, double(r) - eps);
+  const double inner2 = inner * inner;
+  glm::dvec3 lo = glm::dvec3(cell.lo) - eps, hi = glm::dvec3(cell.hi) + eps;
+  for (int round = 0; round < 2; ++round) {
+    // Per axis, the least and the greatest (p_a - c_a)^2 over the box.
+    double nearest[3], farthest[3];
+    for (int a = 0; a < 3; ++a) {
+      const double below = lo[a] - center[a], above = hi[a] - center[a];
+      nearest[a] = below > 0.0 ? below * below : above < 0.0 ? above * above : 0.0;
+      farthest[a] = std::max(below * below, above * above);
+    }
+    const double near = nearest[0] + nearest[1] + nearest[2];
+    const double far = farthest[0] + farthest[1] + farthest[2];
+    // The ball misses the box, or the box lies inside the ball.
+    if (near > outer2 || far < inner2) return false;
+    for (int a = 0; a < 3; ++a) {
+      const double most = std::sqrt(std::max(0.0, outer2 - (near - nearest[a])));
+      const double least = std::sqrt(std::max(0.0, inner2 - (far - farthest[a])));
+      double l = std::numeric_limits<double>::infinity(), h = -l;
+      const double pieces[2][2] = {{center[a] - most, center[a] - least}, {center[a] + least, center[a] + most}};
+      for (const auto& piece : pieces) {
+        const double p0 = std::max(lo[a], piece[0]), p1 = std::min(hi[a], piece[1]);
+        if (p0 <= p1) {
+          l = std::min(l, p0);
+          h = std::max(h, p1);
+        }
+      }
+      if (!(l <= h)) return false;
+      lo[a] = l;
+      hi[a] = h;
+    }
+  }
+  // Within the cell: a part the margin put just outside it keeps the face
+  // it lies against.
+  for (int k = 0; k < 3; ++k) {
+    part.lo[k] = std::clamp(next_float_down(float(lo[k])), cell.lo[k], cell.hi[k]);
+    part.hi[k] = std::clamp(next_float_up(float(hi[k])), cell.lo[k], cell.hi[k]);
+  }
+  return true;
+}
 
 Aabb octant_cell(const Aabb& box, const glm::vec3& mid, uint32_t k) {
   Aabb cell = box;

@@ -17,6 +17,22 @@ namespace octrace {
 // polygon clipping") in double, so a thin triangle loses nothing.
 bool clip_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const Aabb& cell, Aabb& part);
 
+// Whether the surface of the sphere with centre `c` and radius `r` (not its
+// ball) reaches into the closed box `cell`; if it does, `part` receives a
+// box that holds the surface's points in the cell (never outside the cell).
+// A cell wholly inside the ball holds none: on a dense field of overlapping
+// spheres, a sphere's visible part (accel/hidden_parts.h) is a column whose
+// middle lies inside the ball, so the octree's cells separate its top cap
+// from its bottom one (optimisation log 126). How: a point p of the surface
+// in the cell has (p_a - c_a)^2 = r^2 - (the sum over the other two axes),
+// which the cell bounds from below and above, so |p_a - c_a| lies in an
+// interval and p_a in at most two, intersected with the cell's extent; two
+// rounds, each on the box the last left. In double, with a margin of 2^-19
+// of the largest coordinate (about 2e-6 of it) on the cell and the radius,
+// so that a point rounding puts a little off the surface or the cell still
+// counts; rounded outward to float.
+bool clip_sphere_surface(const glm::vec3& c, float r, const Aabb& cell, Aabb& part);
+
 // Octant k of `box` split at `mid` (an axis whose mid is not finite is not
 // split: its whole extent is the low half; bit a of k set: the high side of
 // axis a).

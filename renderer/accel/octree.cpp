@@ -75,9 +75,15 @@ BuildNode child_node(const BuildNode& parent, const Split& split, int k) {
 // With `clip`, a reference goes only to the octants its primitive reaches
 // (not every octant its box overlaps), and carries into each the box of the
 // part inside: `parts` receives those, reference by reference in octant order.
+//
+// `straddled`: whether an axis that every reference's box straddles may be
+// split (build_octree's clip_straddled); `narrowed`, if given, receives
+// whether the straddle rule left out an axis the rest would split. `cost`,
+// if given, receives the plan's expected cost (below), also when it loses.
 bool plan_split(const Ref* refs, size_t n, const BuildNode& node, const OctreeParams& params, const ClipFn& clip,
-                const ClipOctantsFn& clip_octants,
-                uint8_t* octants, std::vector<Ref>& parts, Split& split) {
+                const ClipOctantsFn& clip_octants, uint8_t* octants, std::vector<Ref>& parts, Split& split,
+                bool straddled = false, bool* narrowed = nullptr, double* cost = nullptr) {
+  if (narrowed) *narrowed = false;
   if (n <= params.leaf_size || node.depth >= params.max_depth) return false;
   const Box& box = node.box;
   const glm::vec3 extent = box.hi - box.lo;
@@ -89,8 +95,9 @@ bool plan_split(const Ref* refs, size_t n, const BuildNode& node, const OctreePa
   bool any = false;
   for (int a = 0; a < 3; ++a) {
     // An axis not split gets mid = +inf: every reference is on its low side.
-    const bool split_axis = extent[a] >= 0.5f * largest && box.lo[a] < mid[a] && mid[a] < box.hi[a] &&
-                            straddling[a] < n;
+    const bool splittable = extent[a] >= 0.5f * largest && box.lo[a] < mid[a] && mid[a] < box.hi[a];
+    const bool split_axis = splittable && (straddled || straddling[a] < n);
+    if (narrowed && splittable && !split_axis) *narrowed = true;
     if (!split_axis) mid[a] = std::numeric_limits<float>::infinity();
     any |= split_axis;
   }
@@ -165,8 +172,34 @@ bool plan_split(const Ref* refs, size_t n, const BuildNode& node, const OctreePa
   double split_cost = 0.0;
   for (int k = 0; k < 8; ++k)
     if (split.count[k] != 0) split_cost += half_area(split.box[k]) * (split.count[k] + kNodeCost);
+  if (cost) *cost = split_cost;
   return split_cost < half_area(box) * static_cast<double>(n) &&
          static_cast<double>(split.total) <= node.budget;
+}
+
+// plan_split, and with `clip_straddled` where the straddle rule left an
+// axis out, the plan with those axes split too: the one of lower cost
+// (build_octree's clip_straddled). `spare_*` are scratch of the caller's.
+bool plan_best_split(const Ref* refs, size_t n, const BuildNode& node, const OctreeParams& params,
+                     const ClipFn& clip, const ClipOctantsFn& clip_octants, bool clip_straddled, uint8_t* octants,
+                     std::vector<Ref>& parts, Split& split, std::vector<uint8_t>& spare_octants,
+                     std::vector<Ref>& spare_parts) {
+  bool narrowed = false;
+  double cost = std::numeric_limits<double>::infinity();
+  const bool planned = plan_split(refs, n, node, params, clip, clip_octants, octants, parts, split, false,
+                                  clip_straddled ? &narrowed : nullptr, &cost);
+  if (!narrowed) return planned;
+  if (spare_octants.size() < n) spare_octants.resize(n);
+  Split wider;
+  double wider_cost = std::numeric_limits<double>::infinity();
+  if (!plan_split(refs, n, node, params, clip, clip_octants, spare_octants.data(), spare_parts, wider, true, nullptr,
+                  &wider_cost) ||
+      (planned && !(wider_cost < cost)))
+    return planned;
+  split = wider;
+  std::copy(spare_octants.begin(), spare_octants.begin() + n, octants);
+  parts.swap(spare_parts);
+  return true;
 }
 
 // Copies each reference into the ranges of its octants, keeping their order
@@ -202,8 +235,9 @@ struct Subtree {
 // build allocates nothing per node once the buffers have grown.
 class SubtreeBuilder {
  public:
-  SubtreeBuilder(const OctreeParams& params, const ClipFn& clip, const ClipOctantsFn& clip_octants)
-      : params_(params), clip_(clip), clip_octants_(clip_octants) {}
+  SubtreeBuilder(const OctreeParams& params, const ClipFn& clip, const ClipOctantsFn& clip_octants,
+                 bool clip_straddled)
+      : params_(params), clip_(clip), clip_octants_(clip_octants), clip_straddled_(clip_straddled) {}
 
   Subtree build(const std::vector<Ref>& refs, const BuildNode& root) {
     out_ = {};
@@ -226,7 +260,8 @@ class SubtreeBuilder {
     out_.max_depth = std::max(out_.max_depth, node.depth);
     reserve(n);
     Split split;
-    if (!plan_split(scratch_.data() + begin, n, node, params_, clip_, clip_octants_, octants_.data(), parts_, split)) {
+    if (!plan_best_split(scratch_.data() + begin, n, node, params_, clip_, clip_octants_, clip_straddled_,
+                         octants_.data(), parts_, split, spare_octants_, spare_parts_)) {
       out_.nodes[index].first = static_cast<uint32_t>(out_.refs.size());
       out_.nodes[index].count_or_mask = static_cast<uint32_t>(n);
       for (size_t i = begin; i < end; ++i) out_.refs.push_back(scratch_[i].prim);
@@ -253,8 +288,11 @@ class SubtreeBuilder {
   const OctreeParams& params_;
   const ClipFn& clip_;
   const ClipOctantsFn& clip_octants_;
+  bool clip_straddled_;
   Subtree out_;
   std::vector<Ref> parts_;
+  std::vector<Ref> spare_parts_;
+  std::vector<uint8_t> spare_octants_;
   std::vector<Ref> scratch_;
   std::vector<uint8_t> octants_;
 };
@@ -307,7 +345,8 @@ void check_params(const OctreeParams& params) {
 }  // namespace
 
 Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& requested, const ClipFn& clip,
-                    const ClipOctantsFn& clip_octants) {
+                    const ClipOctantsFn& clip_octants, bool clip_straddled) {
+  clip_straddled = clip_straddled && clip;
   check_params(requested);
   OctreeParams params = requested;
   if (params.leaf_size == 0) params.leaf_size = kOctreeLeaf;
@@ -338,8 +377,8 @@ Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& requested, 
   const size_t share = std::max<size_t>(root.refs.size() / 16, 4096);
   std::vector<Pending> pending;
   pending.push_back(std::move(root));
-  std::vector<uint8_t> octants;
-  std::vector<Ref> parts;
+  std::vector<uint8_t> octants, spare_octants;
+  std::vector<Ref> parts, spare_parts;
   for (;;) {
     size_t largest = pending.size();
     for (size_t i = 0; i < pending.size(); ++i)
@@ -351,7 +390,8 @@ Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& requested, 
     Pending& p = pending[largest];
     octants.resize(p.refs.size());
     Split split;
-    if (!plan_split(p.refs.data(), p.refs.size(), p.node, params, clip, clip_octants, octants.data(), parts, split)) {
+    if (!plan_best_split(p.refs.data(), p.refs.size(), p.node, params, clip, clip_octants, clip_straddled,
+                         octants.data(), parts, split, spare_octants, spare_parts)) {
       p.splittable = false;
       continue;
     }
@@ -382,7 +422,7 @@ Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& requested, 
                    [&](size_t a, size_t b) { return pending[a].refs.size() > pending[b].refs.size(); });
   std::vector<Subtree> subtrees(pending.size());
   parallel_items(
-      schedule.size(), [&] { return SubtreeBuilder(params, clip, clip_octants); },
+      schedule.size(), [&] { return SubtreeBuilder(params, clip, clip_octants, clip_straddled); },
       [&](SubtreeBuilder& builder, size_t i) {
         const Pending& p = pending[schedule[i]];
         subtrees[schedule[i]] = builder.build(p.refs, p.node);

@@ -167,7 +167,11 @@ struct OctreeStats {
 // at the box rather than the cell midpoint skips the empty levels above a small
 // cluster. An axis is split only if its box extent is at least half the largest
 // one (a flat field of spheres is split like a quadtree; a zero extent never)
-// and not every reference straddles its midpoint (that would only copy them).
+// and not every reference straddles its midpoint (that would only copy them);
+// with `clip_straddled` (a ClipFn whose parts can be much smaller than the
+// boxes: spheres' surfaces at the top level, optimisation log 126) a node
+// whose split that rule narrowed is also planned with those axes split, and
+// the plan of lower cost (below) is taken.
 // A node splits while it holds more than leaf_size references and its depth is
 // below max_depth, and only if
 //   - the split lowers the expected cost of a ray that meets the node:
@@ -228,7 +232,8 @@ using ClipOctantsFn =
 // Uses the hardware threads; the result depends only on the input.
 // Throws SettingError ("octree.leaf_size", "octree.max_depth",
 // "octree.max_refs") for bad params; a leaf size of 0 builds with kOctreeLeaf.
+// `clip_straddled`: see "How it is built" (needs a ClipFn).
 Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params, const ClipFn& clip = {},
-                    const ClipOctantsFn& clip_octants = {});
+                    const ClipOctantsFn& clip_octants = {}, bool clip_straddled = false);
 
 }  // namespace octrace

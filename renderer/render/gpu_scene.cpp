@@ -124,8 +124,26 @@ static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& sce
   // A BVH's widths per level, kept in its stats (below), which the
   // pipeline's SPEC_BVH_TOP_WIDE and SPEC_BVH_MESH_WIDE follow.
   const BvhWidths widths = bvh_widths(ctx, scene, params);
+  // Where spheres' boxes were clipped to their visible parts (a dense field of
+  // overlapping spheres), the octree also clips each sphere to its surface
+  // in a cell: the middle of a visible column lies inside the ball, so the
+  // cells can part its top cap from its bottom one (optimisation log 126).
+  // Elsewhere the top level is the boxes, as before.
+  const size_t sphere_count = scene.spheres.size();
+  const ClipFn sphere_surfaces = [&](uint32_t prim, const Aabb& cell, Aabb& part) {
+    const Aabb& b = boxes[prim];
+    const Aabb within{glm::max(cell.lo, b.lo), glm::min(cell.hi, b.hi)};
+    if (prim >= sphere_count) {
+      part = within;
+      return true;
+    }
+    if (!(within.lo.x <= within.hi.x && within.lo.y <= within.hi.y && within.lo.z <= within.hi.z)) return false;
+    return clip_sphere_surface(scene.spheres[prim].center, scene.spheres[prim].radius, within, part);
+  };
+  const bool clip_surfaces = accel == Accel::Octree && hidden.clipped > 0;
   SceneOctree t{accel == Accel::Bvh ? build_bvh(boxes, widths.top, {}, kBvhSpatialRefs, kBvhTopNodeCost)
-                                    : build_octree(boxes, params),
+                                    : build_octree(boxes, params, clip_surfaces ? sphere_surfaces : ClipFn{}, {},
+                                                   clip_surfaces),
                 gpu_meshes(scene)};
   Octree& octree = t.octree;
   OctreeStats& st = octree.stats;

@@ -178,5 +178,77 @@ TEST(NextFloat, StepsAsNextafterDoes) {
   }
 }
 
+// clip_sphere_surface: the part's box holds every point of the sphere's
+// surface inside the cell (spheres near the origin and 1000 away), lies in
+// the cell, and a cell that only the ball reaches holds none.
+glm::dvec3 unit_vector(std::mt19937_64& rng) {
+  std::normal_distribution<double> g;
+  for (;;) {
+    const glm::dvec3 v(g(rng), g(rng), g(rng));
+    if (glm::length(v) > 1e-9) return glm::normalize(v);
+  }
+}
+
+TEST(ClipSphereSurface, HoldsEverySurfacePointInTheCell) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), v(0.0, 1.0);
+  size_t tested = 0, reached = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const double scale = trial % 3 == 0 ? 1000.0 : 1.0;
+    const glm::vec3 c(float(u(rng) * scale), float(u(rng) * scale), float(u(rng) * scale));
+    const float r = float(0.05 + 0.95 * v(rng));
+    const glm::dvec3 q = glm::dvec3(c) + 1.2 * double(r) * glm::dvec3(u(rng), u(rng), u(rng));
+    const glm::dvec3 half = double(r) * glm::dvec3(0.01 + 0.5 * v(rng), 0.01 + 0.5 * v(rng), 0.01 + 0.5 * v(rng));
+    const Aabb cell{glm::vec3(q - half), glm::vec3(q + half)};
+    Aabb part;
+    const bool got = clip_sphere_surface(c, r, cell, part);
+    if (got) {
+      ++reached;
+      for (int a = 0; a < 3; ++a) {
+        ASSERT_GE(part.lo[a], cell.lo[a]);
+        ASSERT_LE(part.hi[a], cell.hi[a]);
+        ASSERT_LE(part.lo[a], part.hi[a]);
+      }
+    }
+    for (int k = 0; k < 300; ++k) {
+      const glm::dvec3 p = glm::dvec3(c) + double(r) * unit_vector(rng);
+      if (!contains(cell, p)) continue;
+      ++tested;
+      ASSERT_TRUE(got) << "trial " << trial << ": a surface point in the cell, none found";
+      ASSERT_TRUE(contains(part, p)) << "trial " << trial << ": (" << p.x << ", " << p.y << ", " << p.z
+                                     << ") outside the part";
+    }
+  }
+  EXPECT_GT(tested, 5000u);
+  EXPECT_GT(reached, 500u);
+}
+
+TEST(ClipSphereSurface, ACellInsideTheBallOrApartHoldsNone) {
+  Aabb part;
+  const glm::vec3 c(0.0f);
+  EXPECT_FALSE(clip_sphere_surface(c, 1.0f, {glm::vec3(-0.5f), glm::vec3(0.5f)}, part));
+  EXPECT_FALSE(clip_sphere_surface(c, 1.0f, {glm::vec3(0.6f), glm::vec3(2.0f)}, part));  // its corner is outside
+  EXPECT_TRUE(clip_sphere_surface(c, 1.0f, {glm::vec3(0.5f), glm::vec3(2.0f)}, part));
+  EXPECT_FALSE(clip_sphere_surface(c, 1.0f, {glm::vec3(1.1f, -0.1f, -0.1f), glm::vec3(2.0f, 0.1f, 0.1f)}, part));
+}
+
+// The visible column of a sphere in a dense field (accel/hidden_parts.h):
+// its surface there is two thin caps; the column's top half holds the top
+// cap only, a slab a thousandth of the radius thick.
+TEST(ClipSphereSurface, AColumnIsItsTwoCaps) {
+  const glm::vec3 c(0.0f, 0.1f, 0.0f);
+  const float r = 0.1f;
+  Aabb part;
+  ASSERT_TRUE(clip_sphere_surface(c, r, {{-0.01f, 0.0f, -0.01f}, {0.01f, 0.2f, 0.01f}}, part));
+  EXPECT_LE(part.lo.y, 0.0011f);
+  EXPECT_GE(part.hi.y, 0.1989f);
+  ASSERT_TRUE(clip_sphere_surface(c, r, {{-0.01f, 0.1f, -0.01f}, {0.01f, 0.2f, 0.01f}}, part));
+  const float cap = 0.1f + std::sqrt(0.01f - 0.0002f);  // the lowest point of the cap in the column
+  EXPECT_NEAR(part.lo.y, cap, 1e-5f);
+  EXPECT_GE(part.hi.y, 0.2f - 1e-6f);
+  EXPECT_LE(part.hi.y, 0.2f);
+  EXPECT_FALSE(clip_sphere_surface(c, r, {{-0.01f, 0.03f, -0.01f}, {0.01f, 0.17f, 0.01f}}, part));
+}
+
 }  // namespace
 }  // namespace octrace

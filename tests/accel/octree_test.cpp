@@ -5,6 +5,7 @@
 // the stats add up; bad parameters are errors that name the flag.
 #include "accel/octree.h"
 #include "accel/clip.h"
+#include "accel/hidden_parts.h"
 #include "render/gpu_scene.h"
 
 #include <gtest/gtest.h>
@@ -311,6 +312,27 @@ void expect_consistent_stats(const Octree& tree, const std::vector<Sphere>& sphe
 }
 
 // Every guarantee at once, for one scene and one set of parameters.
+// What rays pay: the references in every leaf whose box one crosses (no
+// early exit), summed over the rays.
+uint64_t references_met(const Octree& tree, const std::vector<Ray>& rays) {
+  uint64_t met = 0;
+  for (const Ray& ray : rays) {
+    std::vector<uint32_t> stack = {0};
+    while (!stack.empty()) {
+      const GpuOctreeNode& n = tree.nodes[stack.back()];
+      stack.pop_back();
+      double t0, t1;
+      if (!hit_box(n, ray, t0, t1)) continue;
+      if (!(n.count_or_mask & OCTREE_INTERNAL)) {
+        met += n.count_or_mask;
+        continue;
+      }
+      for (uint32_t c = 0; c < uint32_t(std::popcount(n.count_or_mask & 0xFFu)); ++c) stack.push_back(n.first + c);
+    }
+  }
+  return met;
+}
+
 void expect_correct_octree(const std::vector<Sphere>& spheres, const OctreeParams& params, size_t rays = 2000) {
   const Octree tree = build_octree(sphere_boxes(spheres), params);
   const uint32_t deepest = expect_valid_structure(tree, spheres, params);
@@ -524,28 +546,14 @@ TEST(Octree, ClippedTrianglesAreFindableWithFewerReferences) {
   ASSERT_EQ(clipped.nodes.size(), at_once.nodes.size());
   EXPECT_EQ(std::memcmp(clipped.nodes.data(), at_once.nodes.data(), clipped.nodes.size() * sizeof(GpuOctreeNode)), 0);
   EXPECT_LE(clipped.refs.size(), 8 * tris.size());
-  // What a ray pays: the references in every leaf whose box it crosses (no
-  // early exit), over random rays through the scene.
-  const auto refs_met = [&](const Octree& tree) {
-    std::mt19937_64 ray_rng(23);
-    uint64_t met = 0;
-    for (int r = 0; r < 2000; ++r) {
-      const Ray ray{glm::dvec3(pos(ray_rng), pos(ray_rng), pos(ray_rng)), random_unit(ray_rng)};
-      std::vector<uint32_t> stack = {0};
-      while (!stack.empty()) {
-        const GpuOctreeNode& n = tree.nodes[stack.back()];
-        stack.pop_back();
-        double t0, t1;
-        if (!hit_box(n, ray, t0, t1)) continue;
-        if (!(n.count_or_mask & OCTREE_INTERNAL)) {
-          met += n.count_or_mask;
-          continue;
-        }
-        for (uint32_t c = 0; c < uint32_t(std::popcount(n.count_or_mask & 0xFFu)); ++c) stack.push_back(n.first + c);
-      }
-    }
-    return met;
-  };
+  // Random rays through the scene.
+  std::vector<Ray> rays;
+  std::mt19937_64 ray_rng(23);
+  for (int r = 0; r < 2000; ++r) {
+    const glm::dvec3 origin(pos(ray_rng), pos(ray_rng), pos(ray_rng));
+    rays.push_back({origin, random_unit(ray_rng)});
+  }
+  const auto refs_met = [&](const Octree& tree) { return references_met(tree, rays); };
   const uint64_t met_plain = refs_met(plain), met_clipped = refs_met(clipped);
   EXPECT_LT(double(met_clipped), 0.5 * double(met_plain)) << "clipped " << met_clipped << ", by boxes " << met_plain;
 
@@ -579,6 +587,69 @@ TEST(Octree, ClippedTrianglesAreFindableWithFewerReferences) {
   EXPECT_GT(deeper.refs.size(), clipped.refs.size());
   EXPECT_LT(refs_met(deeper), met_clipped);
   expect_complete(deeper);
+}
+
+// A dense field of overlapping spheres, as the hidden-parts rule leaves it
+// (each sphere's box the column of its visible part, accel/hidden_parts.h):
+// the boxes straddle every horizontal middle, so without the spheres'
+// surfaces (clip_sphere_surface) and clip_straddled the octree cannot part
+// the top caps from the bottom ones (optimisation log 126). With them every
+// visible surface point stays findable, rays from above find what brute
+// force finds, and a ray meets far fewer references.
+TEST(Octree, SphereSurfacesPartTheCapsOfADenseField) {
+  std::vector<Sphere> spheres;
+  for (int x = 0; x < 40; ++x)
+    for (int z = 0; z < 40; ++z) spheres.push_back({glm::vec3(0.02f * x, 0.1f, 0.02f * z), 0.1f, 0});
+  std::vector<Ball> balls;
+  for (const Sphere& s : spheres) balls.push_back({s.center, s.radius});
+  const std::vector<Aabb> boxes = visible_sphere_boxes(balls, std::vector<uint8_t>(balls.size(), 1));
+  const ClipFn surfaces = [&](uint32_t i, const Aabb& cell, Aabb& part) {
+    const Aabb within{glm::max(cell.lo, boxes[i].lo), glm::min(cell.hi, boxes[i].hi)};
+    if (!(within.lo.x <= within.hi.x && within.lo.y <= within.hi.y && within.lo.z <= within.hi.z)) return false;
+    return clip_sphere_surface(spheres[i].center, spheres[i].radius, within, part);
+  };
+  const Octree plain = build_octree(boxes, {});
+  const Octree clipped = build_octree(boxes, {}, surfaces, {}, true);
+  const Octree narrow = build_octree(boxes, {}, surfaces);  // the straddle rule as before
+  EXPECT_GT(clipped.stats.max_depth_reached, plain.stats.max_depth_reached);
+  EXPECT_LE(clipped.refs.size(), size_t(OctreeParams{}.max_refs) * spheres.size());
+  // Every point of a sphere's surface in its box (above or below a random
+  // point of the column's cross-section) lies in a leaf that references it.
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  size_t checked = 0;
+  for (uint32_t i = 0; i < spheres.size(); ++i)
+    for (int k = 0; k < 20; ++k) {
+      const Aabb& b = boxes[i];
+      const glm::dvec3 c(spheres[i].center);
+      glm::dvec3 p(b.lo.x + unit(rng) * (b.hi.x - b.lo.x), 0.0, b.lo.z + unit(rng) * (b.hi.z - b.lo.z));
+      const double h2 = double(spheres[i].radius) * spheres[i].radius - (p.x - c.x) * (p.x - c.x) -
+                        (p.z - c.z) * (p.z - c.z);
+      if (h2 < 0.0) continue;
+      p.y = c.y + (k % 2 ? 1.0 : -1.0) * std::sqrt(h2);
+      if (p.y < b.lo.y || p.y > b.hi.y) continue;
+      ++checked;
+      ASSERT_TRUE(leaf_holds(clipped, 0, glm::vec3(p), i)) << "sphere " << i << " at (" << p.x << ", " << p.y << ", "
+                                                            << p.z << ")";
+    }
+  EXPECT_GT(checked, spheres.size());
+  // Rays from above the field, which start outside every sphere.
+  std::vector<Ray> rays;
+  std::uniform_real_distribution<double> u(0.0, 0.78);
+  for (int r = 0; r < 2000; ++r) {
+    const glm::dvec3 target(u(rng), 0.1, u(rng));
+    const glm::dvec3 origin = target + glm::dvec3(u(rng) - 0.39, 1.0, u(rng) - 0.39);
+    rays.push_back({origin, glm::normalize(target - origin)});
+  }
+  for (const Ray& ray : rays) {
+    const Hit want = brute_force(spheres, ray);
+    ASSERT_EQ(traverse(clipped, spheres, ray), want) << "ray from (" << ray.origin.x << ", " << ray.origin.y << ", "
+                                                      << ray.origin.z << ")";
+    ASSERT_EQ(traverse(narrow, spheres, ray), want);
+  }
+  const uint64_t met_plain = references_met(plain, rays), met_clipped = references_met(clipped, rays);
+  EXPECT_LT(2 * met_clipped, met_plain) << "surfaces " << met_clipped << ", boxes " << met_plain;
+  EXPECT_LT(met_clipped, references_met(narrow, rays));
 }
 
 // The library names its own settings; the CLI maps them to flags (cli_test).
