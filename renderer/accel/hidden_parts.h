@@ -37,7 +37,9 @@ struct HiddenPartsStats {
 // each sphere where those points are finds it (a hit elsewhere on a
 // referenced sphere is still a hit of that sphere). That is exact
 // arithmetic: a ray that starts a few ulps inside a neighbour at a seam can
-// differ (optimisation log 125). Occluders are the spheres rays never
+// differ (optimisation log 125 traced it: a path that refracts into glass
+// where it meets an occluder starts inside the occluder by the origin's
+// offset). Occluders are the spheres rays never
 // enter: opaque materials; a sphere that holds the camera's lens must not
 // be one (the caller's rule, render/gpu_scene.cpp).
 //

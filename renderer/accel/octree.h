@@ -35,9 +35,11 @@ enum class Instancing { Auto, Keep, Bake };
 // (OctreeParams::hidden_parts): Cull, only the parts of its surface that no
 // opaque sphere holds (accel/hidden_parts.h; the scene's camera must stay
 // where it is: render/gpu_scene.cpp); Keep, the whole sphere. The image is
-// the same but for a few values in millions in dense overlapping fields,
-// which cull changes (rays that, by our reading, start a few ulps inside
-// a neighbour at a seam; optimisation log 125).
+// the same but for a few values in millions in dense overlapping fields
+// with glass, which cull changes (a ray that refracts into glass where it
+// meets an opaque sphere starts 1e-5 inside the opaque one, by the
+// origin's offset, and hits an inside no exact ray reaches; traced in
+// optimisation log 125).
 enum class HiddenParts { Cull, Keep };
 
 // The leaf size of OctreeParams::leaf_size = 0 (auto) where the device's
