@@ -41,6 +41,13 @@ enum class Instancing { Auto, Keep, Bake };
 // origin's offset, and hits an inside no exact ray reaches; traced in
 // optimisation log 125).
 enum class HiddenParts { Cull, Keep };
+// Whether the octree's top level follows the spheres' surfaces (accel/clip.h
+// clip_sphere_surface) where HiddenParts::Cull shrank their boxes, which
+// parts a dense field's top caps from its bottom ones (optimisation log
+// 126): On, Off, or Auto: on for a GPU, off for a CPU device, where the
+// passes gained nothing at 1M and the build took twice as long. The same
+// image but where a ray starts inside an opaque sphere (log 125).
+enum class SurfaceCells { Auto, On, Off };
 
 // The leaf size of OctreeParams::leaf_size = 0 (auto) where the device's
 // rule does not replace it (render/path_tracer.h default_octree_leaf).
@@ -76,6 +83,9 @@ struct OctreeParams {
   // (`--hidden-parts`). Not a property of the tree either: it decides the
   // boxes the tree is built over.
   HiddenParts hidden_parts = HiddenParts::Cull;
+  // Whether the octree's top level follows the spheres' surfaces there
+  // (`--octree-surfaces`; render/gpu_scene.cpp resolves Auto by device).
+  SurfaceCells surface_cells = SurfaceCells::Auto;
 };
 
 struct OctreeStats {
@@ -104,6 +114,9 @@ struct OctreeStats {
   // build_ms).
   uint64_t spheres_clipped = 0, spheres_hidden = 0;
   double hidden_parts_ms = 0;
+  // Whether the top level's octree followed the spheres' surfaces
+  // (OctreeParams::surface_cells, resolved).
+  bool surface_cells = false;
   // The top level's references per leaf (0 without a top level).
   double top_refs_per_leaf() const { return top_leaves ? double(top_refs) / top_leaves : 0.0; }
 };

@@ -127,8 +127,9 @@ static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& sce
   // Where spheres' boxes were clipped to their visible parts (a dense field of
   // overlapping spheres), the octree also clips each sphere to its surface
   // in a cell: the middle of a visible column lies inside the ball, so the
-  // cells can part its top cap from its bottom one (optimisation log 126).
-  // Elsewhere the top level is the boxes, as before.
+  // cells can part its top cap from its bottom one (optimisation log 126;
+  // OctreeParams::surface_cells, auto: on a GPU). Elsewhere the top level is
+  // the boxes, as before.
   const size_t sphere_count = scene.spheres.size();
   const ClipFn sphere_surfaces = [&](uint32_t prim, const Aabb& cell, Aabb& part) {
     const Aabb& b = boxes[prim];
@@ -140,7 +141,9 @@ static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& sce
     if (!(within.lo.x <= within.hi.x && within.lo.y <= within.hi.y && within.lo.z <= within.hi.z)) return false;
     return clip_sphere_surface(scene.spheres[prim].center, scene.spheres[prim].radius, within, part);
   };
-  const bool clip_surfaces = accel == Accel::Octree && hidden.clipped > 0;
+  const bool clip_surfaces =
+      accel == Accel::Octree && hidden.clipped > 0 &&
+      (params.surface_cells == SurfaceCells::Auto ? !ctx.info.software : params.surface_cells == SurfaceCells::On);
   SceneOctree t{accel == Accel::Bvh ? build_bvh(boxes, widths.top, {}, kBvhSpatialRefs, kBvhTopNodeCost)
                                     : build_octree(boxes, params, clip_surfaces ? sphere_surfaces : ClipFn{}, {},
                                                    clip_surfaces),
@@ -151,6 +154,7 @@ static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& sce
   st.spheres_clipped = hidden.clipped;
   st.spheres_hidden = hidden.hidden;
   st.hidden_parts_ms = hidden.ms;
+  st.surface_cells = clip_surfaces;
   st.top_refs = octree.refs.size();
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const Mesh& mesh = scene.meshes[m];

@@ -53,6 +53,21 @@ Instancing parse_instancing(const std::string& name) {
 
 const char* hidden_parts_name(HiddenParts h) { return h == HiddenParts::Keep ? "keep" : "cull"; }
 
+const char* surface_cells_name(SurfaceCells c) {
+  switch (c) {
+    case SurfaceCells::On: return "on";
+    case SurfaceCells::Off: return "off";
+    case SurfaceCells::Auto: break;
+  }
+  return "auto";
+}
+
+SurfaceCells parse_surface_cells(const std::string& name) {
+  for (SurfaceCells c : {SurfaceCells::Auto, SurfaceCells::On, SurfaceCells::Off})
+    if (name == surface_cells_name(c)) return c;
+  throw SettingError("octree.surface_cells", ": expected auto, on or off, got \"" + name + "\"");
+}
+
 bool bakes_every_instance(Instancing instancing, uint64_t stored, uint64_t placed) {
   if (instancing != Instancing::Auto) return instancing == Instancing::Bake;
   const uint64_t extra = placed > stored ? placed - stored : 0;

@@ -25,6 +25,10 @@ Instancing parse_instancing(const std::string& name);
 // "cull" | "keep" (OctreeParams::hidden_parts; the command line parses
 // its own auto | cull | keep: app/main.cpp RenderOptions::parsed).
 const char* hidden_parts_name(HiddenParts h);
+// "auto" | "on" | "off" (OctreeParams::surface_cells); parse throws
+// SettingError("octree.surface_cells").
+const char* surface_cells_name(SurfaceCells c);
+SurfaceCells parse_surface_cells(const std::string& name);
 
 // The extra triangles (placed - stored) up to which Instancing::Auto bakes
 // every instance: at most some 180 MB more on the device (a triangle, its

@@ -24,6 +24,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "render/gpu_scene.h"
 #include "test_util.h"
 
 namespace octrace {
@@ -304,19 +305,27 @@ TEST_P(AccelTest, TreeImagesMatchBruteForce) {
       NearestChild nearest = NearestChild::Auto;
       SphereOrder order = SphereOrder::Auto;
       BvhWalk walk = BvhWalk::Auto;
+      SurfaceCells surfaces = SurfaceCells::Auto;
     };
     const NearestChild other_form =
         test::shared_context().info.software ? NearestChild::Pushed : NearestChild::Held;
     const SphereOrder other_order = test::shared_context().info.software ? SphereOrder::Tree : SphereOrder::Scene;
+    const SurfaceCells other_surfaces = test::shared_context().info.software ? SurfaceCells::On : SurfaceCells::Off;
+    HiddenPartsStats hidden;
+    primitive_boxes(scene, HiddenParts::Cull, &hidden);
     for (Variant v : {Variant{Accel::Octree, true, BigList::FirstLeaf}, Variant{Accel::Octree, false, BigList::FirstLeaf},
                       Variant{Accel::Octree, true, BigList::OwnLoop}, Variant{Accel::Octree, true, BigList::FirstLeaf, 0, 32},
                       Variant{Accel::Octree, true, BigList::FirstLeaf, 0, 8, other_form},
+                      Variant{Accel::Octree, true, BigList::FirstLeaf, 0, 8, NearestChild::Auto, SphereOrder::Auto,
+                              BvhWalk::Auto, other_surfaces},
                       Variant{Accel::Bvh, false, BigList::Auto, 0},
                       Variant{Accel::Bvh, false, BigList::Auto, 2}, Variant{Accel::Bvh, false, BigList::Auto, 4},
                       Variant{Accel::Bvh, false, BigList::Auto, 2, 8, NearestChild::Auto, other_order},
                       Variant{Accel::Bvh, false, BigList::Auto, 2, 8, NearestChild::Auto, SphereOrder::Auto,
                               BvhWalk::WhileWhile}}) {
       if (v.big_list == BigList::OwnLoop && scene.instances.empty()) continue;
+      // The octree's cells over the spheres' surfaces: only where the hidden parts clipped boxes.
+      if (v.surfaces != SurfaceCells::Auto && hidden.clipped == 0) continue;
       // The BVH's auto widths on a CPU device are all binary (accel/bvh.h): width 2 again.
       if (v.accel == Accel::Bvh && v.bvh_width == 0 && test::shared_context().info.software) continue;
       s.accel = v.accel;
@@ -328,6 +337,7 @@ TEST_P(AccelTest, TreeImagesMatchBruteForce) {
       s.octree.max_refs = v.max_refs;
       s.octree.bvh_sphere_order = v.order;
       s.bvh_walk = v.walk;
+      s.octree.surface_cells = v.surfaces;
       RenderResult tree = render(test::shared_context(), scene, s);
       ASSERT_EQ(tree.nonfinite_samples, 0u);
       auto [identical, mean_diff] = agreement(tree, brute);
@@ -342,6 +352,9 @@ TEST_P(AccelTest, TreeImagesMatchBruteForce) {
                                     ? std::string(" (spheres in the ") + sphere_order_name(v.order) + "'s order)"
                                     : "") +
                                (v.walk == BvhWalk::WhileWhile ? " (top walk while-while)" : "") +
+                               (v.surfaces != SurfaceCells::Auto
+                                    ? std::string(" (cells over surfaces ") + surface_cells_name(v.surfaces) + ")"
+                                    : "") +
                                ", depth " + std::to_string(depth);
       if (depth <= 8) {
         EXPECT_EQ(identical, 1.0) << what << ": only " << identical * 100 << "% bit-identical";

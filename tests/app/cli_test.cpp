@@ -102,6 +102,7 @@ const BadInput BAD_INPUTS[] = {
     {"bvh_walk_unknown", "--accel bvh --bvh-walk twice",
      "--bvh-walk: expected auto, one-loop or while-while, got \"twice\""},
     {"hidden_parts_unknown", "--hidden-parts some", "--hidden-parts: expected auto, cull or keep, got \"some\""},
+    {"octree_surfaces_unknown", "--octree-surfaces some", "--octree-surfaces: expected auto, on or off, got \"some\""},
     {"tail_depth_unknown", "--tail-depth soon", "--tail-depth: expected auto, off or a bounce from 1 to 100000, got \"soon\""},
     {"tail_depth_zero", "--tail-depth 0", "--tail-depth: expected auto, off or a bounce from 1 to 100000, got \"0\""},
     {"tail_step_zero", "--tail-step 0", "--tail-step: expected auto, off or a bounce count from 1 to 100000, got \"0\""},

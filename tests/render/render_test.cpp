@@ -507,6 +507,19 @@ TEST_F(RenderTest, HiddenPartsSpareTestsAndChangeNoPixel) {
     ASSERT_EQ(keep.walk.queries, cull.walk.queries);
     EXPECT_LT(3 * cull.walk.primitives, keep.walk.primitives)
         << cull.walk.primitives << " sphere tests against " << keep.walk.primitives;
+    // The octree's cells over the spheres' surfaces (--octree-surfaces,
+    // log 126): auto on a GPU only; on and off, the same image (this field
+    // is not dense enough for them to save tests: octree_test's grid is).
+    EXPECT_EQ(cull.octree.surface_cells, accel == Accel::Octree && !ctx.info.software);
+    s.octree.surface_cells = SurfaceCells::On;
+    const RenderResult surfaces = render(ctx, scene, s);
+    s.octree.surface_cells = SurfaceCells::Off;
+    const RenderResult boxes = render(ctx, scene, s);
+    s.octree.surface_cells = SurfaceCells::Auto;
+    EXPECT_EQ(surfaces.octree.surface_cells, accel == Accel::Octree);
+    EXPECT_FALSE(boxes.octree.surface_cells);
+    EXPECT_TRUE(same_bits(keep.mean, surfaces.mean));
+    EXPECT_TRUE(same_bits(keep.mean, boxes.mean));
   }
   s.walk_stats = false;
   Scene moved = scene;
