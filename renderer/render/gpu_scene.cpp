@@ -130,22 +130,11 @@ static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& sce
   // cells can part its top cap from its bottom one (optimisation log 126;
   // OctreeParams::surface_cells, auto: on a GPU). Elsewhere the top level is
   // the boxes, as before.
-  const size_t sphere_count = scene.spheres.size();
-  const ClipFn sphere_surfaces = [&](uint32_t prim, const Aabb& cell, Aabb& part) {
-    const Aabb& b = boxes[prim];
-    const Aabb within{glm::max(cell.lo, b.lo), glm::min(cell.hi, b.hi)};
-    if (prim >= sphere_count) {
-      part = within;
-      return true;
-    }
-    if (!(within.lo.x <= within.hi.x && within.lo.y <= within.hi.y && within.lo.z <= within.hi.z)) return false;
-    return clip_sphere_surface(scene.spheres[prim].center, scene.spheres[prim].radius, within, part);
-  };
   const bool clip_surfaces =
       accel == Accel::Octree && hidden.clipped > 0 &&
       (params.surface_cells == SurfaceCells::Auto ? !ctx.info.software : params.surface_cells == SurfaceCells::On);
   SceneOctree t{accel == Accel::Bvh ? build_bvh(boxes, widths.top, {}, kBvhSpatialRefs, kBvhTopNodeCost)
-                                    : build_octree(boxes, params, clip_surfaces ? sphere_surfaces : ClipFn{}, {},
+                                    : build_octree(boxes, params, clip_surfaces ? sphere_surface_clip(scene.spheres, boxes) : ClipFn{}, {},
                                                    clip_surfaces),
                 gpu_meshes(scene)};
   Octree& octree = t.octree;
@@ -484,6 +473,19 @@ std::vector<uint8_t> sphere_occluders(const Scene& scene) {
     out[i] = occludes(scene.materials[s.material]) && d > (double(s.radius) + lens) * 1.001 + 1e-6;
   }
   return out;
+}
+
+ClipFn sphere_surface_clip(std::span<const Sphere> spheres, std::span<const Aabb> boxes) {
+  return [spheres, boxes](uint32_t prim, const Aabb& cell, Aabb& part) {
+    const Aabb& b = boxes[prim];
+    const Aabb within{glm::max(cell.lo, b.lo), glm::min(cell.hi, b.hi)};
+    if (prim >= spheres.size()) {
+      part = within;
+      return true;
+    }
+    if (!(within.lo.x <= within.hi.x && within.lo.y <= within.hi.y && within.lo.z <= within.hi.z)) return false;
+    return clip_sphere_surface(spheres[prim].center, spheres[prim].radius, within, part);
+  };
 }
 
 std::vector<Aabb> primitive_boxes(const Scene& scene, HiddenParts hidden, HiddenPartsStats* stats) {

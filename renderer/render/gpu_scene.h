@@ -108,6 +108,12 @@ std::vector<uint8_t> sphere_occluders(const Scene& scene);
 std::vector<Aabb> primitive_boxes(const Scene& scene, HiddenParts hidden = HiddenParts::Cull,
                                   HiddenPartsStats* stats = nullptr);
 std::vector<Aabb> sphere_boxes(const std::vector<Sphere>& spheres);
+// The top level's ClipFn over the spheres' surfaces (optimisation log 126):
+// primitive i < spheres.size() reaches a cell where its surface does within
+// boxes[i] (its visible box, primitive_boxes), with the box of that part
+// (accel/clip.h clip_sphere_surface); a primitive past the spheres (an
+// instance) is its box within the cell. Holds references to both.
+ClipFn sphere_surface_clip(std::span<const Sphere> spheres, std::span<const Aabb> boxes);
 
 // The texture table and the texels of every texture, in the scene's order.
 struct GpuTextures {

@@ -603,11 +603,7 @@ TEST(Octree, SphereSurfacesPartTheCapsOfADenseField) {
   std::vector<Ball> balls;
   for (const Sphere& s : spheres) balls.push_back({s.center, s.radius});
   const std::vector<Aabb> boxes = visible_sphere_boxes(balls, std::vector<uint8_t>(balls.size(), 1));
-  const ClipFn surfaces = [&](uint32_t i, const Aabb& cell, Aabb& part) {
-    const Aabb within{glm::max(cell.lo, boxes[i].lo), glm::min(cell.hi, boxes[i].hi)};
-    if (!(within.lo.x <= within.hi.x && within.lo.y <= within.hi.y && within.lo.z <= within.hi.z)) return false;
-    return clip_sphere_surface(spheres[i].center, spheres[i].radius, within, part);
-  };
+  const ClipFn surfaces = sphere_surface_clip(spheres, boxes);  // the top level's, render/gpu_scene.h
   const Octree plain = build_octree(boxes, {});
   const Octree clipped = build_octree(boxes, {}, surfaces, {}, true);
   const Octree narrow = build_octree(boxes, {}, surfaces);  // the straddle rule as before
