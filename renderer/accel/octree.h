@@ -44,9 +44,11 @@ enum class HiddenParts { Cull, Keep };
 // Whether the octree's top level follows the spheres' surfaces (accel/clip.h
 // clip_sphere_surface) where HiddenParts::Cull shrank their boxes, which
 // parts a dense field's top caps from its bottom ones (optimisation log
-// 126): On, Off, or Auto: on for a GPU, off for a CPU device, where the
-// passes gained nothing at 1M and the build took twice as long. The same
-// image but where a ray starts inside an opaque sphere (log 125).
+// 126): On, Off, or Auto: on for a GPU where the render is long enough for
+// the faster passes to pay for the longer build, off for a CPU device, where
+// the passes gained nothing at 1M and the build took twice as long
+// (render/path_tracer.h default_surface_cells, log 127). The same image but
+// where a ray starts inside an opaque sphere (log 125).
 enum class SurfaceCells { Auto, On, Off };
 
 // The leaf size of OctreeParams::leaf_size = 0 (auto) where the device's
@@ -84,7 +86,7 @@ struct OctreeParams {
   // boxes the tree is built over.
   HiddenParts hidden_parts = HiddenParts::Cull;
   // Whether the octree's top level follows the spheres' surfaces there
-  // (`--octree-surfaces`; render/gpu_scene.cpp resolves Auto by device).
+  // (`--octree-surfaces`; the tracer resolves Auto by device and samples).
   SurfaceCells surface_cells = SurfaceCells::Auto;
 };
 

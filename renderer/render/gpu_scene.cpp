@@ -128,11 +128,12 @@ static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& sce
   // overlapping spheres), the octree also clips each sphere to its surface
   // in a cell: the middle of a visible column lies inside the ball, so the
   // cells can part its top cap from its bottom one (optimisation log 126;
-  // OctreeParams::surface_cells, auto: on a GPU). Elsewhere the top level is
-  // the boxes, as before.
+  // OctreeParams::surface_cells: the tracer resolves auto by the device and
+  // the render's samples, path_tracer.h default_surface_cells; a caller that
+  // leaves it auto gets the boxes). Elsewhere the top level is the boxes, as
+  // before.
   const bool clip_surfaces =
-      accel == Accel::Octree && hidden.clipped > 0 &&
-      (params.surface_cells == SurfaceCells::Auto ? !ctx.info.software : params.surface_cells == SurfaceCells::On);
+      accel == Accel::Octree && hidden.clipped > 0 && params.surface_cells == SurfaceCells::On;
   SceneOctree t{accel == Accel::Bvh ? build_bvh(boxes, widths.top, {}, kBvhSpatialRefs, kBvhTopNodeCost)
                                     : build_octree(boxes, params, clip_surfaces ? sphere_surface_clip(scene.spheres, boxes) : ClipFn{}, {},
                                                    clip_surfaces),

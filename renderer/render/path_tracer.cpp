@@ -352,6 +352,9 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
   s.scene_features = scene_features(scene);
   if (s.settings.octree.leaf_size == 0)
     s.settings.octree.leaf_size = default_octree_leaf(ctx.info, s.scene_features.triangles);
+  if (s.settings.octree.surface_cells == SurfaceCells::Auto)
+    s.settings.octree.surface_cells =
+        default_surface_cells(ctx.info, uint64_t(settings.spp) * s.pixels()) ? SurfaceCells::On : SurfaceCells::Off;
   s.every_feature = all_features(scene);
   check_precision(scene, settings.precision);
   s.create_accumulation();
@@ -780,6 +783,10 @@ bool default_bvh_top_while(const DeviceInfo& device, double refs_per_leaf) {
 uint32_t default_octree_leaf(const DeviceInfo& device, bool triangles) {
   if (!default_octant_culling(device, triangles)) return kOctreeLeafUnculled;
   return device.software || triangles ? kOctreeLeaf : kOctreeLeafGpuSpheres;
+}
+
+bool default_surface_cells(const DeviceInfo& device, uint64_t samples) {
+  return !device.software && samples >= kSurfaceCellsMinSamples;
 }
 
 uint32_t lane_sample_slots(const DeviceInfo& device) {

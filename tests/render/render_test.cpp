@@ -398,6 +398,18 @@ TEST(OctreeLeaf, AutoIsSixteenWhereTheCullingIsOffAndLargerForGpuSpheres) {
   EXPECT_EQ(default_octree_leaf(mesa25, true), kOctreeLeaf);
 }
 
+// Auto cells over the spheres' surfaces (optimisation logs 126 and 127): on
+// a GPU for renders of kSurfaceCellsMinSamples samples or more, never on a
+// CPU device.
+TEST(SurfaceCells, AutoOnlyOnAGpuForLongRenders) {
+  const auto [gpu, mesa22, mesa25, mesa26] = RuleDevices();
+  EXPECT_TRUE(default_surface_cells(gpu, kSurfaceCellsMinSamples));
+  EXPECT_TRUE(default_surface_cells(gpu, uint64_t(1) << 40));
+  EXPECT_FALSE(default_surface_cells(gpu, kSurfaceCellsMinSamples - 1));
+  EXPECT_FALSE(default_surface_cells(gpu, uint64_t(1200) * 800 * 10));  // render's default
+  for (const DeviceInfo& d : {mesa22, mesa25, mesa26}) EXPECT_FALSE(default_surface_cells(d, uint64_t(1) << 40));
+}
+
 // lane_sample's workgroup array (optimisation log 114): twice the
 // invocations on NVIDIA's driver, one entry each elsewhere.
 TEST(LaneSampleSlots, TwiceTheInvocationsOnlyOnNvidiasDriver) {
@@ -508,9 +520,19 @@ TEST_F(RenderTest, HiddenPartsSpareTestsAndChangeNoPixel) {
     EXPECT_LT(3 * cull.walk.primitives, keep.walk.primitives)
         << cull.walk.primitives << " sphere tests against " << keep.walk.primitives;
     // The octree's cells over the spheres' surfaces (--octree-surfaces,
-    // log 126): auto on a GPU only; on and off, the same image (this field
-    // is not dense enough for them to save tests: octree_test's grid is).
-    EXPECT_EQ(cull.octree.surface_cells, accel == Accel::Octree && !ctx.info.software);
+    // log 126): auto on a GPU for long renders only (not this one, log 127;
+    // SurfaceCells.AutoOnlyOnAGpuForLongRenders); on and off, the same image
+    // (this field is not dense enough for them to save tests: octree_test's
+    // grid is).
+    EXPECT_FALSE(cull.octree.surface_cells);
+    {
+      // A render long enough: the tracer resolves auto by the rule (built,
+      // not rendered).
+      RenderSettings long_render = s;
+      long_render.spp = uint32_t(kSurfaceCellsMinSamples / (uint64_t(s.width) * s.height) + 1);
+      const PathTracer tracer(ctx, scene, long_render);
+      EXPECT_EQ(tracer.octree_stats().surface_cells, accel == Accel::Octree && !ctx.info.software);
+    }
     s.octree.surface_cells = SurfaceCells::On;
     const RenderResult surfaces = render(ctx, scene, s);
     s.octree.surface_cells = SurfaceCells::Off;
