@@ -109,7 +109,7 @@ bool plan_split(const Ref* refs, size_t n, const BuildNode& node, const OctreePa
     uint32_t set = 0xFF;
     for (int a = 0; a < 3; ++a)
       set &= (r.lo[a] < mid[a] ? kLower[a] : 0u) | (r.hi[a] >= mid[a] ? ~kLower[a] & 0xFFu : 0u);
-    if (clip && std::popcount(set) > 1) {
+    if (clip && (set & (set - 1)) != 0) {  // more than one octant (std::popcount is a libgcc call on x86-64)
       const uint32_t candidates = set;
       set = 0;
       Box cut[8];
