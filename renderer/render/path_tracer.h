@@ -134,7 +134,9 @@ inline constexpr uint32_t kOctreeLeafGpuSpheres = 24;
 // for a build 132 ms and 1.16 s longer on 16 cores, so the whole process
 // gains from about 815 spp (1M) and 545 spp (10M) there; a shorter render
 // loses (optimisation log 127). Off on CPU devices, where the passes gained
-// nothing at 1M and the build took twice as long.
+// nothing at 1M and the build took twice as long. A render shared by several
+// devices (render/multi_device.h) counts its samples whole on each: each
+// device's share is smaller, so the rule errs toward the cells there.
 bool default_surface_cells(const DeviceInfo& device, uint64_t samples);
 inline constexpr uint64_t kSurfaceCellsMinSamples = uint64_t(600) * 1200 * 800;
 
