@@ -90,6 +90,77 @@ glm::vec3 face_normal(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
   return len > 0.0 ? glm::vec3(g / len) : glm::vec3(0.0f, 0.0f, 1.0f);
 }
 
+// A material as the fp32 variant reads it, written field by field into `f`
+// (zeroed by its owner, so that its bytes, which the checkpoint hash reads,
+// are the same wherever it is made).
+void fill_gpu_material(const Material& m, gpu::GpuMaterial& f) {
+  f.type = uint32_t(m.type);
+  f.color = m.type == MaterialType::Emissive ? m.radiance : m.albedo;
+  // A pbr material's transmission sits in the fuzz slot, negated when thin-walled (shared.h).
+  f.fuzz = m.type != MaterialType::Pbr ? m.fuzz : m.thin_walled ? -m.transmission : m.transmission;
+  f.ior = m.ior;
+  f.base_color_texture = m.base_color_texture.value_or(gpu::NO_TEXTURE);
+  f.emission_texture = m.emission_texture.value_or(gpu::NO_TEXTURE);
+  f.emission = m.emission;
+  f.metallic_roughness_texture = m.metallic_roughness_texture.value_or(gpu::NO_TEXTURE);
+  f.metallic = m.metallic;
+  f.roughness = m.roughness;
+  f.normal_texture = m.normal_texture.value_or(gpu::NO_TEXTURE);
+  f.normal_scale = m.normal_scale;
+  f.alpha_mode = uint32_t(m.alpha_mode);
+  f.alpha_cutoff = m.alpha_cutoff;
+  f.alpha = m.alpha;
+  f.double_sided = m.double_sided ? 1u : 0u;
+}
+
+// The same material as the fp16 variants read it, into `h` (zeroed, as above).
+void fill_gpu_material_half(const gpu::GpuMaterial& f, gpu::GpuMaterialHalf& h) {
+  h.color_type = {glm::packHalf1x16(f.color.r), glm::packHalf1x16(f.color.g), glm::packHalf1x16(f.color.b),
+                  glm::packHalf1x16(float(f.type))};
+  h.params = {glm::packHalf1x16(f.fuzz), glm::packHalf1x16(f.ior), glm::packHalf1x16(f.metallic),
+              glm::packHalf1x16(f.roughness)};
+  h.emission = {glm::packHalf1x16(f.emission.r), glm::packHalf1x16(f.emission.g), glm::packHalf1x16(f.emission.b), 0};
+  h.base_color_texture = f.base_color_texture;
+  h.emission_texture = f.emission_texture;
+  h.metallic_roughness_texture = f.metallic_roughness_texture;
+  h.normal_texture = f.normal_texture;
+  h.normal_scale = f.normal_scale;
+  h.alpha_mode = f.alpha_mode;
+  h.alpha_cutoff = f.alpha_cutoff;
+  h.alpha = f.alpha;
+  h.double_sided = f.double_sided;
+}
+
+// Both forms of the scene's materials into `hash`, as add_vector of each
+// whole (the hash of the days both were uploaded for every render: a
+// checkpoint's scene hash stays what it was); `full` or `half` holds the
+// stored form, the other is made here piece by piece.
+void hash_materials(Hash64& hash, const Scene& scene, const std::vector<gpu::GpuMaterial>& full,
+                    const std::vector<gpu::GpuMaterialHalf>& half) {
+  static_assert(sizeof(gpu::GpuMaterial) % 8 == 0 && sizeof(gpu::GpuMaterialHalf) % 8 == 0, "Hash64::add_piece");
+  const size_t n = scene.materials.size();
+  if (full.size() == n) {
+    hash.add_vector(full);
+  } else {
+    for (const Material& m : scene.materials) {
+      gpu::GpuMaterial f = gpu::GpuMaterial();
+      fill_gpu_material(m, f);
+      hash.add_piece(&f, sizeof f);
+    }
+    hash.end_pieces(n * sizeof(gpu::GpuMaterial));
+  }
+  if (half.size() == n) {
+    hash.add_vector(half);
+  } else {
+    for (const gpu::GpuMaterial& f : full) {
+      gpu::GpuMaterialHalf h = gpu::GpuMaterialHalf();
+      fill_gpu_material_half(f, h);
+      hash.add_piece(&h, sizeof h);
+    }
+    hash.end_pieces(n * sizeof(gpu::GpuMaterialHalf));
+  }
+}
+
 uint64_t texel_count(const Scene& scene) {
   uint64_t n = 0;
   for (const Texture& t : scene.textures) n += t.texels.size();
@@ -505,48 +576,24 @@ std::vector<Aabb> primitive_boxes(const Scene& scene, HiddenParts hidden, Hidden
 }
 
 static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel,
-                            const OctreeParams& params, uint64_t reserved_bytes) {
+                            const OctreeParams& params, uint64_t reserved_bytes, Precision precision) {
   auto start = Clock::now();
   SphereArrays sphere_data = sphere_arrays(scene);
   std::vector<gpu::GpuSphere>& spheres = sphere_data.spheres;
   std::vector<uint32_t>& sphere_materials = sphere_data.materials;
-  std::vector<gpu::GpuMaterial> materials(scene.materials.size());
-  std::vector<gpu::GpuMaterialHalf> materials_half(scene.materials.size());
+  // The materials as the render's precision reads them only (the other
+  // form is made for the hash below, not stored).
+  const bool half = precision != Precision::FP32;
+  std::vector<gpu::GpuMaterial> materials(half ? 0 : scene.materials.size());
+  std::vector<gpu::GpuMaterialHalf> materials_half(half ? scene.materials.size() : 0);
   for (size_t i = 0; i < scene.materials.size(); ++i) {
-    const Material& m = scene.materials[i];
-    gpu::GpuMaterial& f = materials[i];
-    f.type = uint32_t(m.type);
-    f.color = m.type == MaterialType::Emissive ? m.radiance : m.albedo;
-    // A pbr material's transmission sits in the fuzz slot, negated when thin-walled (shared.h).
-    f.fuzz = m.type != MaterialType::Pbr ? m.fuzz : m.thin_walled ? -m.transmission : m.transmission;
-    f.ior = m.ior;
-    f.base_color_texture = m.base_color_texture.value_or(gpu::NO_TEXTURE);
-    f.emission_texture = m.emission_texture.value_or(gpu::NO_TEXTURE);
-    f.emission = m.emission;
-    f.metallic_roughness_texture = m.metallic_roughness_texture.value_or(gpu::NO_TEXTURE);
-    f.metallic = m.metallic;
-    f.roughness = m.roughness;
-    f.normal_texture = m.normal_texture.value_or(gpu::NO_TEXTURE);
-    f.normal_scale = m.normal_scale;
-    f.alpha_mode = uint32_t(m.alpha_mode);
-    f.alpha_cutoff = m.alpha_cutoff;
-    f.alpha = m.alpha;
-    f.double_sided = m.double_sided ? 1u : 0u;
-    gpu::GpuMaterialHalf& h = materials_half[i];
-    h.color_type = {glm::packHalf1x16(f.color.r), glm::packHalf1x16(f.color.g), glm::packHalf1x16(f.color.b),
-                    glm::packHalf1x16(float(f.type))};
-    h.params = {glm::packHalf1x16(f.fuzz), glm::packHalf1x16(f.ior), glm::packHalf1x16(f.metallic),
-                glm::packHalf1x16(f.roughness)};
-    h.emission = {glm::packHalf1x16(f.emission.r), glm::packHalf1x16(f.emission.g), glm::packHalf1x16(f.emission.b), 0};
-    h.base_color_texture = f.base_color_texture;
-    h.emission_texture = f.emission_texture;
-    h.metallic_roughness_texture = f.metallic_roughness_texture;
-    h.normal_texture = f.normal_texture;
-    h.normal_scale = f.normal_scale;
-    h.alpha_mode = f.alpha_mode;
-    h.alpha_cutoff = f.alpha_cutoff;
-    h.alpha = f.alpha;
-    h.double_sided = f.double_sided;
+    if (!half) {
+      fill_gpu_material(scene.materials[i], materials[i]);
+      continue;
+    }
+    gpu::GpuMaterial f = gpu::GpuMaterial();
+    fill_gpu_material(scene.materials[i], f);
+    fill_gpu_material_half(f, materials_half[i]);
   }
   const size_t texture_count = scene.textures.size();
   check_fits(ctx.limits.maxStorageBufferRange, texel_count(scene) * sizeof(uint32_t),
@@ -636,9 +683,9 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
                       .add_vector(textures.texels)
                       .add_vector(spheres)
                       .add_vector(sphere_materials)
-                      .add_vector(materials)
-                      .add_vector(materials_half)
                       .value();
+  hash_materials(hash, scene, materials, materials_half);
+  g.content_hash = hash.value();
   const double pack_ms = ms_since(start);
   std::optional<SceneOctree> tree;
   if (accel != Accel::Brute) tree = build_scene_octree(ctx, scene, accel, params);
@@ -658,9 +705,9 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
       {sphere_materials.size() * sizeof(uint32_t), sphere_materials.size(), size_log2<uint32_t>(),
        "the material indices of " + std::to_string(spheres.size()) + " spheres"},
       {materials.size() * sizeof(gpu::GpuMaterial), materials.size(), size_log2<gpu::GpuMaterial>(),
-       std::to_string(materials.size()) + " materials"},
+       std::to_string(scene.materials.size()) + " materials"},
       {materials_half.size() * sizeof(gpu::GpuMaterialHalf), materials_half.size(), size_log2<gpu::GpuMaterialHalf>(),
-       std::to_string(materials.size()) + " materials (fp16)"},
+       std::to_string(scene.materials.size()) + " materials (fp16)"},
       {triangles.size() * sizeof(gpu::GpuTriangle), triangles.size(), size_log2<gpu::GpuTriangle>(),
        std::to_string(triangles.size()) + " triangles"},
       {normals.size() * sizeof(gpu::GpuTriangleNormals), normals.size(), size_log2<gpu::GpuTriangleNormals>(),
@@ -730,6 +777,8 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
                "sphere material buffer");
   upload_array(g, ctx, gpu::SPLIT_MATERIALS, g.materials, std::move(materials), "material buffer");
   upload_array(g, ctx, gpu::SPLIT_MATERIALS_HALF, g.materials_half, std::move(materials_half), "material buffer");
+  g.has_materials = !half;
+  g.has_materials_half = half;
   create_buffer(g.textures, ctx, textures.table.size() * sizeof(gpu::GpuTexture), false, "texture table");
   create_buffer(g.texels, ctx, textures.texels.size() * sizeof(uint32_t), false, "texel buffer");
   upload_array(g, ctx, gpu::SPLIT_TRIANGLE_UVS, g.triangle_uvs, std::move(uvs), "triangle uv buffer");
@@ -858,9 +907,45 @@ void upload_octree(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Ac
 }
 
 void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel, const OctreeParams& params,
-                  uint64_t reserved_bytes) {
-  if (scene.meshes.empty()) upload_scene_of(g, ctx, scene, accel, params, reserved_bytes);
-  else upload_scene_of(g, ctx, device_meshes(scene, params.instancing), accel, params, reserved_bytes);
+                  uint64_t reserved_bytes, Precision precision) {
+  if (scene.meshes.empty()) upload_scene_of(g, ctx, scene, accel, params, reserved_bytes, precision);
+  else upload_scene_of(g, ctx, device_meshes(scene, params.instancing), accel, params, reserved_bytes, precision);
+}
+
+void upload_materials(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Precision precision) {
+  const bool half = precision != Precision::FP32;
+  if (half ? g.has_materials_half : g.has_materials) return;
+  const auto start = Clock::now();
+  const size_t n = scene.materials.size();
+  const uint64_t bytes = n * (half ? sizeof(gpu::GpuMaterialHalf) : sizeof(gpu::GpuMaterial));
+  const std::string what = std::to_string(n) + (half ? " materials (fp16)" : " materials");
+  if (g.part_log2 == 0) {
+    check_fits(max_buffer_bytes(ctx), bytes, what, std::string(" (render in ") + precision_name(precision) +
+                                                       " from the start to split the scene)");
+  } else {
+    const uint32_t element_log2 = half ? size_log2<gpu::GpuMaterialHalf>() : size_log2<gpu::GpuMaterial>();
+    const uint64_t per_part = uint64_t(1) << (g.part_log2 - element_log2);
+    if ((n + per_part - 1) / per_part > gpu::MAX_PARTS)
+      throw SceneSizeError(what + " need " + byte_string(bytes) + ", more than " + std::to_string(gpu::MAX_PARTS) +
+                           " buffers of " + byte_string(per_part << element_log2));
+  }
+  if (half) {
+    std::vector<gpu::GpuMaterialHalf> materials_half(n);
+    for (size_t i = 0; i < n; ++i) {
+      gpu::GpuMaterial f = gpu::GpuMaterial();
+      fill_gpu_material(scene.materials[i], f);
+      fill_gpu_material_half(f, materials_half[i]);
+    }
+    upload_array(g, ctx, gpu::SPLIT_MATERIALS_HALF, g.materials_half, std::move(materials_half), "material buffer");
+    g.has_materials_half = true;
+  } else {
+    std::vector<gpu::GpuMaterial> materials(n);
+    for (size_t i = 0; i < n; ++i) fill_gpu_material(scene.materials[i], materials[i]);
+    upload_array(g, ctx, gpu::SPLIT_MATERIALS, g.materials, std::move(materials), "material buffer");
+    g.has_materials = true;
+  }
+  if (g.part_log2 != 0) upload_part_table(g, ctx);
+  g.upload_ms += ms_since(start);
 }
 
 void check_precision(const Scene& scene, Precision precision) {

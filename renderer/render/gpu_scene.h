@@ -27,8 +27,9 @@ struct GpuScene {
   Buffer instances;         // GpuInstance per instance
   Buffer meshes;            // GpuMesh per mesh (roots filled in with the octree)
   Buffer sphere_materials;  // material index per sphere
-  Buffer materials;         // GpuMaterial per material (fp32)
-  Buffer materials_half;    // GpuMaterialHalf per material (the fp16 variants)
+  Buffer materials;         // GpuMaterial per material (fp32 renders; a placeholder until one needs it)
+  Buffer materials_half;    // GpuMaterialHalf per material (the fp16 variants; the same)
+  bool has_materials = false, has_materials_half = false;  // which of the two hold the materials
   Buffer textures;          // GpuTexture per texture (the texture table)
   Buffer texels;            // every texture's texels, one uint (RGBA8) each
   Buffer triangle_uvs;      // GpuTriangleUvs per triangle (placeholder without textures)
@@ -130,9 +131,18 @@ GpuTextures gpu_textures(const Scene& scene);
 // accumulation), needs more than the device's memory (device_memory), when an
 // array needs more than MAX_PARTS parts, or, without buffer device addresses,
 // when an array does not fit one storage buffer (naming the array, its size
-// and the limit).
+// and the limit). The materials go up as `precision` reads them only
+// (GpuMaterial for fp32, GpuMaterialHalf for the fp16 variants); another
+// precision later needs upload_materials. content_hash covers both forms
+// either way, as it always has.
 void upload_scene(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Accel accel, const OctreeParams& params,
-                  uint64_t reserved_bytes = 0);
+                  uint64_t reserved_bytes = 0, Precision precision = Precision::FP32);
+
+// The materials as `precision` reads them, for a scene on the device that
+// lacks that form (a reconfigure to another precision); nothing where it
+// has it. Throws InputError, leaving the device as it was, where the scene
+// was uploaded whole and the form would not fit one storage buffer.
+void upload_materials(GpuScene& g, const VulkanContext& ctx, const Scene& scene, Precision precision);
 
 // Builds the octree (accel Octree) or the BVH (Bvh) over the scene's
 // primitives and uploads it into nodes and refs (for a scene uploaded with

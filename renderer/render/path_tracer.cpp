@@ -361,7 +361,8 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
   create_buffer(s.stats, ctx, sizeof(gpu::RenderStats), false, "statistics buffer");
   upload_scene(s.scene, ctx, scene, settings.accel, s.settings.octree,
                3 * s.pixels() * sizeof(glm::vec4) + sizeof(gpu::RenderStats) + s.tail_values.size +
-                   s.tail_queue.size);
+                   s.tail_queue.size,
+               settings.precision);
   s.timings.accel_build_ms = s.scene.accel_build_ms;
   s.timings.upload_ms = s.scene.upload_ms;
   s.note_culling(scene);
@@ -427,6 +428,7 @@ void PathTracer::reconfigure(const Scene& scene, Accel accel, Precision precisio
       upload_octree(s.scene, s.ctx, scene, accel, s.settings.octree);
       s.timings.accel_build_ms = s.scene.accel_build_ms;
     }
+    upload_materials(s.scene, s.ctx, scene, precision);  // the scene went up with the first precision's only
     s.note_culling(scene);  // brute force walks no tree: any camera
     s.create_pipeline();
   } catch (const InputError&) {

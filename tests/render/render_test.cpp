@@ -586,6 +586,38 @@ TEST_F(RenderTest, ResizeAndReconfigureMatchAFreshTracer) {
   }
 }
 
+// The device holds the materials only as the render's precision reads them
+// (log 130), and the checkpoint's scene hash covers both forms all the same:
+// one scene hashes alike in every precision (and as before: a state saved by
+// an earlier octrace resumes, checked in log 130).
+TEST_F(RenderTest, SceneHashIsTheSameInEveryPrecision) {
+  VulkanContext& ctx = test::shared_context();
+  Scene scene = make_rtiow_scene({40, 0.2f, 3});
+  Material pbr;
+  pbr.type = MaterialType::Pbr;
+  pbr.albedo = glm::vec3(0.3f, 0.6f, 0.9f);
+  pbr.metallic = 0.25f;
+  pbr.roughness = 0.7f;
+  pbr.transmission = 0.5f;
+  pbr.thin_walled = true;
+  pbr.emission = glm::vec3(0.1f, 0.2f, 0.3f);
+  scene.materials.push_back(pbr);
+  scene.spheres[5].material = uint32_t(scene.materials.size() - 1);
+  RenderSettings s;
+  s.width = 8;
+  s.height = 8;
+  std::vector<uint64_t> hashes;
+  for (Precision p : {Precision::FP32, Precision::FP16, Precision::FP16All}) {
+    s.precision = p;
+    hashes.push_back(PathTracer(ctx, scene, s).scene_hash());
+  }
+  EXPECT_EQ(hashes[0], hashes[1]);
+  EXPECT_EQ(hashes[0], hashes[2]);
+  scene.materials.back().roughness = 0.75f;  // and the hash sees the materials
+  s.precision = Precision::FP16;
+  EXPECT_NE(PathTracer(ctx, scene, s).scene_hash(), hashes[0]);
+}
+
 // What the device or scene cannot do is refused, and the tracer keeps what it had.
 TEST_F(RenderTest, ReconfigureRefusedKeepsTheTracer) {
   VulkanContext& ctx = test::shared_context();
