@@ -131,6 +131,35 @@ void fill_gpu_material_half(const gpu::GpuMaterial& f, gpu::GpuMaterialHalf& h) 
   h.double_sided = f.double_sided;
 }
 
+// The scene's materials as the fp32 variant reads them, and as the fp16
+// variants do.
+std::vector<gpu::GpuMaterial> gpu_materials(const Scene& scene) {
+  std::vector<gpu::GpuMaterial> out(scene.materials.size());
+  for (size_t i = 0; i < out.size(); ++i) fill_gpu_material(scene.materials[i], out[i]);
+  return out;
+}
+std::vector<gpu::GpuMaterialHalf> gpu_materials_half(const Scene& scene) {
+  std::vector<gpu::GpuMaterialHalf> out(scene.materials.size());
+  for (size_t i = 0; i < out.size(); ++i) {
+    gpu::GpuMaterial f = gpu::GpuMaterial();
+    fill_gpu_material(scene.materials[i], f);
+    fill_gpu_material_half(f, out[i]);
+  }
+  return out;
+}
+
+// Refuses an array (`what`, `elements` of 2^size_log2 bytes or fewer, `bytes`
+// in all) that needs more than MAX_PARTS parts of 2^part_log2 bytes, on a
+// device that allows `limit` bytes per buffer.
+void check_part_count(uint32_t part_log2, uint64_t elements, uint32_t size_log2, uint64_t bytes,
+                      const std::string& what, uint64_t limit) {
+  const uint64_t per_part = uint64_t(1) << (part_log2 - size_log2);
+  if ((elements + per_part - 1) / per_part > gpu::MAX_PARTS)
+    throw SceneSizeError(what + " need " + byte_string(bytes) + ", more than " + std::to_string(gpu::MAX_PARTS) +
+                         " buffers of " + byte_string(per_part << size_log2) + " (the device allows " +
+                         byte_string(limit) + " per buffer)");
+}
+
 // Both forms of the scene's materials into `hash`, as add_vector of each
 // whole (the hash of the days both were uploaded for every render: a
 // checkpoint's scene hash stays what it was); `full` or `half` holds the
@@ -584,17 +613,10 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   // The materials as the render's precision reads them only (the other
   // form is made for the hash below, not stored).
   const bool half = precision != Precision::FP32;
-  std::vector<gpu::GpuMaterial> materials(half ? 0 : scene.materials.size());
-  std::vector<gpu::GpuMaterialHalf> materials_half(half ? scene.materials.size() : 0);
-  for (size_t i = 0; i < scene.materials.size(); ++i) {
-    if (!half) {
-      fill_gpu_material(scene.materials[i], materials[i]);
-      continue;
-    }
-    gpu::GpuMaterial f = gpu::GpuMaterial();
-    fill_gpu_material(scene.materials[i], f);
-    fill_gpu_material_half(f, materials_half[i]);
-  }
+  std::vector<gpu::GpuMaterial> materials;
+  std::vector<gpu::GpuMaterialHalf> materials_half;
+  if (half) materials_half = gpu_materials_half(scene);
+  else materials = gpu_materials(scene);
   const size_t texture_count = scene.textures.size();
   check_fits(ctx.limits.maxStorageBufferRange, texel_count(scene) * sizeof(uint32_t),
              "the texels of " + std::to_string(texture_count) + (texture_count == 1 ? " texture" : " textures"));
@@ -731,13 +753,7 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
     if (g.part_log2 < size_log2<gpu::GpuMaterial>())
       throw SceneSizeError("the device allows " + std::to_string(limit) + " bytes per buffer, too few to split a scene");
     g.part_addresses.assign(gpu::SPLIT_ARRAYS * gpu::MAX_PARTS, glm::uvec2(0));
-    for (const auto& a : arrays) {
-      const uint64_t per_part = uint64_t(1) << (g.part_log2 - a.size_log2);
-      if ((a.elements + per_part - 1) / per_part > gpu::MAX_PARTS)
-        throw SceneSizeError(a.what + " need " + byte_string(a.bytes) + ", more than " +
-                             std::to_string(gpu::MAX_PARTS) + " buffers of " + byte_string(per_part << a.size_log2) +
-                             " (the device allows " + byte_string(limit) + " per buffer)");
-    }
+    for (const auto& a : arrays) check_part_count(g.part_log2, a.elements, a.size_log2, a.bytes, a.what, limit);
   }
   // Everything on the device against its memory (device_memory), before
   // asking the driver for any of it.
@@ -919,29 +935,18 @@ void upload_materials(GpuScene& g, const VulkanContext& ctx, const Scene& scene,
   const size_t n = scene.materials.size();
   const uint64_t bytes = n * (half ? sizeof(gpu::GpuMaterialHalf) : sizeof(gpu::GpuMaterial));
   const std::string what = std::to_string(n) + (half ? " materials (fp16)" : " materials");
-  if (g.part_log2 == 0) {
-    check_fits(max_buffer_bytes(ctx), bytes, what, std::string(" (render in ") + precision_name(precision) +
-                                                       " from the start to split the scene)");
-  } else {
-    const uint32_t element_log2 = half ? size_log2<gpu::GpuMaterialHalf>() : size_log2<gpu::GpuMaterial>();
-    const uint64_t per_part = uint64_t(1) << (g.part_log2 - element_log2);
-    if ((n + per_part - 1) / per_part > gpu::MAX_PARTS)
-      throw SceneSizeError(what + " need " + byte_string(bytes) + ", more than " + std::to_string(gpu::MAX_PARTS) +
-                           " buffers of " + byte_string(per_part << element_log2));
-  }
+  const uint64_t limit = max_buffer_bytes(ctx);
+  if (g.part_log2 == 0)
+    check_fits(limit, bytes, what, std::string(" (render in ") + precision_name(precision) +
+                                       " from the start to split the scene)");
+  else
+    check_part_count(g.part_log2, n, half ? size_log2<gpu::GpuMaterialHalf>() : size_log2<gpu::GpuMaterial>(), bytes,
+                     what, limit);
   if (half) {
-    std::vector<gpu::GpuMaterialHalf> materials_half(n);
-    for (size_t i = 0; i < n; ++i) {
-      gpu::GpuMaterial f = gpu::GpuMaterial();
-      fill_gpu_material(scene.materials[i], f);
-      fill_gpu_material_half(f, materials_half[i]);
-    }
-    upload_array(g, ctx, gpu::SPLIT_MATERIALS_HALF, g.materials_half, std::move(materials_half), "material buffer");
+    upload_array(g, ctx, gpu::SPLIT_MATERIALS_HALF, g.materials_half, gpu_materials_half(scene), "material buffer");
     g.has_materials_half = true;
   } else {
-    std::vector<gpu::GpuMaterial> materials(n);
-    for (size_t i = 0; i < n; ++i) fill_gpu_material(scene.materials[i], materials[i]);
-    upload_array(g, ctx, gpu::SPLIT_MATERIALS, g.materials, std::move(materials), "material buffer");
+    upload_array(g, ctx, gpu::SPLIT_MATERIALS, g.materials, gpu_materials(scene), "material buffer");
     g.has_materials = true;
   }
   if (g.part_log2 != 0) upload_part_table(g, ctx);
