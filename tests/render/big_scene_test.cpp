@@ -33,8 +33,7 @@ class ScopedEnv {
   const char* name_;
 };
 
-RenderResult render_small(const Scene& scene, Accel accel, Precision precision,
-                          Instancing instancing = Instancing::Auto) {
+RenderSettings small_settings(Accel accel, Precision precision, Instancing instancing = Instancing::Auto) {
   RenderSettings s;
   s.octree.instancing = instancing;
   s.width = 32;
@@ -43,7 +42,12 @@ RenderResult render_small(const Scene& scene, Accel accel, Precision precision,
   s.bounce_limit = 8;
   s.accel = accel;
   s.precision = precision;
-  return render(test::shared_context(), scene, s);
+  return s;
+}
+
+RenderResult render_small(const Scene& scene, Accel accel, Precision precision,
+                          Instancing instancing = Instancing::Auto) {
+  return render(test::shared_context(), scene, small_settings(accel, precision, instancing));
 }
 
 // Renders `scene` whole and split into parts of at most `max_bytes`, and
@@ -81,17 +85,10 @@ TEST_F(BigSceneTest, SplitSpheresRenderAsInOneBuffer) {
   expect_split_renders_the_same(scene, Accel::Octree, Precision::FP16, 1024, 8 + 2 + 30 + 7 + 3);
   // Split in fp32, then switched to fp16: the fp16 materials go up into
   // parts of their own (the part table again), and the image is fp16's.
-  RenderSettings s;
-  s.width = 32;
-  s.height = 24;
-  s.spp = 2;
-  s.bounce_limit = 8;
-  s.accel = Accel::Octree;
-  RenderSettings half = s;
-  half.precision = Precision::FP16;
+  const RenderSettings half = small_settings(Accel::Octree, Precision::FP16);
   const RenderResult want = render(test::shared_context(), scene, half);
   ScopedEnv limit("OCTRACE_TEST_MAX_BUFFER_BYTES", "1024");
-  PathTracer tracer(test::shared_context(), scene, s);
+  PathTracer tracer(test::shared_context(), scene, small_settings(Accel::Octree, Precision::FP32));
   EXPECT_EQ(tracer.buffer_parts(), 8u + 2 + 59 + 7 + 3);
   tracer.reconfigure(scene, Accel::Octree, Precision::FP16, false);
   EXPECT_EQ(tracer.buffer_parts(), 8u + 2 + 59 + 30 + 7 + 3);
