@@ -978,26 +978,38 @@ double pbr_albedo(double mu, const PbrModel& p, int n) {
   const double pi = glm::pi<double>(), f0 = 0.04;  // ((1.5 - 1) / (1.5 + 1))^2
   const glm::dvec3 wo(std::sqrt(1 - mu * mu), 0, mu);
   const auto lambda = [&](double c) { return (-1 + std::sqrt(1 + p.alpha * p.alpha * (1 - c * c) / (c * c))) / 2; };
-  const auto schlick = [](double f, double c) { return f + (1 - f) * std::pow(1 - c, 5); };
+  // Schlick's factor (1 - c)^5 once for both of the specular term's Fresnel
+  // terms; the angles' sines and cosines once per row and column (the same
+  // values as computed at every point: the same sums, bit for bit).
+  const auto schlick = [](double f, double q) { return f + (1 - f) * q; };
   const int m = n / 4;
+  std::vector<double> cos_phi(m), sin_phi(m);
+  for (int j = 0; j < m; ++j) {
+    const double phi = pi * (j + 0.5) / m;
+    cos_phi[j] = std::cos(phi);
+    sin_phi[j] = std::sin(phi);
+  }
+  const double lambda_o = lambda(mu);
   double spec = 0, diff = 0;
-  for (int i = 0; i < n; ++i)
+  for (int i = 0; i < n; ++i) {
+    const double xi = (i + 0.5) / n;
+    const double tan_h = p.alpha * std::sqrt(xi / (1 - xi)), cos_h = 1 / std::sqrt(1 + tan_h * tan_h);
+    const double r = std::sqrt(xi), z = std::sqrt(1 - xi);
     for (int j = 0; j < m; ++j) {
-      const double xi = (i + 0.5) / n, phi = pi * (j + 0.5) / m;
-      const double tan_h = p.alpha * std::sqrt(xi / (1 - xi)), cos_h = 1 / std::sqrt(1 + tan_h * tan_h);
-      const glm::dvec3 h(tan_h * cos_h * std::cos(phi), tan_h * cos_h * std::sin(phi), cos_h);
+      const glm::dvec3 h(tan_h * cos_h * cos_phi[j], tan_h * cos_h * sin_phi[j], cos_h);
       const double oh = glm::dot(wo, h);
       const glm::dvec3 wi = 2 * oh * h - wo;
       if (oh > 0 && wi.z > 0) {
-        const double f = (1 - p.metallic) * schlick(f0, oh) + p.metallic * schlick(p.base, oh);
-        spec += f / (1 + lambda(mu) + lambda(wi.z)) * oh / (mu * cos_h);
+        const double q = std::pow(1 - oh, 5);
+        const double f = (1 - p.metallic) * schlick(f0, q) + p.metallic * schlick(p.base, q);
+        spec += f / (1 + lambda_o + lambda(wi.z)) * oh / (mu * cos_h);
       }
       if (p.metallic < 1) {
-        const double r = std::sqrt(xi);
-        const glm::dvec3 wd(r * std::cos(phi), r * std::sin(phi), std::sqrt(1 - xi));
-        diff += 1 - schlick(f0, glm::dot(wo, glm::normalize(wo + wd)));
+        const glm::dvec3 wd(r * cos_phi[j], r * sin_phi[j], z);
+        diff += 1 - schlick(f0, std::pow(1 - glm::dot(wo, glm::normalize(wo + wd)), 5));
       }
     }
+  }
   return (spec + (1 - p.metallic) * p.base * diff) / (double(n) * m);
 }
 
