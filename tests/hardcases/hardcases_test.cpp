@@ -59,8 +59,9 @@ const AccelVariant ACCELS[] = {{"octree", Accel::Octree}};
 // Brute force and the BVH (`--accel bvh`) run every case too, in fp32 only:
 // the walks are fp32 at every precision level (shading/precision.glsl), so
 // their fp16 levels would repeat the octree's fp16 shading on another walk
-// (brute force's fp16 levels were 336 of the suite's 1,836 s of test time
-// on a 2-core machine of 2026-12-06). The BVH four-wide at both levels (the
+// (brute force's fp16 levels took 336 s of the suite's 1,836 s of process
+// time on a 2-core machine of 2026-12-06, about 350 s with cold shader
+// caches, and measured the octree's values). The BVH four-wide at both levels (the
 // walk of a GPU's meshes, accel/bvh_walk.glsl's four-wide form, which a CPU
 // device's default widths would not run; the binary walk is the one
 // accel_test holds to brute force beside it).
