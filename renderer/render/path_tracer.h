@@ -120,11 +120,23 @@ inline constexpr double kBvhWhileRefsPerLeaf = 4.0;
 // on Mesa 22.3.6, with the culling, 16 was 2.6% slower (optimisation log 110).
 // And 24 for a scene without triangles on a GPU: on the H100 the peer's scene
 // 6.0% faster than at 10, 8,000 spheres 5.0%, 488 1.1%, 1M within 0.7%; 32
-// cost 488 spheres 17% (optimisation log 115). Scenes with triangles keep 10
-// (the leaf measured on the meshes: logs 30 and 56; 24 was not).
+// cost 488 spheres 17% (optimisation log 115). And 20 for a scene with
+// triangles on a GPU, with default_octree_refs's 12 references a triangle:
+// the pair that log 131 found to keep the engine and the balloon within issue
+// 11's 48 bytes a triangle (log 132 measured it as the default). Scenes with
+// triangles on a CPU device keep 10 (the leaf measured on the meshes on
+// lavapipe: logs 30 and 56).
 uint32_t default_octree_leaf(const DeviceInfo& device, bool triangles);
 inline constexpr uint32_t kOctreeLeafUnculled = 16;
 inline constexpr uint32_t kOctreeLeafGpuSpheres = 24;
+inline constexpr uint32_t kOctreeLeafGpuTriangles = 20;
+
+// RenderSettings::octree.max_refs's auto (0): kOctreeRefs (8), but 12 for a
+// scene with triangles on a GPU (with default_octree_leaf's 20: optimisation
+// logs 131 and 132). Spheres are not clipped, and their trees do not spend
+// the budget the way a mesh's do; CPU devices were not measured at 12.
+uint32_t default_octree_refs(const DeviceInfo& device, bool triangles);
+inline constexpr uint32_t kOctreeRefsGpuTriangles = 12;
 
 // RenderSettings::octree.surface_cells's auto: whether the octree's top
 // level follows the spheres' surfaces where the hidden parts were left out

@@ -385,17 +385,27 @@ TEST(OctantCulling, AutoIsOffOnlyForSpheresOnLavapipeFromMesa25) {
   EXPECT_TRUE(default_octant_culling(mesa25, true));
 }
 
-// Auto leaf size (optimisation logs 110 and 115): 16 exactly where the
-// culling's auto is off, 24 over spheres alone on a GPU, kOctreeLeaf
-// elsewhere; the tracer builds with it.
-TEST(OctreeLeaf, AutoIsSixteenWhereTheCullingIsOffAndLargerForGpuSpheres) {
+// Auto leaf size (optimisation logs 110, 115 and 132): 16 exactly where the
+// culling's auto is off, 24 over spheres alone and 20 with triangles on a
+// GPU, kOctreeLeaf elsewhere; the tracer builds with it.
+TEST(OctreeLeaf, AutoIsSixteenWhereTheCullingIsOffAndLargerOnAGpu) {
   const auto [gpu, mesa22, mesa25, mesa26] = RuleDevices();
   EXPECT_EQ(default_octree_leaf(gpu, false), 24u);
-  EXPECT_EQ(default_octree_leaf(gpu, true), kOctreeLeaf);
+  EXPECT_EQ(default_octree_leaf(gpu, true), 20u);
   for (bool triangles : {false, true}) EXPECT_EQ(default_octree_leaf(mesa22, triangles), kOctreeLeaf);
   EXPECT_EQ(default_octree_leaf(mesa25, false), 16u);
   EXPECT_EQ(default_octree_leaf(mesa26, false), 16u);
   EXPECT_EQ(default_octree_leaf(mesa25, true), kOctreeLeaf);
+}
+
+// Auto references per primitive (optimisation log 132): 12 with triangles
+// on a GPU, kOctreeRefs elsewhere; the tracer builds with it.
+TEST(OctreeRefs, AutoIsTwelveOnlyForTrianglesOnAGpu) {
+  const auto [gpu, mesa22, mesa25, mesa26] = RuleDevices();
+  EXPECT_EQ(default_octree_refs(gpu, true), 12u);
+  EXPECT_EQ(default_octree_refs(gpu, false), kOctreeRefs);
+  for (const DeviceInfo& d : {mesa22, mesa25, mesa26})
+    for (bool triangles : {false, true}) EXPECT_EQ(default_octree_refs(d, triangles), kOctreeRefs);
 }
 
 // Auto cells over the spheres' surfaces (optimisation logs 126 and 127): on
@@ -434,13 +444,23 @@ TEST_F(RenderTest, TreeSettingsResolvedForTheDeviceAndLevel) {
     const PathTracer tracer(ctx, scene, s);
     EXPECT_EQ(tracer.octant_culling(), default_octant_culling(ctx.info, false));
     EXPECT_EQ(tracer.octree_stats().leaf_size, default_octree_leaf(ctx.info, false));
+    EXPECT_EQ(tracer.octree_stats().max_refs, default_octree_refs(ctx.info, false));
+  }
+  {
+    Scene meshes = scene;
+    test::place(meshes, test::icosphere(1, 0), glm::translate(glm::mat4(1.0f), glm::vec3(0, 1, 0)));
+    const PathTracer tracer(ctx, meshes, s);
+    EXPECT_EQ(tracer.octree_stats().leaf_size, default_octree_leaf(ctx.info, true));
+    EXPECT_EQ(tracer.octree_stats().max_refs, default_octree_refs(ctx.info, true));
   }
   s.octant_culling = OctantCulling::On;
   s.octree.leaf_size = 3;
+  s.octree.max_refs = 5;
   {
     const PathTracer tracer(ctx, scene, s);
     EXPECT_TRUE(tracer.octant_culling());
     EXPECT_EQ(tracer.octree_stats().leaf_size, 3u);
+    EXPECT_EQ(tracer.octree_stats().max_refs, 5u);
   }
   s.octant_culling = OctantCulling::Off;
   EXPECT_FALSE(PathTracer(ctx, scene, s).octant_culling());
