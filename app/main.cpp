@@ -808,7 +808,8 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
                      {"refs", o.refs},                 {"big_spheres", o.big_primitives},
                      {"refs_per_sphere", o.refs_per_primitive}, {"bytes", o.bytes},
                      {"bytes_per_sphere", o.bytes_per_primitive},
-                     {"refs_per_primitive", o.refs_per_primitive}, {"bytes_per_primitive", o.bytes_per_primitive}};
+                     {"refs_per_primitive", o.refs_per_primitive}, {"bytes_per_primitive", o.bytes_per_primitive},
+                     {"first_build_bytes_per_primitive", o.first_bytes_per_primitive}};
     }
     if (settings.accel != Accel::Brute) {
       const OctreeStats& o = result.octree;
@@ -847,6 +848,9 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
                   result.octree.nodes, result.octree.leaves, result.octree.leaf_size, result.octree.max_refs,
                   result.octree.max_depth_reached,
                   result.octree.refs_per_primitive, result.octree.bytes_per_primitive, result.octree.big_primitives);
+    if (settings.accel == Accel::Octree && result.octree.first_bytes_per_primitive > 0)
+      std::printf("          built again with leaf size %u: %.1f bytes/primitive at the first leaf size, over %.0f\n",
+                  result.octree.leaf_size, result.octree.first_bytes_per_primitive, kOctreeBytesBound);
     if (result.buffer_parts)
       std::printf("buffers   the scene's arrays split over %u buffers of at most %s (larger than one storage buffer)\n",
                   result.buffer_parts, mib_string(result.buffer_part_bytes).c_str());
