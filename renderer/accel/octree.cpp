@@ -337,8 +337,8 @@ void check_params(const OctreeParams& params) {
   if (params.max_depth < 1 || params.max_depth > kMaxOctreeDepth)
     throw SettingError("octree.max_depth", ": must be in 1.." + std::to_string(kMaxOctreeDepth) + ", got " +
                      std::to_string(params.max_depth));
-  if (params.max_refs > kMaxOctreeRefs)
-    throw SettingError("octree.max_refs", ": must be in 1.." + std::to_string(kMaxOctreeRefs) + " or 0 (auto), got " +
+  if (params.max_refs < 1 || params.max_refs > kMaxOctreeRefs)
+    throw SettingError("octree.max_refs", ": must be in 1.." + std::to_string(kMaxOctreeRefs) + ", got " +
                        std::to_string(params.max_refs));
 }
 
@@ -350,7 +350,6 @@ Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& requested, 
   check_params(requested);
   OctreeParams params = requested;
   if (params.leaf_size == 0) params.leaf_size = kOctreeLeaf;
-  if (params.max_refs == 0) params.max_refs = kOctreeRefs;
   const auto start = Clock::now();
   Octree tree;
 
@@ -451,7 +450,6 @@ Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& requested, 
 
   finish_tree_stats(tree, boxes.size(), ms_since(start));
   tree.stats.leaf_size = params.leaf_size;
-  tree.stats.max_refs = params.max_refs;
   return tree;
 }
 

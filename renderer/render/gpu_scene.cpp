@@ -214,8 +214,8 @@ static BvhWidths bvh_widths(const VulkanContext& ctx, const Scene& scene, const 
   return default_bvh_widths(ctx.info.software, !scene.spheres.empty());
 }
 
-static SceneOctree build_scene_octree_once(const VulkanContext& ctx, const Scene& scene, Accel accel,
-                                           const OctreeParams& params) {
+static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& scene, Accel accel,
+                                      const OctreeParams& params) {
   auto start = Clock::now();
   // The top level over spheres and instances, then one tree per mesh in
   // object space, appended: their `first` fields are moved by where they land.
@@ -287,23 +287,6 @@ static SceneOctree build_scene_octree_once(const VulkanContext& ctx, const Scene
     st.bvh_mesh_width = widths.meshes;
   }
   return t;
-}
-
-// The scene's tree; an octree over kOctreeBytesBound bytes a primitive is
-// built again with params.compact_leaf_size where that is set (the tracer's
-// auto for triangles on a GPU: path_tracer.h default_compact_leaf).
-static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& scene, Accel accel,
-                                      const OctreeParams& params) {
-  SceneOctree t = build_scene_octree_once(ctx, scene, accel, params);
-  const OctreeStats& first = t.octree.stats;
-  if (accel != Accel::Octree || params.compact_leaf_size == 0 || first.bytes_per_primitive <= kOctreeBytesBound)
-    return t;
-  OctreeParams compact = params;
-  compact.leaf_size = params.compact_leaf_size;
-  SceneOctree c = build_scene_octree_once(ctx, scene, accel, compact);
-  c.octree.stats.build_ms += first.build_ms;
-  c.octree.stats.first_bytes_per_primitive = first.bytes_per_primitive;
-  return c;
 }
 
 // Where the octree's arrays would not fit one storage buffer: what the

@@ -461,7 +461,7 @@ TEST(Octree, ReferencesStayWithinTheBudgetPerSphere) {
                                      OctreeParams{.leaf_size = 1, .max_depth = 20, .max_refs = 1},
                                      OctreeParams{.leaf_size = 1, .max_depth = 20, .max_refs = 16}}) {
     const Octree tree = build_octree(sphere_boxes(line), params);
-    EXPECT_LE(tree.refs.size(), tree.stats.max_refs * line.size()) << tree.stats.max_refs << " refs per sphere";
+    EXPECT_LE(tree.refs.size(), params.max_refs * line.size()) << params.max_refs << " refs per sphere";
     expect_correct_octree(line, params, 500);
   }
 }
@@ -497,22 +497,6 @@ TEST(Octree, LeafSizeZeroIsTheDefault) {
   EXPECT_EQ(std::memcmp(automatic.nodes.data(), ten.nodes.data(), ten.nodes.size() * sizeof(GpuOctreeNode)), 0);
   EXPECT_EQ(automatic.refs, ten.refs);
   EXPECT_LT(sixteen.nodes.size(), ten.nodes.size());  // the sizes make other trees here
-}
-
-// OctreeParams::max_refs 0 (auto; the tracer puts the device's rule in
-// first, render_test) builds with kOctreeRefs, and the stats say which
-// budget the build used.
-TEST(Octree, MaxRefsZeroIsTheDefault) {
-  const auto boxes = sphere_boxes(rtiow(8000, 0.1f));
-  const Octree automatic = build_octree(boxes, {.max_refs = 0});
-  const Octree eight = build_octree(boxes, {.max_refs = kOctreeRefs});
-  const Octree one = build_octree(boxes, {.max_refs = 1});
-  EXPECT_EQ(automatic.stats.max_refs, kOctreeRefs);
-  EXPECT_EQ(one.stats.max_refs, 1u);
-  ASSERT_EQ(automatic.nodes.size(), eight.nodes.size());
-  EXPECT_EQ(std::memcmp(automatic.nodes.data(), eight.nodes.data(), eight.nodes.size() * sizeof(GpuOctreeNode)), 0);
-  EXPECT_EQ(automatic.refs, eight.refs);
-  EXPECT_NE(one.refs.size(), eight.refs.size());  // the budgets make other trees here
 }
 
 TEST(Octree, AtMost64BytesPerSphere) {
@@ -624,7 +608,7 @@ TEST(Octree, SphereSurfacesPartTheCapsOfADenseField) {
   const Octree clipped = build_octree(boxes, {}, surfaces, {}, true);
   const Octree narrow = build_octree(boxes, {}, surfaces);  // the straddle rule as before
   EXPECT_GT(clipped.stats.max_depth_reached, plain.stats.max_depth_reached);
-  EXPECT_LE(clipped.refs.size(), size_t(kOctreeRefs) * spheres.size());
+  EXPECT_LE(clipped.refs.size(), size_t(OctreeParams{}.max_refs) * spheres.size());
   // Every point of a sphere's surface in its box (above or below a random
   // point of the column's cross-section) lies in a leaf that references it.
   std::mt19937_64 rng(29);
@@ -678,8 +662,8 @@ TEST(Octree, BadParametersNameTheSetting) {
   EXPECT_EQ(message({0, 16}), "no error");  // auto: kOctreeLeaf (LeafSizeZeroIsTheDefault)
   EXPECT_EQ(message({8, 0}), "octree.max_depth | octree.max_depth: must be in 1..20, got 0");
   EXPECT_EQ(message({8, 21}), "octree.max_depth | octree.max_depth: must be in 1..20, got 21");
-  EXPECT_EQ(message({.max_refs = 0}), "no error");  // auto: kOctreeRefs (MaxRefsZeroIsTheDefault)
-  EXPECT_EQ(message({.max_refs = 65}), "octree.max_refs | octree.max_refs: must be in 1..64 or 0 (auto), got 65");
+  EXPECT_EQ(message({.max_refs = 0}), "octree.max_refs | octree.max_refs: must be in 1..64, got 0");
+  EXPECT_EQ(message({.max_refs = 65}), "octree.max_refs | octree.max_refs: must be in 1..64, got 65");
   EXPECT_EQ(message({.max_refs = 64}), "no error");
   EXPECT_EQ(message({1, 20}), "no error");
 }
