@@ -162,14 +162,16 @@ struct RenderOptions {
         ->capture_default_str();
     cmd.add_option("--octree-leaf", settings.octree.leaf_size,
                    "Octree: split cells holding more primitives than this (0: auto, 10; 16 where the octant culling's "
-                   "auto is off: scenes without triangles on lavapipe from Mesa 25; on a GPU 24 for scenes without "
-                   "triangles, 20 for scenes with them); same image, other speed")
+                   "auto is off: scenes without triangles on lavapipe from Mesa 25; 24 for scenes without triangles "
+                   "on a GPU; for scenes with triangles on a GPU, with --octree-refs auto too, a tree of more than 48 "
+                   "bytes a primitive becomes the tree of leaf 20); same image, other speed")
         ->capture_default_str();
     cmd.add_option("--octree-depth", settings.octree.max_depth, "Octree: maximum depth")->capture_default_str();
     cmd.add_option("--octree-refs", settings.octree.max_refs,
                    "Octree: references per primitive, at most (1..64; 0: auto, 8, but 12 for scenes with triangles "
-                   "on a GPU): more lets clipped meshes split further, fewer triangle tests for more memory (16: "
-                   "the engine 13% faster at 81 instead of 47 bytes per triangle on the H200); same image")
+                   "on a GPU, see --octree-leaf): more lets clipped meshes split further, fewer triangle tests for "
+                   "more memory (16: the engine 13% faster at 81 instead of 47 bytes per triangle on the H200); "
+                   "same image")
         ->capture_default_str();
     cmd.add_option("--bvh-width", settings.octree.bvh_width,
                    "BVH (--accel bvh): children per node, 2 or 4 (0: auto, four-wide over meshes on a GPU, "
