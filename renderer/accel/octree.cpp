@@ -337,8 +337,8 @@ void check_params(const OctreeParams& params) {
   if (params.max_depth < 1 || params.max_depth > kMaxOctreeDepth)
     throw SettingError("octree.max_depth", ": must be in 1.." + std::to_string(kMaxOctreeDepth) + ", got " +
                      std::to_string(params.max_depth));
-  if (params.max_refs > kMaxOctreeRefs)
-    throw SettingError("octree.max_refs", ": must be in 1.." + std::to_string(kMaxOctreeRefs) + " or 0 (auto), got " +
+  if (params.max_refs < 1 || params.max_refs > kMaxOctreeRefs)
+    throw SettingError("octree.max_refs", ": must be in 1.." + std::to_string(kMaxOctreeRefs) + ", got " +
                        std::to_string(params.max_refs));
 }
 
@@ -350,7 +350,6 @@ Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& requested, 
   check_params(requested);
   OctreeParams params = requested;
   if (params.leaf_size == 0) params.leaf_size = kOctreeLeaf;
-  if (params.max_refs == 0) params.max_refs = kOctreeRefs;
   const auto start = Clock::now();
   Octree tree;
 
@@ -451,78 +450,7 @@ Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& requested, 
 
   finish_tree_stats(tree, boxes.size(), ms_since(start));
   tree.stats.leaf_size = params.leaf_size;
-  tree.stats.max_refs = params.max_refs;
   return tree;
-}
-
-namespace {
-
-// The distinct primitives of the subtree under nodes[node] into `prims`
-// (ascending), or false as soon as there are more than `limit`.
-bool subtree_primitives(const std::vector<gpu::GpuOctreeNode>& nodes, const std::vector<uint32_t>& refs,
-                        uint32_t node, uint32_t limit, std::vector<uint32_t>& prims) {
-  const gpu::GpuOctreeNode& n = nodes[node];
-  if (!(n.count_or_mask & gpu::OCTREE_INTERNAL)) {
-    prims.insert(prims.end(), refs.begin() + n.first, refs.begin() + n.first + n.count_or_mask);
-    std::sort(prims.begin(), prims.end());
-    prims.erase(std::unique(prims.begin(), prims.end()), prims.end());
-    return prims.size() <= limit;
-  }
-  const uint32_t children = static_cast<uint32_t>(std::popcount(n.count_or_mask & 0xFFu));
-  for (uint32_t c = 0; c < children; ++c)
-    if (!subtree_primitives(nodes, refs, n.first + c, limit, prims)) return false;
-  return true;
-}
-
-}  // namespace
-
-uint32_t append_coarser_subtree(const std::vector<gpu::GpuOctreeNode>& nodes, const std::vector<uint32_t>& refs,
-                                uint32_t root, uint32_t leaf_size, std::vector<gpu::GpuOctreeNode>& out_nodes,
-                                std::vector<uint32_t>& out_refs, uint32_t& leaves, uint32_t& max_depth,
-                                uint32_t depth) {
-  const uint32_t index = static_cast<uint32_t>(out_nodes.size());
-  out_nodes.push_back(nodes[root]);
-  // Fills out_nodes[at] from nodes[from] at depth d: a leaf of its
-  // primitives where they are few enough, else its children after it.
-  std::vector<uint32_t> prims;
-  const auto fill = [&](const auto& self, uint32_t at, uint32_t from, uint32_t d) -> void {
-    max_depth = std::max(max_depth, d);
-    const gpu::GpuOctreeNode n = nodes[from];
-    prims.clear();
-    if (!(n.count_or_mask & gpu::OCTREE_INTERNAL) || subtree_primitives(nodes, refs, from, leaf_size, prims)) {
-      if (n.count_or_mask & gpu::OCTREE_INTERNAL) {
-        out_nodes[at].count_or_mask = static_cast<uint32_t>(prims.size());
-      } else {
-        prims.assign(refs.begin() + n.first, refs.begin() + n.first + n.count_or_mask);
-      }
-      out_nodes[at].first = static_cast<uint32_t>(out_refs.size());
-      out_refs.insert(out_refs.end(), prims.begin(), prims.end());
-      ++leaves;
-      return;
-    }
-    const uint32_t children = static_cast<uint32_t>(std::popcount(n.count_or_mask & 0xFFu));
-    const uint32_t first = static_cast<uint32_t>(out_nodes.size());
-    out_nodes[at].first = first;
-    for (uint32_t c = 0; c < children; ++c) out_nodes.push_back(nodes[n.first + c]);
-    for (uint32_t c = 0; c < children; ++c) self(self, first + c, n.first + c, d + 1);
-  };
-  fill(fill, index, root, depth);
-  return index;
-}
-
-Octree coarser_octree(const Octree& tree, uint32_t leaf_size, size_t primitives) {
-  const auto start = Clock::now();
-  Octree out;
-  out.big_count = tree.big_count;
-  out.refs.assign(tree.refs.begin(), tree.refs.begin() + tree.big_count);
-  out.stats = tree.stats;
-  out.stats.leaves = 0;
-  out.stats.max_depth_reached = 0;
-  append_coarser_subtree(tree.nodes, tree.refs, 0, leaf_size, out.nodes, out.refs, out.stats.leaves,
-                         out.stats.max_depth_reached);
-  out.stats.leaf_size = leaf_size;
-  finish_tree_stats(out, primitives, tree.stats.build_ms + ms_since(start));
-  return out;
 }
 
 void finish_tree_stats(Octree& tree, size_t primitives, double build_ms) {

@@ -54,12 +54,6 @@ enum class SurfaceCells { Auto, On, Off };
 // The leaf size of OctreeParams::leaf_size = 0 (auto) where the device's
 // rule does not replace it (render/path_tracer.h default_octree_leaf).
 inline constexpr uint32_t kOctreeLeaf = 10;
-// The references per primitive of OctreeParams::max_refs = 0 (auto) where the
-// device's rule does not replace it (render/path_tracer.h default_octree_refs).
-inline constexpr uint32_t kOctreeRefs = 8;
-// Issue 11's bound on an octree over meshes, in bytes a primitive (nodes and
-// references): what OctreeParams::compact_leaf_size holds a tree to.
-inline constexpr double kOctreeBytesBound = 48.0;
 
 struct OctreeParams {
   // A node with more references than this splits ... (0: auto, kOctreeLeaf
@@ -70,23 +64,12 @@ struct OctreeParams {
   // 4 for every tree of the scene, or 0 for the device's default
   // (render/gpu_scene.cpp bvh_widths). The image is the same either way.
   uint32_t bvh_width = 0;
-  // The references per primitive, at most (1..kMaxOctreeRefs, or 0: auto,
-  // kOctreeRefs here; the tracer puts the device's rule in first): along any
-  // path from the root the product of the splits' duplication factors stays
-  // within this (the split budget below). 8 kept the clipped meshes measured
-  // under issue 11's 48 bytes per triangle; 16 took the engine's octree 13%
-  // faster at 81 bytes (optimisation log 57), a trade left to the user
-  // (`--octree-refs`); 12 is the GPU's auto for triangles, with
-  // compact_leaf_size holding the bytes (render/path_tracer.h
-  // default_octree_refs, log 132).
-  uint32_t max_refs = 0;
-  // Where larger than leaf_size: a scene's octree (render/gpu_scene.cpp)
-  // that holds more than kOctreeBytesBound bytes a primitive at leaf_size
-  // becomes the tree of this leaf size, which holds fewer, made from the
-  // first without a second build (append_coarser_subtree; the tracer's auto
-  // for triangles on a GPU: render/path_tracer.h default_compact_leaf). Not
-  // a flag of its own: `--octree-leaf` and `--octree-refs` both auto set it.
-  uint32_t compact_leaf_size = 0;
+  // The references per primitive, at most (1..kMaxOctreeRefs): along any path
+  // from the root the product of the splits' duplication factors stays within
+  // this (the split budget below). 8 keeps clipped meshes under 48 bytes per
+  // triangle (issue 11); 16 took the engine's octree 13% faster at 81 bytes
+  // (optimisation log 57), a trade left to the user (`--octree-refs`).
+  uint32_t max_refs = 8;
   // The order a BVH over spheres alone has the device hold the spheres in
   // (`--bvh-sphere-order`).
   SphereOrder bvh_sphere_order = SphereOrder::Auto;
@@ -118,12 +101,6 @@ struct OctreeStats {
   double bytes_per_primitive = 0;     // bytes / primitive count (0 for an empty scene)
   uint64_t bytes = 0;                 // nodes * 32 + refs * 4: what the GPU holds for the octree
   uint32_t leaf_size = 0;             // the octree's OctreeParams::leaf_size as built (auto resolved); 0 for a BVH
-  uint32_t max_refs = 0;              // the octree's OctreeParams::max_refs as built (auto resolved); 0 for a BVH
-  // A scene's octree made coarser to OctreeParams::compact_leaf_size (the
-  // build held more than kOctreeBytesBound bytes a primitive): the build's
-  // bytes a primitive; 0 where the tree is the build's. build_ms counts the
-  // build and the coarsening.
-  double first_bytes_per_primitive = 0;
   // A scene's BVH (render/gpu_scene.cpp): the most children a node of its
   // top level, and of its meshes' trees, may have (2 or 4); 0 otherwise.
   uint32_t bvh_top_width = 0, bvh_mesh_width = 0;
@@ -248,28 +225,6 @@ struct Octree {
 // time: what every builder of these arrays (octree, BVH) reports.
 void finish_tree_stats(Octree& tree, size_t primitives, double build_ms);
 
-// Appends to out_nodes / out_refs the subtree under nodes[root] (leaves'
-// `first` index `refs`) as build_octree would have built it with the larger
-// leaf size `leaf_size`, every other setting the same, without building it:
-// the leaf size is the only setting a split decision reads besides a node's
-// references, depth and budget, so every node whose subtree holds at most
-// leaf_size primitives becomes a leaf of them (in ascending order, as the
-// build keeps them) and every other node stays as it is. Children are
-// written contiguously, each node's before its children's subtrees (the
-// build's own order below its top). Returns the new root's index in
-// out_nodes; the leaves' `first` index out_refs. `leaves` and `max_depth`
-// (the root at `depth`) take the new subtree's counts.
-uint32_t append_coarser_subtree(const std::vector<gpu::GpuOctreeNode>& nodes, const std::vector<uint32_t>& refs,
-                                uint32_t root, uint32_t leaf_size, std::vector<gpu::GpuOctreeNode>& out_nodes,
-                                std::vector<uint32_t>& out_refs, uint32_t& leaves, uint32_t& max_depth,
-                                uint32_t depth = 0);
-
-// The whole tree as build_octree would have built it with the larger leaf
-// size `leaf_size` (append_coarser_subtree; the big primitives as they are),
-// with its stats over `primitives` (build_ms: the given tree's and this
-// one's time together).
-Octree coarser_octree(const Octree& tree, uint32_t leaf_size, size_t primitives);
-
 inline constexpr uint32_t kMaxBigPrimitives = 16;
 inline constexpr uint32_t kMaxOctreeDepth = 20;  // 2^-20 of the root extent is near float resolution
 inline constexpr uint32_t kMaxOctreeRefs = 64;   // OctreeParams::max_refs
@@ -293,8 +248,7 @@ using ClipOctantsFn =
 // Builds the octree over `boxes` (finite, non-empty; primitive i is boxes[i]).
 // Uses the hardware threads; the result depends only on the input.
 // Throws SettingError ("octree.leaf_size", "octree.max_depth",
-// "octree.max_refs") for bad params; a leaf size of 0 builds with kOctreeLeaf,
-// a max_refs of 0 with kOctreeRefs.
+// "octree.max_refs") for bad params; a leaf size of 0 builds with kOctreeLeaf.
 // `clip_straddled`: see "How it is built" (needs a ClipFn).
 Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params, const ClipFn& clip = {},
                     const ClipOctantsFn& clip_octants = {}, bool clip_straddled = false);

@@ -214,8 +214,8 @@ static BvhWidths bvh_widths(const VulkanContext& ctx, const Scene& scene, const 
   return default_bvh_widths(ctx.info.software, !scene.spheres.empty());
 }
 
-static SceneOctree build_scene_octree_once(const VulkanContext& ctx, const Scene& scene, Accel accel,
-                                           const OctreeParams& params) {
+static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& scene, Accel accel,
+                                      const OctreeParams& params) {
   auto start = Clock::now();
   // The top level over spheres and instances, then one tree per mesh in
   // object space, appended: their `first` fields are moved by where they land.
@@ -287,50 +287,6 @@ static SceneOctree build_scene_octree_once(const VulkanContext& ctx, const Scene
     st.bvh_mesh_width = widths.meshes;
   }
   return t;
-}
-
-// The scene's tree; an octree over kOctreeBytesBound bytes a primitive
-// becomes the tree of leaf size params.compact_leaf_size where that is set
-// (the tracer's auto for triangles on a GPU: path_tracer.h
-// default_compact_leaf), each level's tree made coarser as it is
-// (accel/octree.h append_coarser_subtree): the tree a build with that leaf
-// size gives, without a second build (optimisation log 133).
-static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& scene, Accel accel,
-                                      const OctreeParams& params) {
-  SceneOctree t = build_scene_octree_once(ctx, scene, accel, params);
-  const OctreeStats& first = t.octree.stats;
-  if (accel != Accel::Octree || params.compact_leaf_size <= params.leaf_size ||
-      first.bytes_per_primitive <= kOctreeBytesBound)
-    return t;
-  const auto start = Clock::now();
-  const uint32_t leaf = params.compact_leaf_size;
-  SceneOctree c{{}, t.meshes};
-  Octree& o = c.octree;
-  OctreeStats& st = o.stats;
-  st = first;
-  st.leaves = 0;
-  st.max_depth_reached = 0;
-  // The top level (its big primitives first, its root at 0), then each
-  // mesh's tree (its big triangles first), as build_scene_octree_once lays
-  // them out.
-  const std::vector<uint32_t>& refs = t.octree.refs;
-  o.big_count = t.octree.big_count;
-  o.refs.assign(refs.begin(), refs.begin() + o.big_count);
-  append_coarser_subtree(t.octree.nodes, refs, 0, leaf, o.nodes, o.refs, st.leaves, st.max_depth_reached);
-  st.top_leaves = st.leaves;
-  st.top_refs = o.refs.size();
-  for (size_t m = 0; m < c.meshes.size(); ++m) {
-    const gpu::GpuMesh& was = t.meshes[m];
-    c.meshes[m].first_ref = static_cast<uint32_t>(o.refs.size());
-    o.refs.insert(o.refs.end(), refs.begin() + was.first_ref, refs.begin() + was.first_ref + was.big_count);
-    c.meshes[m].root =
-        append_coarser_subtree(t.octree.nodes, refs, was.root, leaf, o.nodes, o.refs, st.leaves, st.max_depth_reached);
-  }
-  const uint64_t primitives = scene.spheres.size() + unique_triangle_count(scene);
-  finish_tree_stats(o, primitives, first.build_ms + ms_since(start));
-  st.leaf_size = leaf;
-  st.first_bytes_per_primitive = first.bytes_per_primitive;
-  return c;
 }
 
 // Where the octree's arrays would not fit one storage buffer: what the

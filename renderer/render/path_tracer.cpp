@@ -350,12 +350,8 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
   State& s = *state_;
   s.settings = settings;
   s.scene_features = scene_features(scene);
-  OctreeParams& tree = s.settings.octree;
-  const bool triangles = s.scene_features.triangles;
-  if (tree.leaf_size == 0 && tree.max_refs == 0 && tree.compact_leaf_size == 0)
-    tree.compact_leaf_size = default_compact_leaf(ctx.info, triangles);
-  if (tree.leaf_size == 0) tree.leaf_size = default_octree_leaf(ctx.info, triangles);
-  if (tree.max_refs == 0) tree.max_refs = default_octree_refs(ctx.info, triangles);
+  if (s.settings.octree.leaf_size == 0)
+    s.settings.octree.leaf_size = default_octree_leaf(ctx.info, s.scene_features.triangles);
   if (s.settings.octree.surface_cells == SurfaceCells::Auto)
     s.settings.octree.surface_cells =
         default_surface_cells(ctx.info, uint64_t(settings.spp) * s.pixels()) ? SurfaceCells::On : SurfaceCells::Off;
@@ -789,14 +785,6 @@ bool default_bvh_top_while(const DeviceInfo& device, double refs_per_leaf) {
 uint32_t default_octree_leaf(const DeviceInfo& device, bool triangles) {
   if (!default_octant_culling(device, triangles)) return kOctreeLeafUnculled;
   return device.software || triangles ? kOctreeLeaf : kOctreeLeafGpuSpheres;
-}
-
-uint32_t default_octree_refs(const DeviceInfo& device, bool triangles) {
-  return !device.software && triangles ? kOctreeRefsGpuTriangles : kOctreeRefs;
-}
-
-uint32_t default_compact_leaf(const DeviceInfo& device, bool triangles) {
-  return !device.software && triangles ? kOctreeLeafGpuCompact : 0;
 }
 
 bool default_surface_cells(const DeviceInfo& device, uint64_t samples) {

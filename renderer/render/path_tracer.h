@@ -121,30 +121,10 @@ inline constexpr double kBvhWhileRefsPerLeaf = 4.0;
 // And 24 for a scene without triangles on a GPU: on the H100 the peer's scene
 // 6.0% faster than at 10, 8,000 spheres 5.0%, 488 1.1%, 1M within 0.7%; 32
 // cost 488 spheres 17% (optimisation log 115). Scenes with triangles keep 10
-// (the leaf measured on the meshes: logs 30 and 56; 20 cost a uniform
-// 1M-triangle sheet 10% on the H100, log 132), but see default_compact_leaf.
+// (the leaf measured on the meshes: logs 30 and 56; 24 was not).
 uint32_t default_octree_leaf(const DeviceInfo& device, bool triangles);
 inline constexpr uint32_t kOctreeLeafUnculled = 16;
 inline constexpr uint32_t kOctreeLeafGpuSpheres = 24;
-
-// RenderSettings::octree.max_refs's auto (0): kOctreeRefs (8), but 12 for a
-// scene with triangles on a GPU, which lets the meshes whose split budget
-// binds split further where rays meet the most triangles (the engine 9.6%
-// faster on the H100, a uniform sheet within 1%: optimisation log 132).
-// Spheres are not clipped, and their trees do not spend the budget the way
-// a mesh's do; CPU devices were not measured at 12.
-uint32_t default_octree_refs(const DeviceInfo& device, bool triangles);
-inline constexpr uint32_t kOctreeRefsGpuTriangles = 12;
-
-// OctreeParams::compact_leaf_size where the tracer resolves both the leaf
-// size and the references per primitive as auto: for a scene with triangles
-// on a GPU a leaf of 20, so that a tree that the 12 references would take
-// over issue 11's kOctreeBytesBound (48) bytes a primitive becomes the tree
-// of leaf 20, within it (the engine: 68 bytes at leaf 10, 42.2 at 20, and
-// still 5% faster than the old 8 references with leaf 10; logs 132 and
-// 133); 0 elsewhere.
-uint32_t default_compact_leaf(const DeviceInfo& device, bool triangles);
-inline constexpr uint32_t kOctreeLeafGpuCompact = 20;
 
 // RenderSettings::octree.surface_cells's auto: whether the octree's top
 // level follows the spheres' surfaces where the hidden parts were left out

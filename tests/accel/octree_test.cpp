@@ -14,7 +14,6 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
-#include <span>
 #include <limits>
 #include <random>
 #include <string>
@@ -462,7 +461,7 @@ TEST(Octree, ReferencesStayWithinTheBudgetPerSphere) {
                                      OctreeParams{.leaf_size = 1, .max_depth = 20, .max_refs = 1},
                                      OctreeParams{.leaf_size = 1, .max_depth = 20, .max_refs = 16}}) {
     const Octree tree = build_octree(sphere_boxes(line), params);
-    EXPECT_LE(tree.refs.size(), tree.stats.max_refs * line.size()) << tree.stats.max_refs << " refs per sphere";
+    EXPECT_LE(tree.refs.size(), params.max_refs * line.size()) << params.max_refs << " refs per sphere";
     expect_correct_octree(line, params, 500);
   }
 }
@@ -498,83 +497,6 @@ TEST(Octree, LeafSizeZeroIsTheDefault) {
   EXPECT_EQ(std::memcmp(automatic.nodes.data(), ten.nodes.data(), ten.nodes.size() * sizeof(GpuOctreeNode)), 0);
   EXPECT_EQ(automatic.refs, ten.refs);
   EXPECT_LT(sixteen.nodes.size(), ten.nodes.size());  // the sizes make other trees here
-}
-
-// The same tree below nodes a[i] and b[j]: boxes, children and leaves'
-// references alike, node for node (the arrays may be laid out otherwise).
-void expect_same_subtree(const Octree& a, uint32_t i, const Octree& b, uint32_t j, int& compared) {
-  const GpuOctreeNode& x = a.nodes[i];
-  const GpuOctreeNode& y = b.nodes[j];
-  ++compared;
-  ASSERT_EQ(x.count_or_mask, y.count_or_mask) << "node " << i << " / " << j;
-  ASSERT_EQ(x.lo, y.lo);
-  ASSERT_EQ(x.hi, y.hi);
-  if (!(x.count_or_mask & OCTREE_INTERNAL)) {
-    ASSERT_TRUE(std::equal(a.refs.begin() + x.first, a.refs.begin() + x.first + x.count_or_mask,
-                           b.refs.begin() + y.first))
-        << "leaf " << i << " / " << j;
-    return;
-  }
-  for (uint32_t c = 0; c < uint32_t(std::popcount(x.count_or_mask & 0xFFu)); ++c) {
-    expect_same_subtree(a, x.first + c, b, y.first + c, compared);
-    if (::testing::Test::HasFatalFailure()) return;
-  }
-}
-
-// A tree made coarser to a larger leaf size (append_coarser_subtree, what a
-// scene's octree over the bytes bound becomes) is the tree a build with
-// that leaf size gives: spheres (enough to be built by several threads) and
-// small clipped triangles under a budget of 12, node for node.
-TEST(Octree, CoarserTreeIsTheBuildOfTheLargerLeaf) {
-  const auto check = [](std::span<const Aabb> boxes, OctreeParams params, uint32_t leaf, const ClipFn& clip) {
-    const Octree fine = build_octree(boxes, params, clip);
-    params.leaf_size = leaf;
-    const Octree built = build_octree(boxes, params, clip);
-    const Octree coarse = coarser_octree(fine, leaf, boxes.size());
-    EXPECT_LT(built.nodes.size(), fine.nodes.size());  // the leaf sizes make other trees here
-    EXPECT_EQ(coarse.nodes.size(), built.nodes.size());
-    EXPECT_EQ(coarse.refs.size(), built.refs.size());
-    EXPECT_EQ(coarse.big_count, built.big_count);
-    EXPECT_TRUE(std::equal(coarse.refs.begin(), coarse.refs.begin() + coarse.big_count, built.refs.begin()));
-    EXPECT_EQ(coarse.stats.leaves, built.stats.leaves);
-    EXPECT_EQ(coarse.stats.max_depth_reached, built.stats.max_depth_reached);
-    EXPECT_EQ(coarse.stats.bytes, built.stats.bytes);
-    EXPECT_EQ(coarse.stats.leaf_size, leaf);
-    int compared = 0;
-    expect_same_subtree(coarse, 0, built, 0, compared);
-    EXPECT_EQ(size_t(compared), built.nodes.size());
-  };
-  check(sphere_boxes(rtiow(100000, 0.05f)), {.leaf_size = 4}, 16, {});
-  std::mt19937_64 rng(23);
-  std::uniform_real_distribution<float> pos(-10.0f, 10.0f), near(-0.3f, 0.3f);
-  std::vector<glm::vec3> corners(3 * 6000);
-  for (size_t t = 0; t < corners.size(); t += 3) {
-    corners[t] = {pos(rng), 0.1f * pos(rng), pos(rng)};
-    for (int k = 1; k < 3; ++k) corners[t + k] = corners[t] + glm::vec3(near(rng), near(rng), near(rng));
-  }
-  std::vector<Aabb> boxes(corners.size() / 3);
-  for (size_t t = 0; t < boxes.size(); ++t)
-    for (int k = 0; k < 3; ++k) boxes[t].extend({corners[3 * t + k], corners[3 * t + k]});
-  const ClipFn clip = [&](uint32_t t, const Aabb& cell, Aabb& part) {
-    return clip_triangle(corners[3 * t], corners[3 * t + 1], corners[3 * t + 2], cell, part);
-  };
-  check(boxes, {.leaf_size = 10, .max_refs = 12}, 20, clip);
-}
-
-// OctreeParams::max_refs 0 (auto; the tracer puts the device's rule in
-// first, render_test) builds with kOctreeRefs, and the stats say which
-// budget the build used.
-TEST(Octree, MaxRefsZeroIsTheDefault) {
-  const auto boxes = sphere_boxes(rtiow(8000, 0.1f));
-  const Octree automatic = build_octree(boxes, {.max_refs = 0});
-  const Octree eight = build_octree(boxes, {.max_refs = kOctreeRefs});
-  const Octree one = build_octree(boxes, {.max_refs = 1});
-  EXPECT_EQ(automatic.stats.max_refs, kOctreeRefs);
-  EXPECT_EQ(one.stats.max_refs, 1u);
-  ASSERT_EQ(automatic.nodes.size(), eight.nodes.size());
-  EXPECT_EQ(std::memcmp(automatic.nodes.data(), eight.nodes.data(), eight.nodes.size() * sizeof(GpuOctreeNode)), 0);
-  EXPECT_EQ(automatic.refs, eight.refs);
-  EXPECT_NE(one.refs.size(), eight.refs.size());  // the budgets make other trees here
 }
 
 TEST(Octree, AtMost64BytesPerSphere) {
@@ -686,7 +608,7 @@ TEST(Octree, SphereSurfacesPartTheCapsOfADenseField) {
   const Octree clipped = build_octree(boxes, {}, surfaces, {}, true);
   const Octree narrow = build_octree(boxes, {}, surfaces);  // the straddle rule as before
   EXPECT_GT(clipped.stats.max_depth_reached, plain.stats.max_depth_reached);
-  EXPECT_LE(clipped.refs.size(), size_t(kOctreeRefs) * spheres.size());
+  EXPECT_LE(clipped.refs.size(), size_t(OctreeParams{}.max_refs) * spheres.size());
   // Every point of a sphere's surface in its box (above or below a random
   // point of the column's cross-section) lies in a leaf that references it.
   std::mt19937_64 rng(29);
@@ -740,8 +662,8 @@ TEST(Octree, BadParametersNameTheSetting) {
   EXPECT_EQ(message({0, 16}), "no error");  // auto: kOctreeLeaf (LeafSizeZeroIsTheDefault)
   EXPECT_EQ(message({8, 0}), "octree.max_depth | octree.max_depth: must be in 1..20, got 0");
   EXPECT_EQ(message({8, 21}), "octree.max_depth | octree.max_depth: must be in 1..20, got 21");
-  EXPECT_EQ(message({.max_refs = 0}), "no error");  // auto: kOctreeRefs (MaxRefsZeroIsTheDefault)
-  EXPECT_EQ(message({.max_refs = 65}), "octree.max_refs | octree.max_refs: must be in 1..64 or 0 (auto), got 65");
+  EXPECT_EQ(message({.max_refs = 0}), "octree.max_refs | octree.max_refs: must be in 1..64, got 0");
+  EXPECT_EQ(message({.max_refs = 65}), "octree.max_refs | octree.max_refs: must be in 1..64, got 65");
   EXPECT_EQ(message({.max_refs = 64}), "no error");
   EXPECT_EQ(message({1, 20}), "no error");
 }

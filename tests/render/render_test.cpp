@@ -398,22 +398,6 @@ TEST(OctreeLeaf, AutoIsSixteenWhereTheCullingIsOffAndLargerForGpuSpheres) {
   EXPECT_EQ(default_octree_leaf(mesa25, true), kOctreeLeaf);
 }
 
-// Auto references per primitive and the leaf a tree over the bytes bound is
-// made coarser to (optimisation logs 132 and 133): 12 and 20 with triangles on a
-// GPU; kOctreeRefs and none elsewhere. The tracer builds with them.
-TEST(OctreeRefs, AutoIsTwelveWithACompactLeafOnlyForTrianglesOnAGpu) {
-  const auto [gpu, mesa22, mesa25, mesa26] = RuleDevices();
-  EXPECT_EQ(default_octree_refs(gpu, true), 12u);
-  EXPECT_EQ(default_compact_leaf(gpu, true), 20u);
-  EXPECT_EQ(default_octree_refs(gpu, false), kOctreeRefs);
-  EXPECT_EQ(default_compact_leaf(gpu, false), 0u);
-  for (const DeviceInfo& d : {mesa22, mesa25, mesa26})
-    for (bool triangles : {false, true}) {
-      EXPECT_EQ(default_octree_refs(d, triangles), kOctreeRefs);
-      EXPECT_EQ(default_compact_leaf(d, triangles), 0u);
-    }
-}
-
 // Auto cells over the spheres' surfaces (optimisation logs 126 and 127): on
 // a GPU for renders of kSurfaceCellsMinSamples samples or more, never on a
 // CPU device.
@@ -450,68 +434,13 @@ TEST_F(RenderTest, TreeSettingsResolvedForTheDeviceAndLevel) {
     const PathTracer tracer(ctx, scene, s);
     EXPECT_EQ(tracer.octant_culling(), default_octant_culling(ctx.info, false));
     EXPECT_EQ(tracer.octree_stats().leaf_size, default_octree_leaf(ctx.info, false));
-    EXPECT_EQ(tracer.octree_stats().max_refs, default_octree_refs(ctx.info, false));
-  }
-  Scene meshes = scene;
-  test::place(meshes, test::icosphere(1, 0), glm::translate(glm::mat4(1.0f), glm::vec3(0, 1, 0)));
-  {
-    const PathTracer tracer(ctx, meshes, s);
-    const OctreeStats& o = tracer.octree_stats();
-    // As built, or made coarser to the compact leaf where the build was
-    // over the bound.
-    EXPECT_EQ(o.leaf_size, o.first_bytes_per_primitive > 0 ? default_compact_leaf(ctx.info, true)
-                                                           : default_octree_leaf(ctx.info, true));
-    EXPECT_EQ(o.max_refs, default_octree_refs(ctx.info, true));
-  }
-  {
-    // A tree over kOctreeBytesBound bytes a primitive (leaves of one
-    // reference) is made coarser to the compact leaf, within it: the tree a
-    // build with that leaf gives, node and reference counts alike, and the
-    // same image; one under the bound stays as built. Given directly: on a
-    // CPU device the autos set none.
-    RenderSettings c = s;
-    c.octree.leaf_size = 1;
-    c.octree.max_refs = 12;
-    c.octree.compact_leaf_size = 20;
-    const PathTracer coarsened(ctx, meshes, c);
-    const OctreeStats big = coarsened.octree_stats();
-    EXPECT_GT(big.first_bytes_per_primitive, kOctreeBytesBound);
-    EXPECT_EQ(big.leaf_size, 20u);
-    EXPECT_EQ(big.max_refs, 12u);
-    EXPECT_LE(big.bytes_per_primitive, kOctreeBytesBound);
-    RenderSettings direct = c;
-    direct.octree.leaf_size = 20;
-    direct.octree.compact_leaf_size = 0;
-    const OctreeStats built = PathTracer(ctx, meshes, direct).octree_stats();
-    EXPECT_EQ(built.first_bytes_per_primitive, 0.0);
-    EXPECT_EQ(big.nodes, built.nodes);
-    EXPECT_EQ(big.refs, built.refs);
-    EXPECT_EQ(big.leaves, built.leaves);
-    EXPECT_EQ(big.top_leaves, built.top_leaves);
-    EXPECT_EQ(big.top_refs, built.top_refs);
-    EXPECT_EQ(big.max_depth_reached, built.max_depth_reached);
-    EXPECT_EQ(big.bytes, built.bytes);
-    const RenderResult from_coarsened = render(ctx, meshes, c);
-    const RenderResult from_built = render(ctx, meshes, direct);
-    ASSERT_EQ(from_coarsened.mean.rgb.size(), from_built.mean.rgb.size());
-    EXPECT_EQ(std::memcmp(from_coarsened.mean.rgb.data(), from_built.mean.rgb.data(),
-                          from_built.mean.rgb.size() * sizeof(float)),
-              0);
-    c.octree.leaf_size = 20;
-    c.octree.compact_leaf_size = 1;
-    const OctreeStats small = PathTracer(ctx, meshes, c).octree_stats();
-    EXPECT_LE(small.bytes_per_primitive, kOctreeBytesBound);
-    EXPECT_EQ(small.first_bytes_per_primitive, 0.0);
-    EXPECT_EQ(small.leaf_size, 20u);
   }
   s.octant_culling = OctantCulling::On;
   s.octree.leaf_size = 3;
-  s.octree.max_refs = 5;
   {
     const PathTracer tracer(ctx, scene, s);
     EXPECT_TRUE(tracer.octant_culling());
     EXPECT_EQ(tracer.octree_stats().leaf_size, 3u);
-    EXPECT_EQ(tracer.octree_stats().max_refs, 5u);
   }
   s.octant_culling = OctantCulling::Off;
   EXPECT_FALSE(PathTracer(ctx, scene, s).octant_culling());
