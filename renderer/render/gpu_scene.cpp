@@ -160,34 +160,36 @@ void check_part_count(uint32_t part_log2, uint64_t elements, uint32_t size_log2,
                          byte_string(limit) + " per buffer)");
 }
 
-// Both forms of the scene's materials into `hash`, as add_vector of each
-// whole (the hash of the days both were uploaded for every render: a
-// checkpoint's scene hash stays what it was); `full` or `half` holds the
-// stored form, the other is made here piece by piece.
-void hash_materials(Hash64& hash, const Scene& scene, const std::vector<gpu::GpuMaterial>& full,
-                    const std::vector<gpu::GpuMaterialHalf>& half) {
+// The scene's materials in the form the render's precision reads (`half`:
+// into `stored_half`, else into `full`; the other stays empty), and both
+// forms into `hash` as add_vector of each whole would add them (the hash of
+// the days both were uploaded for every render: a checkpoint's scene hash
+// stays what it was). Each material's fp32 form is made once; the form not
+// stored is hashed piece by piece.
+void make_materials(const Scene& scene, bool half, Hash64& hash, std::vector<gpu::GpuMaterial>& full,
+                    std::vector<gpu::GpuMaterialHalf>& stored_half) {
   static_assert(sizeof(gpu::GpuMaterial) % 8 == 0 && sizeof(gpu::GpuMaterialHalf) % 8 == 0, "Hash64::add_piece");
   const size_t n = scene.materials.size();
-  if (full.size() == n) {
+  if (!half) {
+    full = gpu_materials(scene);
     hash.add_vector(full);
-  } else {
-    for (const Material& m : scene.materials) {
-      gpu::GpuMaterial f = gpu::GpuMaterial();
-      fill_gpu_material(m, f);
-      hash.add_piece(&f, sizeof f);
-    }
-    hash.end_pieces(n * sizeof(gpu::GpuMaterial));
-  }
-  if (half.size() == n) {
-    hash.add_vector(half);
-  } else {
     for (const gpu::GpuMaterial& f : full) {
       gpu::GpuMaterialHalf h = gpu::GpuMaterialHalf();
       fill_gpu_material_half(f, h);
       hash.add_piece(&h, sizeof h);
     }
     hash.end_pieces(n * sizeof(gpu::GpuMaterialHalf));
+    return;
   }
+  stored_half.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    gpu::GpuMaterial f = gpu::GpuMaterial();
+    fill_gpu_material(scene.materials[i], f);
+    hash.add_piece(&f, sizeof f);
+    fill_gpu_material_half(f, stored_half[i]);
+  }
+  hash.end_pieces(n * sizeof(gpu::GpuMaterial));
+  hash.add_vector(stored_half);
 }
 
 uint64_t texel_count(const Scene& scene) {
@@ -611,12 +613,10 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
   std::vector<gpu::GpuSphere>& spheres = sphere_data.spheres;
   std::vector<uint32_t>& sphere_materials = sphere_data.materials;
   // The materials as the render's precision reads them only (the other
-  // form is made for the hash below, not stored).
+  // form is hashed below, not stored).
   const bool half = precision != Precision::FP32;
   std::vector<gpu::GpuMaterial> materials;
   std::vector<gpu::GpuMaterialHalf> materials_half;
-  if (half) materials_half = gpu_materials_half(scene);
-  else materials = gpu_materials(scene);
   const size_t texture_count = scene.textures.size();
   check_fits(ctx.limits.maxStorageBufferRange, texel_count(scene) * sizeof(uint32_t),
              "the texels of " + std::to_string(texture_count) + (texture_count == 1 ? " texture" : " textures"));
@@ -706,7 +706,7 @@ static void upload_scene_of(GpuScene& g, const VulkanContext& ctx, const Scene& 
                       .add_vector(spheres)
                       .add_vector(sphere_materials)
                       .value();
-  hash_materials(hash, scene, materials, materials_half);
+  make_materials(scene, half, hash, materials, materials_half);
   g.content_hash = hash.value();
   const double pack_ms = ms_since(start);
   std::optional<SceneOctree> tree;

@@ -1,6 +1,6 @@
 // core/hash.h: an array hashed piece by piece (add_piece, end_pieces) has the
 // hash of the same bytes added whole, so a form of the scene made only for
-// the checkpoint hash (render/gpu_scene.cpp hash_materials) hashes as it did
+// the checkpoint hash (render/gpu_scene.cpp make_materials) hashes as it did
 // when it was stored; other bytes or another length give another hash.
 #include "core/hash.h"
 
