@@ -16,6 +16,10 @@
 #     AB_ROUNDS rounds (5 unless set), AB_METRIC (ab_render.py's
 #     --metric: device time unless set, `wall` for the whole process),
 #     into $R/ab_NAME.md, one line per variant in $T;
+#   - mesh_ab [FLAGS...]: ab over the four meshes the mesh trees are
+#     measured on (engine, balloon, sheet: 1M triangles in one mesh,
+#     grid400: 400 instances of a 70k grid; the grids made in $R/grid.glb
+#     and $R/grid400.glb, kept there for the script), $S and the octree;
 #   - same_image LABEL BIN1 BIN2 FLAGS...: renders FLAGS with both
 #     binaries and says in $T whether the two PFM files are identical;
 #   - suite NAME LIMIT: build-gpu/tests/NAME with a time limit of LIMIT
@@ -51,6 +55,14 @@ ab() {
   timeout ${AB_TIMEOUT:-90} python3 tools/ab_render.py --octrace "$B" --rounds ${AB_ROUNDS:-5} ${AB_METRIC:+--metric "$AB_METRIC"} \
     --render "$*" "${V[@]}" --out "$R/ab_$name.md" > "$R/ab_$name.log" 2>&1
   echo "$name rc=$?: $(grep -E "^\| ($labels) " "$R/ab_$name.md" | cut -d'|' -f2,5,6,7,9 | tr '\n' ' ')" >> "$T"
+}
+mesh_ab() {
+  [ -f "$R/grid.glb" ] || python3 tools/make_grid_glb.py 708 "$R/grid.glb" > /dev/null
+  [ -f "$R/grid400.glb" ] || python3 tools/make_grid_glb.py 187 "$R/grid400.glb" 400 > /dev/null
+  AB_TIMEOUT=${AB_TIMEOUT:-240} ab engine $S --scene .assets/2CylinderEngine.glb --accel octree "$@"
+  AB_TIMEOUT=${AB_TIMEOUT:-240} ab balloon $S --scene .assets/balloon/scene.gltf --accel octree "$@"
+  AB_TIMEOUT=${AB_TIMEOUT:-240} ab sheet $S --scene "$R/grid.glb" --accel octree "$@"
+  AB_TIMEOUT=${AB_TIMEOUT:-240} ab grid400 $S --scene "$R/grid400.glb" --accel octree "$@"
 }
 same_image() {
   local label=$1 one=$2 two=$3; shift 3

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # render --json's times_ms.upload of two binaries, alternating, ROUNDS rounds
-# after a warm-up each: the 1M field (r = 0.1) at 32x24, 1 spp, fp32, CPU
-# device. Usage: upload_times.sh BEFORE AFTER [ROUNDS]
+# after a warm-up each: the 1M field (r = 0.1) at 32x24, 1 spp, fp32 (or
+# PRECISION), CPU device. Usage: upload_times.sh BEFORE AFTER [ROUNDS [PRECISION]]
 set -u
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}
 rounds=${3:-7}
-run() { "$1" render --device cpu --spheres 1000000 --radius 0.1 --size 32x24 --spp 1 --json -q -o /tmp/upload_times.png |
+precision=${4:-fp32}
+run() { "$1" render --device cpu --spheres 1000000 --radius 0.1 --size 32x24 --spp 1 --precision "$precision" --json -q -o /tmp/upload_times.png |
   python3 -c "import json,sys; print(json.load(sys.stdin)['times_ms']['upload'])"; }
 run "$1" >/dev/null; run "$2" >/dev/null
 for i in $(seq "$rounds"); do echo "before $(run "$1")"; echo "after $(run "$2")"; done |

@@ -5,17 +5,12 @@
 # Pack: tools/gpu_pack.sh rule=docs/results/h200/session42/leaf_rule.patch
 # (its COMMIT). Carried: .gl, .gpub, .assets. Expectations in expected.md (run1).
 source tools/gpu_run.sh
-python3 tools/make_grid_glb.py 708 "$R/grid.glb" > /dev/null
-python3 tools/make_grid_glb.py 187 "$R/grid400.glb" 400 > /dev/null
 P=build-gpu/octrace-rule
 rule() { echo "BIN=$P OCTRACE_TMP_TAU=0 OCTRACE_TMP_SMALL=$2 OCTRACE_TMP_FRAC=$3 -- --octree-refs $1 --octree-leaf 10"; }
 V=(--variant "old=" --variant "r12l20=-- --octree-refs 12 --octree-leaf 20"
    --variant "r12s20=$(rule 12 20 0.75)" --variant "r12s30=$(rule 12 30 0.9)" --variant "r16s30=$(rule 16 30 0.9)"
    --variant "r16s40=$(rule 16 40 0.9)" --variant "r20s30=$(rule 20 30 0.75)")
-AB_TIMEOUT=240 ab engine $S --scene .assets/2CylinderEngine.glb --accel octree
-AB_TIMEOUT=240 ab balloon $S --scene .assets/balloon/scene.gltf --accel octree
-AB_TIMEOUT=240 ab sheet $S --scene "$R/grid.glb" --accel octree
-AB_TIMEOUT=240 ab grid400 $S --scene "$R/grid400.glb" --accel octree
+mesh_ab
 for sc in .assets/2CylinderEngine.glb .assets/balloon/scene.gltf "$R/grid.glb" "$R/grid400.glb"; do
   n=$(basename "$sc")
   $B render $S --scene "$sc" --accel octree --json -o "$R/img_old.pfm" > "$R/json.txt" 2>/dev/null
