@@ -167,9 +167,11 @@ struct RenderOptions {
         ->capture_default_str();
     cmd.add_option("--octree-depth", settings.octree.max_depth, "Octree: maximum depth")->capture_default_str();
     cmd.add_option("--octree-refs", settings.octree.max_refs,
-                   "Octree: references per primitive, at most (1..64): more lets clipped meshes split further, "
-                   "fewer triangle tests for more memory (16: the engine 13% faster at 81 instead of 47 bytes "
-                   "per triangle on the H200)")
+                   "Octree: references per primitive, at most (1..64; 0: auto, 8, but for scenes with triangles on "
+                   "a GPU 12 with copy leaves: cells of at most 20 that a long triangle spans stay leaves, and a "
+                   "tree over 48 bytes per primitive is built again at 8): more lets clipped meshes split "
+                   "further, fewer triangle tests for more memory (16: the engine 13% faster at 81 instead of 47 "
+                   "bytes per triangle on the H200); same image")
         ->capture_default_str();
     cmd.add_option("--bvh-width", settings.octree.bvh_width,
                    "BVH (--accel bvh): children per node, 2 or 4 (0: auto, four-wide over meshes on a GPU, "
@@ -802,13 +804,15 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
     if (settings.accel == Accel::Octree) {
       const OctreeStats& o = result.octree;
       j["octree"] = {{"leaf_size", o.leaf_size}, {"max_depth", settings.octree.max_depth},
-                     {"max_refs", settings.octree.max_refs},
+                     {"max_refs", o.max_refs},
                      {"build_ms", o.build_ms},         {"nodes", o.nodes},
                      {"leaves", o.leaves},             {"depth_reached", o.max_depth_reached},
                      {"refs", o.refs},                 {"big_spheres", o.big_primitives},
                      {"refs_per_sphere", o.refs_per_primitive}, {"bytes", o.bytes},
                      {"bytes_per_sphere", o.bytes_per_primitive},
-                     {"refs_per_primitive", o.refs_per_primitive}, {"bytes_per_primitive", o.bytes_per_primitive}};
+                     {"refs_per_primitive", o.refs_per_primitive}, {"bytes_per_primitive", o.bytes_per_primitive},
+                     {"copy_leaf", o.copy_leaf},
+                     {"first_build_bytes_per_primitive", o.first_bytes_per_primitive}};
     }
     if (settings.accel != Accel::Brute) {
       const OctreeStats& o = result.octree;
@@ -841,11 +845,19 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
                                      : "");
     std::printf("image     %dx%d, %u spp, depth %u, sample seed %u, %s\n", settings.width, settings.height,
                 settings.spp, settings.bounce_limit, settings.sample_seed, precision_name(settings.precision));
-    if (settings.accel == Accel::Octree)
-      std::printf("octree    %u nodes, %u leaves (leaf size %u), depth %u, %.2f refs/primitive, %.1f bytes/primitive, "
-                  "%u big primitives\n",
-                  result.octree.nodes, result.octree.leaves, result.octree.leaf_size, result.octree.max_depth_reached,
-                  result.octree.refs_per_primitive, result.octree.bytes_per_primitive, result.octree.big_primitives);
+    if (settings.accel == Accel::Octree) {
+      const OctreeStats& o = result.octree;
+      char copy[48] = "";
+      if (o.copy_leaf) std::snprintf(copy, sizeof copy, ", copy leaves up to %u", o.copy_leaf);
+      std::printf("octree    %u nodes, %u leaves (leaf size %u%s, at most %u refs/primitive), depth %u, %.2f "
+                  "refs/primitive, %.1f bytes/primitive, %u big primitives\n",
+                  o.nodes, o.leaves, o.leaf_size, copy, o.max_refs, o.max_depth_reached, o.refs_per_primitive,
+                  o.bytes_per_primitive, o.big_primitives);
+      if (o.first_bytes_per_primitive > 0)
+        std::printf("          built again at %u refs/primitive without copy leaves: %.1f bytes/primitive at the "
+                    "first settings, over %.0f\n",
+                    o.max_refs, o.first_bytes_per_primitive, kOctreeBytesBound);
+    }
     if (result.buffer_parts)
       std::printf("buffers   the scene's arrays split over %u buffers of at most %s (larger than one storage buffer)\n",
                   result.buffer_parts, mib_string(result.buffer_part_bytes).c_str());
@@ -1114,7 +1126,7 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--octree-depth", bench.settings.octree.max_depth, "Octree maximum depth")
       ->capture_default_str();
   bench_cmd->add_option("--octree-refs", bench.settings.octree.max_refs,
-                        "Octree references per primitive, at most (1..64)")
+                        "Octree references per primitive, at most (1..64; 0: auto, as in render)")
       ->capture_default_str();
   bench_cmd->add_option("--bvh-width", bench.settings.octree.bvh_width, "BVH children per node: 2, 4 or 0 (auto)")
       ->capture_default_str();

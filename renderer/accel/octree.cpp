@@ -68,6 +68,19 @@ BuildNode child_node(const BuildNode& parent, const Split& split, int k) {
   return {split.box[k], parent.depth + 1, parent.budget * split.count[k] / static_cast<double>(split.total)};
 }
 
+// Whether one of the node's references spans more than kCopyLeafSpan of its
+// extent along an axis (OctreeParams::copy_leaf): any split of that axis
+// would copy it into most children.
+bool copies_a_reference(const Ref* refs, size_t n, const glm::vec3& extent) {
+  const glm::vec3 span = kCopyLeafSpan * extent;
+  for (size_t i = 0; i < n; ++i) {
+    const glm::vec3 e = refs[i].hi - refs[i].lo;
+    for (int a = 0; a < 3; ++a)
+      if (extent[a] > 0.0f && e[a] > span[a]) return true;
+  }
+  return false;
+}
+
 // Decides whether the node (references `refs`, box and depth in `node`) splits (octree.h
 // "How it is built"). If it does, fills `split` and the octant set of each
 // reference in `octants`.
@@ -87,6 +100,7 @@ bool plan_split(const Ref* refs, size_t n, const BuildNode& node, const OctreePa
   if (n <= params.leaf_size || node.depth >= params.max_depth) return false;
   const Box& box = node.box;
   const glm::vec3 extent = box.hi - box.lo;
+  if (n <= params.copy_leaf && copies_a_reference(refs, n, extent)) return false;
   const float largest = std::max({extent.x, extent.y, extent.z});
   glm::vec3 mid = box.lo + 0.5f * extent;
   size_t straddling[3] = {};
@@ -337,8 +351,8 @@ void check_params(const OctreeParams& params) {
   if (params.max_depth < 1 || params.max_depth > kMaxOctreeDepth)
     throw SettingError("octree.max_depth", ": must be in 1.." + std::to_string(kMaxOctreeDepth) + ", got " +
                      std::to_string(params.max_depth));
-  if (params.max_refs < 1 || params.max_refs > kMaxOctreeRefs)
-    throw SettingError("octree.max_refs", ": must be in 1.." + std::to_string(kMaxOctreeRefs) + ", got " +
+  if (params.max_refs > kMaxOctreeRefs)
+    throw SettingError("octree.max_refs", ": must be in 1.." + std::to_string(kMaxOctreeRefs) + " or 0 (auto), got " +
                        std::to_string(params.max_refs));
 }
 
@@ -350,6 +364,7 @@ Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& requested, 
   check_params(requested);
   OctreeParams params = requested;
   if (params.leaf_size == 0) params.leaf_size = kOctreeLeaf;
+  if (params.max_refs == 0) params.max_refs = kOctreeRefs;
   const auto start = Clock::now();
   Octree tree;
 
@@ -450,6 +465,8 @@ Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& requested, 
 
   finish_tree_stats(tree, boxes.size(), ms_since(start));
   tree.stats.leaf_size = params.leaf_size;
+  tree.stats.max_refs = params.max_refs;
+  tree.stats.copy_leaf = params.copy_leaf;
   return tree;
 }
 

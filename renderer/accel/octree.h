@@ -54,6 +54,15 @@ enum class SurfaceCells { Auto, On, Off };
 // The leaf size of OctreeParams::leaf_size = 0 (auto) where the device's
 // rule does not replace it (render/path_tracer.h default_octree_leaf).
 inline constexpr uint32_t kOctreeLeaf = 10;
+// The references per primitive of OctreeParams::max_refs = 0 (auto) where the
+// device's rule does not replace it (render/path_tracer.h default_octree_refs).
+inline constexpr uint32_t kOctreeRefs = 8;
+// Issue 11's bound on an octree over meshes, in bytes a primitive (nodes and
+// references): what OctreeParams::bytes_bound holds a scene's tree to.
+inline constexpr double kOctreeBytesBound = 48.0;
+// OctreeParams::copy_leaf: the share of a node's extent along an axis that a
+// reference must span to keep the node a leaf.
+inline constexpr float kCopyLeafSpan = 0.75f;
 
 struct OctreeParams {
   // A node with more references than this splits ... (0: auto, kOctreeLeaf
@@ -64,12 +73,28 @@ struct OctreeParams {
   // 4 for every tree of the scene, or 0 for the device's default
   // (render/gpu_scene.cpp bvh_widths). The image is the same either way.
   uint32_t bvh_width = 0;
-  // The references per primitive, at most (1..kMaxOctreeRefs): along any path
-  // from the root the product of the splits' duplication factors stays within
-  // this (the split budget below). 8 keeps clipped meshes under 48 bytes per
-  // triangle (issue 11); 16 took the engine's octree 13% faster at 81 bytes
-  // (optimisation log 57), a trade left to the user (`--octree-refs`).
-  uint32_t max_refs = 8;
+  // The references per primitive, at most (1..kMaxOctreeRefs, or 0: auto,
+  // kOctreeRefs here; the tracer puts the device's rule in first): along any
+  // path from the root the product of the splits' duplication factors stays
+  // within this (the split budget below). 8 kept the clipped meshes measured
+  // under issue 11's 48 bytes per triangle; 16 took the engine's octree 13%
+  // faster at 81 bytes (optimisation log 57), a trade left to the user
+  // (`--octree-refs`); 12 with copy leaves of 20 keeps them under 48 and is
+  // the GPU's auto for triangles (log 136).
+  uint32_t max_refs = 0;
+  // Copy leaves: a node of more than leaf_size and at most this many
+  // references stays a leaf where one of its references spans more than
+  // kCopyLeafSpan of the node's extent along an axis: splitting it would
+  // copy that reference into most children (a long triangle among small
+  // ones).
+  // Elsewhere the node splits as before. 0: none. Not a flag: the tracer's
+  // auto for max_refs sets it (render/path_tracer.h default_copy_leaf).
+  uint32_t copy_leaf = 0;
+  // Where true, a scene's octree (render/gpu_scene.cpp) of more than
+  // kOctreeBytesBound bytes a primitive is built again with kOctreeRefs
+  // references and no copy leaves, the settings the bound was measured
+  // with. Set with copy_leaf by the tracer's auto; false: built once.
+  bool bytes_bound = false;
   // The order a BVH over spheres alone has the device hold the spheres in
   // (`--bvh-sphere-order`).
   SphereOrder bvh_sphere_order = SphereOrder::Auto;
@@ -101,6 +126,12 @@ struct OctreeStats {
   double bytes_per_primitive = 0;     // bytes / primitive count (0 for an empty scene)
   uint64_t bytes = 0;                 // nodes * 32 + refs * 4: what the GPU holds for the octree
   uint32_t leaf_size = 0;             // the octree's OctreeParams::leaf_size as built (auto resolved); 0 for a BVH
+  uint32_t max_refs = 0;              // the octree's OctreeParams::max_refs as built (auto resolved); 0 for a BVH
+  uint32_t copy_leaf = 0;             // the octree's OctreeParams::copy_leaf as built; 0 for a BVH
+  // A scene's octree built again within OctreeParams::bytes_bound: the first
+  // build's bytes a primitive (over kOctreeBytesBound); 0 where it was built
+  // once. build_ms counts both builds.
+  double first_bytes_per_primitive = 0;
   // A scene's BVH (render/gpu_scene.cpp): the most children a node of its
   // top level, and of its meshes' trees, may have (2 or 4); 0 otherwise.
   uint32_t bvh_top_width = 0, bvh_mesh_width = 0;
@@ -248,7 +279,8 @@ using ClipOctantsFn =
 // Builds the octree over `boxes` (finite, non-empty; primitive i is boxes[i]).
 // Uses the hardware threads; the result depends only on the input.
 // Throws SettingError ("octree.leaf_size", "octree.max_depth",
-// "octree.max_refs") for bad params; a leaf size of 0 builds with kOctreeLeaf.
+// "octree.max_refs") for bad params; a leaf size of 0 builds with kOctreeLeaf,
+// a max_refs of 0 with kOctreeRefs.
 // `clip_straddled`: see "How it is built" (needs a ClipFn).
 Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params, const ClipFn& clip = {},
                     const ClipOctantsFn& clip_octants = {}, bool clip_straddled = false);

@@ -216,8 +216,8 @@ static BvhWidths bvh_widths(const VulkanContext& ctx, const Scene& scene, const 
   return default_bvh_widths(ctx.info.software, !scene.spheres.empty());
 }
 
-static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& scene, Accel accel,
-                                      const OctreeParams& params) {
+static SceneOctree build_scene_octree_once(const VulkanContext& ctx, const Scene& scene, Accel accel,
+                                           const OctreeParams& params) {
   auto start = Clock::now();
   // The top level over spheres and instances, then one tree per mesh in
   // object space, appended: their `first` fields are moved by where they land.
@@ -289,6 +289,25 @@ static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& sce
     st.bvh_mesh_width = widths.meshes;
   }
   return t;
+}
+
+// The scene's tree; an octree over kOctreeBytesBound bytes a primitive is
+// built again with kOctreeRefs references and no copy leaves where
+// params.bytes_bound says so (the tracer's auto for triangles on a GPU:
+// path_tracer.h default_copy_leaf).
+static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& scene, Accel accel,
+                                      const OctreeParams& params) {
+  SceneOctree t = build_scene_octree_once(ctx, scene, accel, params);
+  const OctreeStats& first = t.octree.stats;
+  if (accel != Accel::Octree || !params.bytes_bound || first.bytes_per_primitive <= kOctreeBytesBound) return t;
+  OctreeParams measured = params;
+  measured.max_refs = kOctreeRefs;
+  measured.copy_leaf = 0;
+  measured.bytes_bound = false;
+  SceneOctree again = build_scene_octree_once(ctx, scene, accel, measured);
+  again.octree.stats.build_ms += first.build_ms;
+  again.octree.stats.first_bytes_per_primitive = first.bytes_per_primitive;
+  return again;
 }
 
 // Where the octree's arrays would not fit one storage buffer: what the

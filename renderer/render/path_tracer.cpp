@@ -352,6 +352,12 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
   s.scene_features = scene_features(scene);
   if (s.settings.octree.leaf_size == 0)
     s.settings.octree.leaf_size = default_octree_leaf(ctx.info, s.scene_features.triangles);
+  if (s.settings.octree.max_refs == 0) {
+    // The budget's auto brings its copy leaves, and the bound they keep.
+    s.settings.octree.max_refs = default_octree_refs(ctx.info, s.scene_features.triangles);
+    s.settings.octree.copy_leaf = default_copy_leaf(ctx.info, s.scene_features.triangles);
+    s.settings.octree.bytes_bound = s.settings.octree.copy_leaf != 0;
+  }
   if (s.settings.octree.surface_cells == SurfaceCells::Auto)
     s.settings.octree.surface_cells =
         default_surface_cells(ctx.info, uint64_t(settings.spp) * s.pixels()) ? SurfaceCells::On : SurfaceCells::Off;
@@ -785,6 +791,14 @@ bool default_bvh_top_while(const DeviceInfo& device, double refs_per_leaf) {
 uint32_t default_octree_leaf(const DeviceInfo& device, bool triangles) {
   if (!default_octant_culling(device, triangles)) return kOctreeLeafUnculled;
   return device.software || triangles ? kOctreeLeaf : kOctreeLeafGpuSpheres;
+}
+
+uint32_t default_octree_refs(const DeviceInfo& device, bool triangles) {
+  return !device.software && triangles ? kOctreeRefsGpuTriangles : kOctreeRefs;
+}
+
+uint32_t default_copy_leaf(const DeviceInfo& device, bool triangles) {
+  return !device.software && triangles ? kCopyLeafGpuTriangles : 0;
 }
 
 bool default_surface_cells(const DeviceInfo& device, uint64_t samples) {

@@ -121,10 +121,31 @@ inline constexpr double kBvhWhileRefsPerLeaf = 4.0;
 // And 24 for a scene without triangles on a GPU: on the H100 the peer's scene
 // 6.0% faster than at 10, 8,000 spheres 5.0%, 488 1.1%, 1M within 0.7%; 32
 // cost 488 spheres 17% (optimisation log 115). Scenes with triangles keep 10
-// (the leaf measured on the meshes: logs 30 and 56; 24 was not).
+// (the leaf measured on the meshes: logs 30 and 56; 20 cost a uniform
+// 1M-triangle sheet 10% on the H100, log 132), but see default_copy_leaf.
 uint32_t default_octree_leaf(const DeviceInfo& device, bool triangles);
 inline constexpr uint32_t kOctreeLeafUnculled = 16;
 inline constexpr uint32_t kOctreeLeafGpuSpheres = 24;
+
+// RenderSettings::octree.max_refs's auto (0): kOctreeRefs (8), but 12 for a
+// scene with triangles on a GPU, with default_copy_leaf's copy leaves: the
+// budget lets the meshes whose budget binds split further, and the copy
+// leaves keep their trees within issue 11's 48 bytes a triangle
+// (optimisation log 136). Spheres are not clipped, and their trees do not
+// spend the budget the way a mesh's do; on lavapipe the pair made the engine
+// 9% slower (log 136).
+uint32_t default_octree_refs(const DeviceInfo& device, bool triangles);
+inline constexpr uint32_t kOctreeRefsGpuTriangles = 12;
+
+// OctreeParams::copy_leaf (and bytes_bound) where the tracer resolves
+// max_refs as auto: 20 for a scene with triangles on a GPU, 0 (none)
+// elsewhere. On the H100 the engine's passes 4.0% faster than at 8
+// references without them, at 45.7 bytes a triangle (68 at 12 references
+// without them), its tree built in less time; the balloon, a uniform
+// 1M-triangle sheet and 400 instances of a 70k grid even (optimisation log
+// 136).
+uint32_t default_copy_leaf(const DeviceInfo& device, bool triangles);
+inline constexpr uint32_t kCopyLeafGpuTriangles = 20;
 
 // RenderSettings::octree.surface_cells's auto: whether the octree's top
 // level follows the spheres' surfaces where the hidden parts were left out

@@ -461,7 +461,7 @@ TEST(Octree, ReferencesStayWithinTheBudgetPerSphere) {
                                      OctreeParams{.leaf_size = 1, .max_depth = 20, .max_refs = 1},
                                      OctreeParams{.leaf_size = 1, .max_depth = 20, .max_refs = 16}}) {
     const Octree tree = build_octree(sphere_boxes(line), params);
-    EXPECT_LE(tree.refs.size(), params.max_refs * line.size()) << params.max_refs << " refs per sphere";
+    EXPECT_LE(tree.refs.size(), tree.stats.max_refs * line.size()) << tree.stats.max_refs << " refs per sphere";
     expect_correct_octree(line, params, 500);
   }
 }
@@ -497,6 +497,83 @@ TEST(Octree, LeafSizeZeroIsTheDefault) {
   EXPECT_EQ(std::memcmp(automatic.nodes.data(), ten.nodes.data(), ten.nodes.size() * sizeof(GpuOctreeNode)), 0);
   EXPECT_EQ(automatic.refs, ten.refs);
   EXPECT_LT(sixteen.nodes.size(), ten.nodes.size());  // the sizes make other trees here
+}
+
+// OctreeParams::max_refs 0 (auto; the tracer puts the device's rule in
+// first, render_test) builds with kOctreeRefs, and the stats say which
+// budget the build used.
+TEST(Octree, MaxRefsZeroIsTheDefault) {
+  const auto boxes = sphere_boxes(rtiow(8000, 0.1f));
+  const Octree automatic = build_octree(boxes, {.max_refs = 0});
+  const Octree eight = build_octree(boxes, {.max_refs = kOctreeRefs});
+  const Octree one = build_octree(boxes, {.max_refs = 1});
+  EXPECT_EQ(automatic.stats.max_refs, kOctreeRefs);
+  EXPECT_EQ(one.stats.max_refs, 1u);
+  ASSERT_EQ(automatic.nodes.size(), eight.nodes.size());
+  EXPECT_EQ(std::memcmp(automatic.nodes.data(), eight.nodes.data(), eight.nodes.size() * sizeof(GpuOctreeNode)), 0);
+  EXPECT_EQ(automatic.refs, eight.refs);
+  EXPECT_NE(one.refs.size(), eight.refs.size());  // the budgets make other trees here
+}
+
+// The most references a leaf holding primitive `prim` has (0 if none holds it).
+uint32_t largest_leaf_with(const Octree& tree, uint32_t prim) {
+  uint32_t largest = 0;
+  for (const GpuOctreeNode& n : tree.nodes) {
+    if (n.count_or_mask & OCTREE_INTERNAL) continue;
+    for (uint32_t i = 0; i < n.count_or_mask; ++i)
+      if (tree.refs[n.first + i] == prim) largest = std::max(largest, n.count_or_mask);
+  }
+  return largest;
+}
+
+// OctreeParams::copy_leaf (optimisation log 136): a node of more than
+// leaf_size and at most copy_leaf references stays a leaf where one of them
+// spans more than kCopyLeafSpan of the node's extent along an axis; with
+// more references, or without such a reference, it splits as before. Five
+// clusters of 15 small boxes in a 4-wide cube, and a box along x across the
+// first cluster: that cluster's node (16 references) stays whole.
+TEST(Octree, CopyLeavesKeepANodeThatAReferenceSpansWhole) {
+  std::vector<Aabb> boxes;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.05f, 0.9f);
+  for (const glm::vec3 at : {glm::vec3(0), glm::vec3(3, 0, 0), glm::vec3(0, 3, 0), glm::vec3(0, 0, 3), glm::vec3(3)})
+    for (int i = 0; i < 15; ++i) {
+      const glm::vec3 p = at + glm::vec3(u(rng), u(rng), u(rng));
+      boxes.push_back({p, p + 0.05f});
+    }
+  const uint32_t first_small = 0;
+  const uint32_t across = uint32_t(boxes.size());
+  boxes.push_back({glm::vec3(0.05f, 0.5f, 0.5f), glm::vec3(0.95f, 0.52f, 0.52f)});
+  const OctreeParams copy{.leaf_size = 10, .max_refs = 8, .copy_leaf = 20};
+  const Octree kept = build_octree(boxes, copy);
+  EXPECT_EQ(kept.big_count, 0u);
+  EXPECT_EQ(kept.stats.copy_leaf, 20u);
+  EXPECT_EQ(largest_leaf_with(kept, across), 16u);  // the cluster and the box across it
+  EXPECT_EQ(largest_leaf_with(kept, first_small), 16u);
+  // Without copy leaves, or with fewer than the node's 16, it splits.
+  const Octree plain = build_octree(boxes, {.leaf_size = 10, .max_refs = 8});
+  EXPECT_EQ(plain.stats.copy_leaf, 0u);
+  EXPECT_LE(largest_leaf_with(plain, first_small), 10u);
+  EXPECT_LT(largest_leaf_with(build_octree(boxes, {.leaf_size = 10, .max_refs = 8, .copy_leaf = 15}), across), 16u);
+  // Without the box across, copy leaves change nothing.
+  boxes.pop_back();
+  const Octree small = build_octree(boxes, copy);
+  const Octree small_plain = build_octree(boxes, {.leaf_size = 10, .max_refs = 8});
+  EXPECT_EQ(small.refs, small_plain.refs);
+  ASSERT_EQ(small.nodes.size(), small_plain.nodes.size());
+  EXPECT_EQ(std::memcmp(small.nodes.data(), small_plain.nodes.data(), small.nodes.size() * sizeof(GpuOctreeNode)), 0);
+}
+
+// A tree with copy leaves is a valid octree that finds every hit brute
+// force does (the rtiow field's three large spheres among small ones make
+// copy leaves at 12 references).
+TEST(Octree, CopyLeavesFindWhatBruteForceFinds) {
+  const auto spheres = rtiow(2000, 0.1f);
+  const OctreeParams params{.leaf_size = 10, .max_refs = 12, .copy_leaf = 20};
+  const Octree copy = build_octree(sphere_boxes(spheres), params);
+  const Octree plain = build_octree(sphere_boxes(spheres), {.leaf_size = 10, .max_refs = 12});
+  EXPECT_NE(copy.nodes.size(), plain.nodes.size());  // the rule made other leaves here
+  expect_correct_octree(spheres, params, 1000);
 }
 
 TEST(Octree, AtMost64BytesPerSphere) {
@@ -608,7 +685,7 @@ TEST(Octree, SphereSurfacesPartTheCapsOfADenseField) {
   const Octree clipped = build_octree(boxes, {}, surfaces, {}, true);
   const Octree narrow = build_octree(boxes, {}, surfaces);  // the straddle rule as before
   EXPECT_GT(clipped.stats.max_depth_reached, plain.stats.max_depth_reached);
-  EXPECT_LE(clipped.refs.size(), size_t(OctreeParams{}.max_refs) * spheres.size());
+  EXPECT_LE(clipped.refs.size(), size_t(kOctreeRefs) * spheres.size());
   // Every point of a sphere's surface in its box (above or below a random
   // point of the column's cross-section) lies in a leaf that references it.
   std::mt19937_64 rng(29);
@@ -662,8 +739,8 @@ TEST(Octree, BadParametersNameTheSetting) {
   EXPECT_EQ(message({0, 16}), "no error");  // auto: kOctreeLeaf (LeafSizeZeroIsTheDefault)
   EXPECT_EQ(message({8, 0}), "octree.max_depth | octree.max_depth: must be in 1..20, got 0");
   EXPECT_EQ(message({8, 21}), "octree.max_depth | octree.max_depth: must be in 1..20, got 21");
-  EXPECT_EQ(message({.max_refs = 0}), "octree.max_refs | octree.max_refs: must be in 1..64, got 0");
-  EXPECT_EQ(message({.max_refs = 65}), "octree.max_refs | octree.max_refs: must be in 1..64, got 65");
+  EXPECT_EQ(message({.max_refs = 0}), "no error");  // auto: kOctreeRefs (MaxRefsZeroIsTheDefault)
+  EXPECT_EQ(message({.max_refs = 65}), "octree.max_refs | octree.max_refs: must be in 1..64 or 0 (auto), got 65");
   EXPECT_EQ(message({.max_refs = 64}), "no error");
   EXPECT_EQ(message({1, 20}), "no error");
 }

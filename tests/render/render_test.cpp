@@ -398,6 +398,22 @@ TEST(OctreeLeaf, AutoIsSixteenWhereTheCullingIsOffAndLargerForGpuSpheres) {
   EXPECT_EQ(default_octree_leaf(mesa25, true), kOctreeLeaf);
 }
 
+// Auto references per primitive and copy leaves (optimisation log 136): 12
+// with copy leaves of 20 for triangles on a GPU, kOctreeRefs and none
+// elsewhere; the tracer builds with them.
+TEST(OctreeRefs, AutoIsTwelveWithCopyLeavesOnlyForTrianglesOnAGpu) {
+  const auto [gpu, mesa22, mesa25, mesa26] = RuleDevices();
+  EXPECT_EQ(default_octree_refs(gpu, true), 12u);
+  EXPECT_EQ(default_copy_leaf(gpu, true), 20u);
+  EXPECT_EQ(default_octree_refs(gpu, false), kOctreeRefs);
+  EXPECT_EQ(default_copy_leaf(gpu, false), 0u);
+  for (const DeviceInfo& d : {mesa22, mesa25, mesa26})
+    for (bool triangles : {false, true}) {
+      EXPECT_EQ(default_octree_refs(d, triangles), kOctreeRefs);
+      EXPECT_EQ(default_copy_leaf(d, triangles), 0u);
+    }
+}
+
 // Auto cells over the spheres' surfaces (optimisation logs 126 and 127): on
 // a GPU for renders of kSurfaceCellsMinSamples samples or more, never on a
 // CPU device.
@@ -421,7 +437,8 @@ TEST(LaneSampleSlots, TwiceTheInvocationsOnlyOnNvidiasDriver) {
 }
 
 // The tracer resolves the per-device autos (the octant culling, log 106; the
-// octree's leaf size, logs 110 and 115) with the rules above, and takes a setting as
+// octree's leaf size, logs 110 and 115; its budget and copy leaves, log 136)
+// with the rules above, and takes a setting as
 // given; a BVH's top level takes the top level's node cost (bvh.h
 // kBvhTopNodeCost, log 112), which makes another tree than the meshes' cost.
 TEST_F(RenderTest, TreeSettingsResolvedForTheDeviceAndLevel) {
@@ -434,13 +451,50 @@ TEST_F(RenderTest, TreeSettingsResolvedForTheDeviceAndLevel) {
     const PathTracer tracer(ctx, scene, s);
     EXPECT_EQ(tracer.octant_culling(), default_octant_culling(ctx.info, false));
     EXPECT_EQ(tracer.octree_stats().leaf_size, default_octree_leaf(ctx.info, false));
+    EXPECT_EQ(tracer.octree_stats().max_refs, default_octree_refs(ctx.info, false));
+  }
+  Scene meshes = scene;
+  test::place(meshes, test::icosphere(1, 0), glm::translate(glm::mat4(1.0f), glm::vec3(0, 1, 0)));
+  {
+    const PathTracer tracer(ctx, meshes, s);
+    const OctreeStats& o = tracer.octree_stats();
+    EXPECT_EQ(o.leaf_size, default_octree_leaf(ctx.info, true));
+    // Built once with the autos, or again at the measured settings where
+    // the first build was over the bound.
+    EXPECT_EQ(o.max_refs, o.first_bytes_per_primitive > 0 ? kOctreeRefs : default_octree_refs(ctx.info, true));
+    EXPECT_EQ(o.copy_leaf, o.first_bytes_per_primitive > 0 ? 0u : default_copy_leaf(ctx.info, true));
+  }
+  {
+    // OctreeParams::bytes_bound, given directly (on a CPU device the autos
+    // set none): a tree over kOctreeBytesBound bytes a primitive (leaves of
+    // one reference; copy leaves of one, which keep no node) is built again
+    // at kOctreeRefs without copy leaves; one under it is built once.
+    RenderSettings c = s;
+    c.octree.leaf_size = 1;
+    c.octree.max_refs = 12;
+    c.octree.copy_leaf = 1;
+    c.octree.bytes_bound = true;
+    const OctreeStats big = PathTracer(ctx, meshes, c).octree_stats();
+    EXPECT_GT(big.first_bytes_per_primitive, kOctreeBytesBound);
+    EXPECT_EQ(big.max_refs, kOctreeRefs);
+    EXPECT_EQ(big.copy_leaf, 0u);
+    c.octree.leaf_size = 10;
+    c.octree.copy_leaf = 20;
+    const OctreeStats small = PathTracer(ctx, meshes, c).octree_stats();
+    EXPECT_LE(small.bytes_per_primitive, kOctreeBytesBound);
+    EXPECT_EQ(small.first_bytes_per_primitive, 0.0);
+    EXPECT_EQ(small.max_refs, 12u);
+    EXPECT_EQ(small.copy_leaf, 20u);
   }
   s.octant_culling = OctantCulling::On;
   s.octree.leaf_size = 3;
+  s.octree.max_refs = 5;
   {
     const PathTracer tracer(ctx, scene, s);
     EXPECT_TRUE(tracer.octant_culling());
     EXPECT_EQ(tracer.octree_stats().leaf_size, 3u);
+    EXPECT_EQ(tracer.octree_stats().max_refs, 5u);
+    EXPECT_EQ(tracer.octree_stats().copy_leaf, 0u);  // a budget given: no copy leaves
   }
   s.octant_culling = OctantCulling::Off;
   EXPECT_FALSE(PathTracer(ctx, scene, s).octant_culling());
