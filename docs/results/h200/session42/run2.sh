@@ -1,7 +1,9 @@
 # Session 42 run2: the copy leaves as the GPU's auto for meshes (e3ddf1d)
 # against the old default tree (`--octree-refs 8`): device time on the four
 # meshes (7 rounds), the whole process of a default render of the engine
-# and the balloon, the images, `bench` of the meshes.
+# and the balloon, the images, `bench` of the meshes; then the GPU suites
+# (the hard cases in four shards, accel_test, render_test's tail-queue and
+# tree-settings cases; run3.sh, folded in to spend one machine start).
 # Pack: tools/gpu_pack.sh (its COMMIT). Carried: .gl, .gpub, .assets.
 # Expectations in expected.md (run2).
 source tools/gpu_run.sh
@@ -21,4 +23,8 @@ for sc in .assets/2CylinderEngine.glb .assets/balloon/scene.gltf "$R/grid.glb" "
 done
 rm -f "$R/grid.glb" "$R/grid400.glb"
 bench_logged meshes 90 "rays/s$" --accel octree --scene .assets/balloon/scene.gltf,.assets/2CylinderEngine.glb
+gpu_suites
+export OCTRACE_TEST_DEVICE=gpu
+timeout 200 build-gpu/tests/render_test --gtest_filter='*TreeSettings*:OctreeLeaf.*:OctreeRefs.*' > "$R/render_test_autos.txt" 2>&1
+echo "render_test autos rc=$? $(gtest_result "$R/render_test_autos.txt")" >> "$T"
 gpu_finish
