@@ -221,7 +221,9 @@ struct OctreeStats {
 // whose split that rule narrowed is also planned with those axes split, and
 // the plan of lower cost (below) is taken.
 // A node splits while it holds more than leaf_size references and its depth is
-// below max_depth, and only if
+// below max_depth (and, with copy_leaf, more than copy_leaf references or
+// none that spans more than kCopyLeafSpan of the node's extent along an
+// axis), and only if
 //   - the split lowers the expected cost of a ray that meets the node:
 //     sum over children of area_k * (count_k + 2) < area * count (surface area
 //     heuristic, MacDonald and Booth 1990; 2 = a node visit in primitive tests).

@@ -132,18 +132,18 @@ inline constexpr uint32_t kOctreeLeafGpuSpheres = 24;
 // budget lets the meshes whose budget binds split further, and the copy
 // leaves keep their trees within issue 11's 48 bytes a triangle
 // (optimisation log 136). Spheres are not clipped, and their trees do not
-// spend the budget the way a mesh's do; on lavapipe the pair made the engine
-// 9% slower (log 136).
+// spend the budget the way a mesh's do; on lavapipe the pair did not make the
+// engine faster (+6%, inside the spread: log 136).
 uint32_t default_octree_refs(const DeviceInfo& device, bool triangles);
 inline constexpr uint32_t kOctreeRefsGpuTriangles = 12;
 
 // OctreeParams::copy_leaf (and bytes_bound) where the tracer resolves
 // max_refs as auto: 20 for a scene with triangles on a GPU, 0 (none)
-// elsewhere. On the H100 the engine's passes 4.0% faster than at 8
+// elsewhere. On the H100 the engine's passes 4.7% faster than at 8
 // references without them, at 45.7 bytes a triangle (68 at 12 references
-// without them), its tree built in less time; the balloon, a uniform
-// 1M-triangle sheet and 400 instances of a 70k grid even (optimisation log
-// 136).
+// without them), its tree built in 15% less time; the balloon 3.9% faster,
+// a uniform 1M-triangle sheet even, 400 instances of a 70k grid 1.7%
+// faster (optimisation log 136).
 uint32_t default_copy_leaf(const DeviceInfo& device, bool triangles);
 inline constexpr uint32_t kCopyLeafGpuTriangles = 20;
 
