@@ -483,6 +483,13 @@ TEST(Octree, SameInputSameOutput) {
   expect_same_hits(a, spheres, 500);
 }
 
+// The same tree, node for node and reference for reference.
+void expect_identical_trees(const Octree& a, const Octree& b) {
+  EXPECT_EQ(a.refs, b.refs);
+  ASSERT_EQ(a.nodes.size(), b.nodes.size());
+  EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), b.nodes.size() * sizeof(GpuOctreeNode)), 0);
+}
+
 // OctreeParams::leaf_size 0 (auto; the tracer puts the device's rule in
 // first, render_test) builds with kOctreeLeaf, and the stats say which size
 // the build used.
@@ -493,9 +500,7 @@ TEST(Octree, LeafSizeZeroIsTheDefault) {
   const Octree sixteen = build_octree(boxes, {.leaf_size = 16});
   EXPECT_EQ(automatic.stats.leaf_size, kOctreeLeaf);
   EXPECT_EQ(sixteen.stats.leaf_size, 16u);
-  ASSERT_EQ(automatic.nodes.size(), ten.nodes.size());
-  EXPECT_EQ(std::memcmp(automatic.nodes.data(), ten.nodes.data(), ten.nodes.size() * sizeof(GpuOctreeNode)), 0);
-  EXPECT_EQ(automatic.refs, ten.refs);
+  expect_identical_trees(automatic, ten);
   EXPECT_LT(sixteen.nodes.size(), ten.nodes.size());  // the sizes make other trees here
 }
 
@@ -509,9 +514,7 @@ TEST(Octree, MaxRefsZeroIsTheDefault) {
   const Octree one = build_octree(boxes, {.max_refs = 1});
   EXPECT_EQ(automatic.stats.max_refs, kOctreeRefs);
   EXPECT_EQ(one.stats.max_refs, 1u);
-  ASSERT_EQ(automatic.nodes.size(), eight.nodes.size());
-  EXPECT_EQ(std::memcmp(automatic.nodes.data(), eight.nodes.data(), eight.nodes.size() * sizeof(GpuOctreeNode)), 0);
-  EXPECT_EQ(automatic.refs, eight.refs);
+  expect_identical_trees(automatic, eight);
   EXPECT_NE(one.refs.size(), eight.refs.size());  // the budgets make other trees here
 }
 
@@ -557,11 +560,7 @@ TEST(Octree, CopyLeavesKeepANodeThatAReferenceSpansWhole) {
   EXPECT_LT(largest_leaf_with(build_octree(boxes, {.leaf_size = 10, .max_refs = 8, .copy_leaf = 15}), across), 16u);
   // Without the box across, copy leaves change nothing.
   boxes.pop_back();
-  const Octree small = build_octree(boxes, copy);
-  const Octree small_plain = build_octree(boxes, {.leaf_size = 10, .max_refs = 8});
-  EXPECT_EQ(small.refs, small_plain.refs);
-  ASSERT_EQ(small.nodes.size(), small_plain.nodes.size());
-  EXPECT_EQ(std::memcmp(small.nodes.data(), small_plain.nodes.data(), small.nodes.size() * sizeof(GpuOctreeNode)), 0);
+  expect_identical_trees(build_octree(boxes, copy), build_octree(boxes, {.leaf_size = 10, .max_refs = 8}));
 }
 
 // A tree with copy leaves is a valid octree that finds every hit brute
