@@ -86,9 +86,9 @@ struct OctreeParams {
   // references stays a leaf where one of its references spans more than
   // kCopyLeafSpan of the node's extent along an axis: splitting it would
   // copy that reference into most children (a long triangle among small
-  // ones).
-  // Elsewhere the node splits as before. 0: none. Not a flag: the tracer's
-  // auto for max_refs sets it (render/path_tracer.h default_copy_leaf).
+  // ones). Elsewhere the node splits as before. 0: none. Not a flag: the
+  // tracer's auto for max_refs sets it (render/path_tracer.h
+  // default_copy_leaf).
   uint32_t copy_leaf = 0;
   // Where true, a scene's octree (render/gpu_scene.cpp) of more than
   // kOctreeBytesBound bytes a primitive is built again with kOctreeRefs
