@@ -58,7 +58,8 @@ inline constexpr uint32_t kOctreeLeaf = 10;
 // device's rule does not replace it (render/path_tracer.h default_octree_refs).
 inline constexpr uint32_t kOctreeRefs = 8;
 // Issue 11's bound on an octree over meshes, in bytes a primitive (nodes and
-// references): what OctreeParams::bytes_bound holds a scene's tree to.
+// references): what a scene's tree with copy leaves is held to
+// (OctreeParams::copy_leaf).
 inline constexpr double kOctreeBytesBound = 48.0;
 // OctreeParams::copy_leaf: the share of a node's extent along an axis that a
 // reference must span to keep the node a leaf.
@@ -86,15 +87,12 @@ struct OctreeParams {
   // references stays a leaf where one of its references spans more than
   // kCopyLeafSpan of the node's extent along an axis: splitting it would
   // copy that reference into most children (a long triangle among small
-  // ones). Elsewhere the node splits as before. 0: none. Not a flag: the
-  // tracer's auto for max_refs sets it (render/path_tracer.h
-  // default_copy_leaf).
+  // ones). Elsewhere the node splits as before. A scene's octree with copy
+  // leaves (render/gpu_scene.cpp) of more than kOctreeBytesBound bytes a
+  // primitive is built again with kOctreeRefs references and none, the
+  // settings the bound was measured with. 0: none. Not a flag: the tracer's
+  // auto for max_refs sets it (render/path_tracer.h default_copy_leaf).
   uint32_t copy_leaf = 0;
-  // Where true, a scene's octree (render/gpu_scene.cpp) of more than
-  // kOctreeBytesBound bytes a primitive is built again with kOctreeRefs
-  // references and no copy leaves, the settings the bound was measured
-  // with. Set with copy_leaf by the tracer's auto; false: built once.
-  bool bytes_bound = false;
   // The order a BVH over spheres alone has the device hold the spheres in
   // (`--bvh-sphere-order`).
   SphereOrder bvh_sphere_order = SphereOrder::Auto;
@@ -128,7 +126,7 @@ struct OctreeStats {
   uint32_t leaf_size = 0;             // the octree's OctreeParams::leaf_size as built (auto resolved); 0 for a BVH
   uint32_t max_refs = 0;              // the octree's OctreeParams::max_refs as built (auto resolved); 0 for a BVH
   uint32_t copy_leaf = 0;             // the octree's OctreeParams::copy_leaf as built; 0 for a BVH
-  // A scene's octree built again within OctreeParams::bytes_bound: the first
+  // A scene's octree with copy leaves built again within kOctreeBytesBound: the first
   // build's bytes a primitive (over kOctreeBytesBound); 0 where it was built
   // once. build_ms counts both builds.
   double first_bytes_per_primitive = 0;

@@ -138,11 +138,14 @@ std::vector<gpu::GpuMaterial> gpu_materials(const Scene& scene) {
   for (size_t i = 0; i < out.size(); ++i) fill_gpu_material(scene.materials[i], out[i]);
   return out;
 }
-std::vector<gpu::GpuMaterialHalf> gpu_materials_half(const Scene& scene) {
+// With `full_hash`, each material's fp32 form, made on the way, is added to
+// it as a piece (Hash64::add_piece; the caller ends the pieces).
+std::vector<gpu::GpuMaterialHalf> gpu_materials_half(const Scene& scene, Hash64* full_hash = nullptr) {
   std::vector<gpu::GpuMaterialHalf> out(scene.materials.size());
   for (size_t i = 0; i < out.size(); ++i) {
     gpu::GpuMaterial f = gpu::GpuMaterial();
     fill_gpu_material(scene.materials[i], f);
+    if (full_hash) full_hash->add_piece(&f, sizeof f);
     fill_gpu_material_half(f, out[i]);
   }
   return out;
@@ -181,13 +184,7 @@ void make_materials(const Scene& scene, bool half, Hash64& hash, std::vector<gpu
     hash.end_pieces(n * sizeof(gpu::GpuMaterialHalf));
     return;
   }
-  stored_half.resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    gpu::GpuMaterial f = gpu::GpuMaterial();
-    fill_gpu_material(scene.materials[i], f);
-    hash.add_piece(&f, sizeof f);
-    fill_gpu_material_half(f, stored_half[i]);
-  }
+  stored_half = gpu_materials_half(scene, &hash);
   hash.end_pieces(n * sizeof(gpu::GpuMaterial));
   hash.add_vector(stored_half);
 }
@@ -291,19 +288,18 @@ static SceneOctree build_scene_octree_once(const VulkanContext& ctx, const Scene
   return t;
 }
 
-// The scene's tree; an octree over kOctreeBytesBound bytes a primitive is
-// built again with kOctreeRefs references and no copy leaves where
-// params.bytes_bound says so (the tracer's auto for triangles on a GPU:
-// path_tracer.h default_copy_leaf).
+// The scene's tree; an octree with copy leaves (the tracer's auto for
+// triangles on a GPU: path_tracer.h default_copy_leaf) over
+// kOctreeBytesBound bytes a primitive is built again with kOctreeRefs
+// references and none.
 static SceneOctree build_scene_octree(const VulkanContext& ctx, const Scene& scene, Accel accel,
                                       const OctreeParams& params) {
   SceneOctree t = build_scene_octree_once(ctx, scene, accel, params);
   const OctreeStats& first = t.octree.stats;
-  if (accel != Accel::Octree || !params.bytes_bound || first.bytes_per_primitive <= kOctreeBytesBound) return t;
+  if (accel != Accel::Octree || params.copy_leaf == 0 || first.bytes_per_primitive <= kOctreeBytesBound) return t;
   OctreeParams measured = params;
   measured.max_refs = kOctreeRefs;
   measured.copy_leaf = 0;
-  measured.bytes_bound = false;
   SceneOctree again = build_scene_octree_once(ctx, scene, accel, measured);
   again.octree.stats.build_ms += first.build_ms;
   again.octree.stats.first_bytes_per_primitive = first.bytes_per_primitive;

@@ -353,10 +353,9 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
   if (s.settings.octree.leaf_size == 0)
     s.settings.octree.leaf_size = default_octree_leaf(ctx.info, s.scene_features.triangles);
   if (s.settings.octree.max_refs == 0) {
-    // The budget's auto brings its copy leaves, and the bound they keep.
+    // The budget's auto brings its copy leaves (and the bound they keep).
     s.settings.octree.max_refs = default_octree_refs(ctx.info, s.scene_features.triangles);
     s.settings.octree.copy_leaf = default_copy_leaf(ctx.info, s.scene_features.triangles);
-    s.settings.octree.bytes_bound = s.settings.octree.copy_leaf != 0;
   }
   if (s.settings.octree.surface_cells == SurfaceCells::Auto)
     s.settings.octree.surface_cells =

@@ -465,15 +465,14 @@ TEST_F(RenderTest, TreeSettingsResolvedForTheDeviceAndLevel) {
     EXPECT_EQ(o.copy_leaf, o.first_bytes_per_primitive > 0 ? 0u : default_copy_leaf(ctx.info, true));
   }
   {
-    // OctreeParams::bytes_bound, given directly (on a CPU device the autos
-    // set none): a tree over kOctreeBytesBound bytes a primitive (leaves of
-    // one reference; copy leaves of one, which keep no node) is built again
-    // at kOctreeRefs without copy leaves; one under it is built once.
+    // Copy leaves given directly (on a CPU device the autos set none): a
+    // tree over kOctreeBytesBound bytes a primitive (leaves of one
+    // reference; copy leaves of one, which keep no node) is built again at
+    // kOctreeRefs without copy leaves; one under it is built once.
     RenderSettings c = s;
     c.octree.leaf_size = 1;
     c.octree.max_refs = 12;
     c.octree.copy_leaf = 1;
-    c.octree.bytes_bound = true;
     const OctreeStats big = PathTracer(ctx, meshes, c).octree_stats();
     EXPECT_GT(big.first_bytes_per_primitive, kOctreeBytesBound);
     EXPECT_EQ(big.max_refs, kOctreeRefs);
