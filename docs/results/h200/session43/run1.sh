@@ -13,8 +13,7 @@ for v in lp1 lp2 lp3; do
   same_image "balloon $v" $B build-gpu/octrace-$v $S --scene .assets/balloon/scene.gltf --accel octree
 done
 for b in $B build-gpu/octrace-lp1 build-gpu/octrace-lp2 build-gpu/octrace-lp3; do
-  $b render $S --scene .assets/2CylinderEngine.glb --accel octree --pipeline-stats -q -o $R/x.pfm > $R/stats_$(basename $b).txt 2>&1
-  echo "$(basename $b): $(grep -iE 'register|spill' $R/stats_$(basename $b).txt | head -4 | tr '\n' ' ')" >> $T
+  echo "$(basename $b) engine: $($b render $S --scene .assets/2CylinderEngine.glb --accel octree --pipeline-stats --json -q -o $R/x.pfm 2>/dev/null | python3 -c 'import json,sys; j=json.load(sys.stdin); print(json.dumps(j.get("pipeline_statistics")))' | head -c 400)" >> $T
 done
 rm -f $R/x.pfm
 gpu_finish
