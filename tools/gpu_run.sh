@@ -22,6 +22,9 @@
 #     and $R/grid400.glb, kept there for the script), $S and the octree;
 #   - same_image LABEL BIN1 BIN2 FLAGS...: renders FLAGS with both
 #     binaries and says in $T whether the two PFM files are identical;
+#   - pipeline_stats LABEL BIN FLAGS...: BIN's statistics of the
+#     path-tracing pipeline that `render FLAGS` compiles (registers,
+#     workgroup memory: --pipeline-stats), one line in $T;
 #   - suite NAME LIMIT: build-gpu/tests/NAME with a time limit of LIMIT
 #     seconds, into $R/NAME.txt, its rc and gtest's PASSED/FAILED lines in $T;
 #   - gpu_suites: the GPU suites at once (the hard cases in four shards,
@@ -69,6 +72,12 @@ same_image() {
   "$one" render "$@" -q -o "$R/same_1.pfm"; "$two" render "$@" -q -o "$R/same_2.pfm"
   cmp -s "$R/same_1.pfm" "$R/same_2.pfm" && echo "$label identical: $*" >> "$T" || echo "$label DIFFERENT: $*" >> "$T"
   rm -f "$R/same_1.pfm" "$R/same_2.pfm"
+}
+pipeline_stats() {
+  local label=$1 bin=$2; shift 2
+  echo "$label: $("$bin" render "$@" --pipeline-stats --json -q -o "$R/stats.pfm" 2>/dev/null |
+    python3 -c 'import json,sys; print(json.dumps(json.load(sys.stdin).get("pipeline_statistics")))' | head -c 400)" >> "$T"
+  rm -f "$R/stats.pfm"
 }
 # gtest's PASSED/FAILED lines of a test's output FILE, on one line.
 # With gpu_suites' exit status line (124: its time limit cut it off).
