@@ -43,6 +43,15 @@ using json = nlohmann::json;
 namespace {
 
 
+// Digits only, for the options read into unsigned integers: CLI11 reads
+// those with strtoull, which takes "-5" for 2^64 - 5.
+const CLI::Validator kWholeNumber(
+    [](std::string& value) {
+      if (!value.empty() && value.find_first_not_of("0123456789") == std::string::npos) return std::string();
+      return "expected a whole number >= 0, got \"" + value + "\"";
+    },
+    "");
+
 // Flags that choose and describe the scene, shared by every command that renders.
 struct SceneOptions {
   std::string scene_file;
@@ -55,9 +64,15 @@ struct SceneOptions {
   void add_to(CLI::App& cmd) {
     auto* file = cmd.add_option("--scene", scene_file,
                                 "Scene file: JSON (.json) or glTF (.gltf, .glb) (default: the built-in rtiow scene)");
-    cmd.add_option("--spheres", spheres, "rtiow: number of small spheres")->capture_default_str()->excludes(file);
+    cmd.add_option("--spheres", spheres, "rtiow: number of small spheres")
+        ->capture_default_str()
+        ->check(kWholeNumber)
+        ->excludes(file);
     cmd.add_option("--radius", radius, "rtiow: radius of the small spheres")->capture_default_str()->excludes(file);
-    cmd.add_option("--seed", seed, "rtiow: scene generator seed")->capture_default_str()->excludes(file);
+    cmd.add_option("--seed", seed, "rtiow: scene generator seed")
+        ->capture_default_str()
+        ->check(kWholeNumber)
+        ->excludes(file);
     cmd.add_option("--gltf-scene", gltf.scene, "glTF: which of the file's scenes (default: its default scene)")
         ->needs(file);
     cmd.add_option("--camera", gltf.camera,
@@ -1113,7 +1128,8 @@ int main(int argc, char** argv) {
   std::string bench_size;
   auto* bench_cmd = app.add_subcommand("bench", "Render time per accel against sphere count (the study's experiment) or of scene files (--scene)");
   bench_cmd->add_option("--spheres", bench_spheres, "Sphere counts (comma-separated)")->delimiter(',')
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kWholeNumber);
   bench_cmd->add_option("--radius", bench_radii, "Radii of the small spheres (comma-separated)")->delimiter(',')
       ->capture_default_str();
   bench_cmd->add_option("--accel", bench_accels, "Acceleration structures (comma-separated): octree, bvh, brute")->delimiter(',')->capture_default_str();
@@ -1156,7 +1172,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bench_cmd->add_option("--budget", bench.budget_s, "Skip brute force predicted to take longer (seconds)")
       ->capture_default_str();
-  bench_cmd->add_option("--seed", bench.seed, "Scene generator seed")->capture_default_str();
+  bench_cmd->add_option("--seed", bench.seed, "Scene generator seed")->capture_default_str()->check(kWholeNumber);
   bench_cmd->add_option("--device", bench.device, "auto | cpu | gpu | INDEX")->capture_default_str();
   bench_cmd->add_option("--csv", bench.csv, "Also write the results as CSV");
   std::vector<std::string> bench_scenes;
@@ -1231,6 +1247,8 @@ int main(int argc, char** argv) {
         throw InputError("--warmup: must be a finite number of seconds >= 0");
       for (float r : bench.radii)
         if (!(r > 0) || !std::isfinite(r)) throw InputError("--radius: must be finite numbers > 0");
+      for (float r : bench.radii)  // every scene's parameters, before the first render
+        for (uint64_t n : bench.spheres) check_rtiow_params({n, r, bench.seed});
       if (!bench.csv.empty()) check_output_folder(bench.csv);
       for (const auto& file : bench_scenes) {
         SceneOptions one;

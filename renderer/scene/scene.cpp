@@ -364,12 +364,16 @@ uint64_t instanced_triangle_count(const Scene& scene) {
   return n;
 }
 
-Scene make_rtiow_scene(const RtiowParams& params) {
+void check_rtiow_params(const RtiowParams& params) {
   if (!(std::isfinite(params.radius) && params.radius > 0.0f))
     throw SettingError("rtiow.radius", ": must be a finite number > 0, got " + format(params.radius));
   if (params.spheres > kMaxSpheres)
     throw SettingError("rtiow.spheres", ": at most " + std::to_string(kMaxSpheres) + " small spheres, got " +
                                             std::to_string(params.spheres));
+}
+
+Scene make_rtiow_scene(const RtiowParams& params) {
+  check_rtiow_params(params);
 
   Scene scene;  // the camera defaults are the study's rtiow camera
   const auto lambertian = [](glm::vec3 albedo) { Material m; m.albedo = albedo; return m; };

@@ -316,8 +316,10 @@ struct RtiowParams {
 // (up to 100,000,000). Small spheres overlap neither each other nor the big ones
 // unless there is no room for that many of that radius (scene.cpp says how).
 // Throws SettingError ("rtiow.radius", "rtiow.spheres") for parameters that
-// cannot make a scene (radius <= 0, ...).
+// cannot make a scene (radius <= 0, ...): check_rtiow_params, which a
+// command that makes several scenes (bench) calls for each before the first.
 Scene make_rtiow_scene(const RtiowParams& params);
+void check_rtiow_params(const RtiowParams& params);
 
 // JSON (README "Scene format"). `source` names the input in error
 // messages ("scene.json: spheres[12].radius: must be a finite number > 0, got -1")

@@ -91,7 +91,10 @@ const BadInput BAD_INPUTS[] = {
     {"depth_zero", "--depth 0", "--depth: must be >= 1"},
     {"radius_negative", "--radius -1", "--radius"},
     {"radius_nan", "--radius nan", "--radius"},
-    {"spheres_negative", "--spheres -3", "--spheres"},
+    {"spheres_negative", "--spheres -3", "--spheres: expected a whole number >= 0, got \"-3\""},
+    {"spheres_fraction", "--spheres 2.5", "--spheres: expected a whole number >= 0, got \"2.5\""},
+    {"spheres_too_many", "--spheres 100000001", "--spheres: at most 100000000 small spheres, got 100000001"},
+    {"seed_negative", "--seed -1", "--seed: expected a whole number >= 0, got \"-1\""},
     {"device_unknown", "--device banana", "--device"},
     {"device_index", "--device 99", "--device: index 99 out of range"},
     {"unknown_flag", "--frobnicate", "frobnicate"},
@@ -453,6 +456,24 @@ TEST(Cli, BenchRejectsABadWarmup) {
     EXPECT_EQ(r.code, 2) << bad << ": " << r.output;
     EXPECT_NE(r.output.find("--warmup"), std::string::npos) << r.output;
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  }
+}
+
+// `bench --spheres` and `--seed` take whole numbers >= 0 (strtoull would
+// take "-5" for 2^64 - 5), and every count is checked before the first
+// render: a bad one is a one-line input error (exit 2) with no bench header
+// and no row (the count past the limit used to fail after the rows before it).
+TEST(Cli, BenchChecksEverySphereCountBeforeTheFirstRender) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"--spheres 10,-5", "--spheres: expected a whole number >= 0, got \"-5\""},
+      {"--spheres 10,200000000", "--spheres: at most 100000000 small spheres, got 200000000"},
+      {"--spheres 10 --radius 0.1,0.2 --seed -2", "--seed: expected a whole number >= 0, got \"-2\""},
+  };
+  for (const auto& [args, message] : cases) {
+    RunResult r = run_octrace(std::string("bench --device cpu --size 8x8 --spp 1 ") + args);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << ": " << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << ": " << r.output;
   }
 }
 
