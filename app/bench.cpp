@@ -311,6 +311,13 @@ int run_scene_bench(const VulkanContext& ctx, const BenchOptions& o, const Rende
 }
 
 int run_bench(const BenchOptions& o) {
+  {
+    // Every setting before the device is made; the size, where not given,
+    // is the device's default below.
+    RenderSettings given = o.settings;
+    if (!o.size_given) given.width = given.height = 1;
+    validate_settings(given);
+  }
   VulkanContext ctx;
   bool need_fp16 = false;
   for (Precision p : o.precisions) need_fp16 |= p != Precision::FP32;

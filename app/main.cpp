@@ -1245,6 +1245,7 @@ int main(int argc, char** argv) {
       if (bench.repeat < 1) throw InputError("--repeat: must be >= 1");
       if (!(bench.warmup_s >= 0) || !std::isfinite(bench.warmup_s))
         throw InputError("--warmup: must be a finite number of seconds >= 0");
+      if (!(bench.budget_s >= 0)) throw InputError("--budget: must be a number of seconds >= 0 (inf: no limit)");
       for (float r : bench.radii)
         if (!(r > 0) || !std::isfinite(r)) throw InputError("--radius: must be finite numbers > 0");
       for (float r : bench.radii)  // every scene's parameters, before the first render

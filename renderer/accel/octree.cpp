@@ -347,7 +347,9 @@ std::vector<uint32_t> find_big_primitives(std::span<const Aabb> boxes) {
   return big;
 }
 
-void check_params(const OctreeParams& params) {
+}  // namespace
+
+void check_octree_params(const OctreeParams& params) {
   if (params.max_depth < 1 || params.max_depth > kMaxOctreeDepth)
     throw SettingError("octree.max_depth", ": must be in 1.." + std::to_string(kMaxOctreeDepth) + ", got " +
                      std::to_string(params.max_depth));
@@ -356,12 +358,10 @@ void check_params(const OctreeParams& params) {
                        std::to_string(params.max_refs));
 }
 
-}  // namespace
-
 Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& requested, const ClipFn& clip,
                     const ClipOctantsFn& clip_octants, bool clip_straddled) {
   clip_straddled = clip_straddled && clip;
-  check_params(requested);
+  check_octree_params(requested);
   OctreeParams params = requested;
   if (params.leaf_size == 0) params.leaf_size = kOctreeLeaf;
   if (params.max_refs == 0) params.max_refs = kOctreeRefs;

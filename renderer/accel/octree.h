@@ -278,11 +278,13 @@ using ClipOctantsFn =
 
 // Builds the octree over `boxes` (finite, non-empty; primitive i is boxes[i]).
 // Uses the hardware threads; the result depends only on the input.
-// Throws SettingError ("octree.leaf_size", "octree.max_depth",
-// "octree.max_refs") for bad params; a leaf size of 0 builds with kOctreeLeaf,
-// a max_refs of 0 with kOctreeRefs.
+// Throws SettingError ("octree.max_depth", "octree.max_refs") for bad
+// params (check_octree_params, which validate_settings calls too, so that
+// a command refuses them before it makes a device); a leaf size of 0 builds
+// with kOctreeLeaf, a max_refs of 0 with kOctreeRefs.
 // `clip_straddled`: see "How it is built" (needs a ClipFn).
 Octree build_octree(std::span<const Aabb> boxes, const OctreeParams& params, const ClipFn& clip = {},
                     const ClipOctantsFn& clip_octants = {}, bool clip_straddled = false);
+void check_octree_params(const OctreeParams& params);
 
 }  // namespace octrace

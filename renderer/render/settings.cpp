@@ -109,6 +109,7 @@ void validate_settings(const RenderSettings& s) {
   if (!(s.octree.bvh_spatial_refs >= 1.0 && s.octree.bvh_spatial_refs <= 4.0))
     throw SettingError("octree.bvh_spatial_refs", ": must be between 1 (no spatial splits) and 4, got " +
                                                       float_string(s.octree.bvh_spatial_refs));
+  check_octree_params(s.octree);
 }
 
 }  // namespace octrace

@@ -178,8 +178,9 @@ constexpr uint32_t kTailDepthDefault = 2;
 constexpr uint32_t kTailStepDefault = 1;
 constexpr uint32_t kMaxTailLevels = 16;
 
-// Checks sizes and counts; throws SettingError naming the setting
-// ("size 0x10: width and height must be >= 1").
+// Checks sizes and counts, and the octree's limits (check_octree_params);
+// throws SettingError naming the setting ("size 0x10: width and height
+// must be >= 1").
 void validate_settings(const RenderSettings& settings);
 
 }  // namespace octrace

@@ -125,6 +125,7 @@ const BadInput BAD_INPUTS[] = {
      "--bvh-sphere-order: expected auto, tree or scene, got \"random\""},
     {"instancing_unknown", "--instancing copy", "--instancing: expected auto, keep or bake, got \"copy\""},
     {"octree_refs_large", "--octree-refs 100", "--octree-refs: must be in 1..64 or 0 (auto), got 100"},
+    {"octree_depth_large", "--octree-depth 21", "--octree-depth: must be in 1..20, got 21"},
     {"fp16_radiance_overflow", "--precision fp16", "materials[0]: radiance above 65504",
      replaced(VALID_SCENE, "{\"type\": \"lambertian\", \"albedo\": [0.5,0.5,0.5]}",
               "{\"type\": \"emissive\", \"radiance\": [1e5,1,1]}")},
@@ -459,15 +460,20 @@ TEST(Cli, BenchRejectsABadWarmup) {
   }
 }
 
-// `bench --spheres` and `--seed` take whole numbers >= 0 (strtoull would
-// take "-5" for 2^64 - 5), and every count is checked before the first
-// render: a bad one is a one-line input error (exit 2) with no bench header
-// and no row (the count past the limit used to fail after the rows before it).
-TEST(Cli, BenchChecksEverySphereCountBeforeTheFirstRender) {
+// `bench` checks its settings before it makes the device: a bad one is a
+// one-line input error (exit 2) with no bench header and no row. Before,
+// a sphere count past the limit failed after the rows before it, the
+// octree's limits after the header, and a negative budget ran. `--spheres`
+// and `--seed` take whole numbers >= 0 (strtoull would take "-5" for
+// 2^64 - 5).
+TEST(Cli, BenchRefusesBadSettingsBeforeTheDevice) {
   const std::pair<const char*, const char*> cases[] = {
       {"--spheres 10,-5", "--spheres: expected a whole number >= 0, got \"-5\""},
       {"--spheres 10,200000000", "--spheres: at most 100000000 small spheres, got 200000000"},
       {"--spheres 10 --radius 0.1,0.2 --seed -2", "--seed: expected a whole number >= 0, got \"-2\""},
+      {"--spheres 10 --octree-depth 50", "--octree-depth: must be in 1..20, got 50"},
+      {"--spheres 10 --octree-refs 99", "--octree-refs: must be in 1..64 or 0 (auto), got 99"},
+      {"--spheres 10 --budget -1", "--budget: must be a number of seconds >= 0"},
   };
   for (const auto& [args, message] : cases) {
     RunResult r = run_octrace(std::string("bench --device cpu --size 8x8 --spp 1 ") + args);
