@@ -6,7 +6,7 @@
 # .gpub, .assets, .peers/karim. Expectations in expected.md (run2).
 source tools/gpu_run.sh
 gpu_suites
+peer_both
 bench_logged spheres 150 " ms" --accel octree,bvh --spheres 488,8000,1000000 --radius 0.1
 bench_logged meshes 90 "rays/s$" --accel octree,bvh --scene .assets/balloon/scene.gltf,.assets/2CylinderEngine.glb
-peer_both
 gpu_finish
