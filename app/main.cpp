@@ -43,12 +43,16 @@ using json = nlohmann::json;
 namespace {
 
 
+// Whether `text` is one or more decimal digits and nothing else.
+bool all_digits(const std::string& text) {
+  return !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+}
+
 // Digits only, for the options read into unsigned integers: CLI11 reads
 // those with strtoull, which takes "-5" for 2^64 - 5.
 const CLI::Validator kWholeNumber(
     [](std::string& value) {
-      if (!value.empty() && value.find_first_not_of("0123456789") == std::string::npos) return std::string();
-      return "expected a whole number >= 0, got \"" + value + "\"";
+      return all_digits(value) ? std::string() : "expected a whole number >= 0, got \"" + value + "\"";
     },
     "");
 
@@ -139,7 +143,7 @@ Instancing resolved_instancing(const Scene& scene, const RenderSettings& setting
 // as too large rather than wrapped.
 void parse_size(const std::string& text, RenderSettings& s) {
   auto x = text.find('x');
-  auto digits = [](const std::string& t) { return !t.empty() && t.size() <= 9 && t.find_first_not_of("0123456789") == std::string::npos; };
+  auto digits = [](const std::string& t) { return t.size() <= 9 && all_digits(t); };
   if (x == std::string::npos || !digits(text.substr(0, x)) || !digits(text.substr(x + 1)))
     throw InputError("--size: expected WIDTHxHEIGHT with each side at most 9 digits (e.g. 1200x800), got \"" +
                      text + "\"");
@@ -487,7 +491,7 @@ std::vector<std::string> device_selections(const std::string& device) {
   for (;;) {
     const size_t comma = device.find(',', at);
     const std::string item = device.substr(at, comma - at);
-    if (item.empty() || item.find_first_not_of("0123456789") != std::string::npos)
+    if (!all_digits(item))
       throw InputError("--device: expected a list of device indices like 0,2, got \"" + device + "\"");
     out.push_back(item);
     if (comma == std::string::npos) break;
@@ -1246,9 +1250,7 @@ int main(int argc, char** argv) {
       if (!(bench.warmup_s >= 0) || !std::isfinite(bench.warmup_s))
         throw InputError("--warmup: must be a finite number of seconds >= 0");
       if (!(bench.budget_s >= 0)) throw InputError("--budget: must be a number of seconds >= 0 (inf: no limit)");
-      for (float r : bench.radii)
-        if (!(r > 0) || !std::isfinite(r)) throw InputError("--radius: must be finite numbers > 0");
-      for (float r : bench.radii)  // every scene's parameters, before the first render
+      for (float r : bench.radii)  // every scene's parameters (radius, count), before the first render
         for (uint64_t n : bench.spheres) check_rtiow_params({n, r, bench.seed});
       if (!bench.csv.empty()) check_output_folder(bench.csv);
       for (const auto& file : bench_scenes) {

@@ -474,6 +474,7 @@ TEST(Cli, BenchRefusesBadSettingsBeforeTheDevice) {
       {"--spheres 10 --octree-depth 50", "--octree-depth: must be in 1..20, got 50"},
       {"--spheres 10 --octree-refs 99", "--octree-refs: must be in 1..64 or 0 (auto), got 99"},
       {"--spheres 10 --budget -1", "--budget: must be a number of seconds >= 0"},
+      {"--spheres 10 --radius 0.1,nan", "--radius: must be a finite number > 0, got nan"},
   };
   for (const auto& [args, message] : cases) {
     RunResult r = run_octrace(std::string("bench --device cpu --size 8x8 --spp 1 ") + args);
