@@ -48,13 +48,46 @@ bool all_digits(const std::string& text) {
   return !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
 }
 
-// Digits only, for the options read into unsigned integers: CLI11 reads
-// those with strtoull, which takes "-5" for 2^64 - 5.
-const CLI::Validator kWholeNumber(
-    [](std::string& value) {
-      return all_digits(value) ? std::string() : "expected a whole number >= 0, got \"" + value + "\"";
-    },
-    "");
+// What every option's value must look like before CLI11 converts it, by the
+// type CLI11 reads it into; added to every option of every command at once
+// (check_option_values), so no flag is left out. CLI11 reads integers with
+// strtoull / strtoll in base 0: "-5" as 2^64 - 5, "0x10" as 16, "010" as 8,
+// and a value too large as the largest; and it takes "" as 0 or as "not
+// given". So: an empty value is refused everywhere; an integer is decimal
+// digits only (a minus sign first where the type is signed), its leading
+// zeros dropped, and at most 2^64 - 1; a narrower type's own limit is
+// CLI11's "Could not convert" check.
+std::string check_option_value(std::string& value, const std::string& type) {
+  if (value.empty()) return "expected a value, got an empty string";
+  const bool is_uint = type == "UINT", is_int = type == "INT";
+  if (type == "FLOAT") {
+    char* end = nullptr;
+    if (std::isspace(static_cast<unsigned char>(value[0])) || (std::strtod(value.c_str(), &end), *end != '\0'))
+      return "expected a number, got \"" + value + "\"";
+    return "";
+  }
+  if (!is_uint && !is_int) return "";
+  const bool negative = is_int && value[0] == '-';
+  std::string digits = value.substr(negative ? 1 : 0);
+  if (!all_digits(digits))
+    return std::string("expected a whole number") + (is_uint ? " >= 0" : "") + ", got \"" + value + "\"";
+  digits.erase(0, std::min(digits.find_first_not_of('0'), digits.size() - 1));
+  const std::string max = is_uint ? "18446744073709551615" : negative ? "9223372036854775808" : "9223372036854775807";
+  if (digits.size() > max.size() || (digits.size() == max.size() && digits > max))
+    return "\"" + value + "\" is too large (at most " + (negative ? "-" : "") + max + ")";
+  value = (negative ? "-" : "") + digits;
+  return "";
+}
+
+void check_option_values(CLI::App& app) {
+  for (CLI::Option* opt : app.get_options()) {
+    if (opt->get_type_size() <= 0) continue;  // a flag
+    const std::string full = opt->get_type_name();
+    const std::string type = full.substr(0, full.find(':'));
+    opt->transform(CLI::Validator([type](std::string& value) { return check_option_value(value, type); }, ""));
+  }
+  for (CLI::App* sub : app.get_subcommands({})) check_option_values(*sub);
+}
 
 // Flags that choose and describe the scene, shared by every command that renders.
 struct SceneOptions {
@@ -70,12 +103,10 @@ struct SceneOptions {
                                 "Scene file: JSON (.json) or glTF (.gltf, .glb) (default: the built-in rtiow scene)");
     cmd.add_option("--spheres", spheres, "rtiow: number of small spheres")
         ->capture_default_str()
-        ->check(kWholeNumber)
         ->excludes(file);
     cmd.add_option("--radius", radius, "rtiow: radius of the small spheres")->capture_default_str()->excludes(file);
     cmd.add_option("--seed", seed, "rtiow: scene generator seed")
         ->capture_default_str()
-        ->check(kWholeNumber)
         ->excludes(file);
     cmd.add_option("--gltf-scene", gltf.scene, "glTF: which of the file's scenes (default: its default scene)")
         ->needs(file);
@@ -112,8 +143,16 @@ struct SceneOptions {
         throw InputError(scene_file + ": unknown scene format (expected .json, .gltf or .glb)");
       }
     }
-    if (!dump_scene.empty()) save_scene_json(scene, dump_scene);
     return scene;
+  }
+
+  // --dump-scene: its path checked before any work, the file written with
+  // the command's other outputs (so that a run refused on the way leaves none).
+  void check_dump() const {
+    if (!dump_scene.empty()) check_output_folder(dump_scene);
+  }
+  void write_dump(const Scene& scene) const {
+    if (!dump_scene.empty()) save_scene_json(scene, dump_scene);
   }
 };
 
@@ -564,7 +603,8 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
   const bool writes = !under_mpi || mpi_rank() == 0;
   if (writes && outputs.empty() && scene_opts.dump_scene.empty() && state.empty()) outputs.push_back("out.png");
   for (const auto& o : outputs) check_image_path(o);
-  if (!state.empty()) check_image_path(state + ".mean.pfm");
+  if (!state.empty()) check_state_paths(state, true);
+  scene_opts.check_dump();
   if (checkpoint_seconds < 0 || std::isnan(checkpoint_seconds))
     throw InputError("--checkpoint: must be a number of seconds >= 0");
   if (checkpoint_seconds > 0 && state.empty())
@@ -579,12 +619,19 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
     current.scene_hash = resumed.scene_hash;  // compared after the upload
     if (std::string why = checkpoint_mismatch(resumed, current); !why.empty())
       throw InputError(resume_prefix + ".accum: cannot resume: " + why);
+    // Fewer would write a state whose header counts fewer samples than its pixels hold.
+    if (resumed.samples > settings.spp)
+      throw InputError(resume_prefix + ".accum: cannot resume: it holds " + std::to_string(resumed.samples) +
+                       " spp, more than --spp " + std::to_string(settings.spp));
   }
 
   auto start = Clock::now();
   Scene scene = scene_opts.load();
   double scene_ms = ms_since(start);
-  if (!under_mpi && outputs.empty() && state.empty()) return 0;  // only --dump-scene
+  if (!under_mpi && outputs.empty() && state.empty()) {  // only --dump-scene
+    scene_opts.write_dump(scene);
+    return 0;
+  }
 
   start = Clock::now();
   // --device all | 0,2: one context per device, the first one the main one.
@@ -727,6 +774,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
 
   start = Clock::now();
   for (const auto& o : outputs) write_image(result.mean, o);
+  scene_opts.write_dump(scene);
   double write_ms = ms_since(start);
   const int exit_code = result.interrupted ? 128 + g_signal.load() : 0;
   if (result.interrupted && !as_json)
@@ -936,7 +984,7 @@ int cmd_merge(const std::vector<std::string>& inputs, const std::vector<std::str
               const std::string& state, bool quiet) {
   if (outputs.empty() && state.empty()) throw InputError("merge: give --out and/or --state");
   for (const auto& o : outputs) check_image_path(o);
-  if (!state.empty()) check_image_path(state + ".mean.pfm");
+  if (!state.empty()) check_state_paths(state, false);
   std::vector<RenderState> states;
   for (const auto& in : inputs) states.push_back(read_state(in));
   RenderState merged = merge_states(states);
@@ -1004,6 +1052,20 @@ int cmd_devices(bool as_json) {
 int cmd_compare(const std::string& a, const std::string& b, bool as_json) {
   Image test = read_image(a);
   Image reference = read_image(b);
+  if (test.width != reference.width || test.height != reference.height)
+    throw InputError(a + " is " + std::to_string(test.width) + "x" + std::to_string(test.height) + ", " + b +
+                     " is " + std::to_string(reference.width) + "x" + std::to_string(reference.height) +
+                     ": compare needs images of one size");
+  // A NaN or an infinity would make every metric NaN.
+  for (const auto& [image, path] : {std::pair{&test, &a}, std::pair{&reference, &b}}) {
+    const auto bad = std::find_if(image->rgb.begin(), image->rgb.end(), [](float v) { return !std::isfinite(v); });
+    if (bad != image->rgb.end()) {
+      const size_t pixel = size_t(bad - image->rgb.begin()) / 3;
+      throw InputError(*path + ": pixel (" + std::to_string(pixel % size_t(image->width)) + ", " +
+                       std::to_string(pixel / size_t(image->width)) + ") is " + (std::isnan(*bad) ? "NaN" : "infinite") +
+                       ": compare needs finite values");
+    }
+  }
   ErrorMetrics m = compare_images(test, reference);
   if (as_json) {
     // JSON has no infinity: identical images report psnr null.
@@ -1060,7 +1122,11 @@ int main(int argc, char** argv) {
   auto* render_cmd = app.add_subcommand("render", "Render headless to PNG (sRGB), PFM or EXR (linear)");
   scene_opts.add_to(*render_cmd);
   render_opts.add_to(*render_cmd);
-  render_cmd->add_option("--out,-o", outputs, "Output image(s), format by extension: .png .pfm .exr (default out.png)");
+  // One file a flag (--out a.png --out b.pfm): a list after one flag would
+  // take the words after it, as `merge -o m.png s1 s2` takes the states.
+  render_cmd->add_option("--out,-o", outputs, "Output image(s), format by extension: .png .pfm .exr (default out.png)")
+      ->allow_extra_args(false)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   render_cmd->add_flag("--json", as_json, "Print a machine-readable summary on stdout");
   std::string state_out;
   render_cmd->add_option("--state", state_out,
@@ -1113,7 +1179,7 @@ int main(int argc, char** argv) {
 
   std::string compare_a, compare_b;
   auto* compare_cmd = app.add_subcommand("compare", "Image error between a test image and a reference");
-  compare_cmd->add_option("test", compare_a, "Test image (.png .pfm .exr)")->required();
+  compare_cmd->add_option("test", compare_a, "Test image (.png .pfm .exr .hdr)")->required();
   compare_cmd->add_option("reference", compare_b, "Reference image")->required();
   compare_cmd->add_flag("--json", as_json, "Machine-readable output");
 
@@ -1121,7 +1187,9 @@ int main(int argc, char** argv) {
   std::string merge_state;
   auto* merge_cmd = app.add_subcommand("merge", "Merge accumulation states (render --state) weighted by their counts");
   merge_cmd->add_option("states", merge_inputs, "State prefixes (PREFIX.mean.pfm + PREFIX.count.pfm)")->required();
-  merge_cmd->add_option("--out,-o", merge_outputs, "Output image(s): .png .pfm .exr");
+  merge_cmd->add_option("--out,-o", merge_outputs, "Output image(s): .png .pfm .exr")
+      ->allow_extra_args(false)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   merge_cmd->add_option("--state", merge_state, "Also save the merged state under this prefix");
   merge_cmd->add_flag("--quiet,-q", quiet, "No summary");
 
@@ -1132,8 +1200,7 @@ int main(int argc, char** argv) {
   std::string bench_size;
   auto* bench_cmd = app.add_subcommand("bench", "Render time per accel against sphere count (the study's experiment) or of scene files (--scene)");
   bench_cmd->add_option("--spheres", bench_spheres, "Sphere counts (comma-separated)")->delimiter(',')
-      ->capture_default_str()
-      ->check(kWholeNumber);
+      ->capture_default_str();
   bench_cmd->add_option("--radius", bench_radii, "Radii of the small spheres (comma-separated)")->delimiter(',')
       ->capture_default_str();
   bench_cmd->add_option("--accel", bench_accels, "Acceleration structures (comma-separated): octree, bvh, brute")->delimiter(',')->capture_default_str();
@@ -1176,29 +1243,61 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bench_cmd->add_option("--budget", bench.budget_s, "Skip brute force predicted to take longer (seconds)")
       ->capture_default_str();
-  bench_cmd->add_option("--seed", bench.seed, "Scene generator seed")->capture_default_str()->check(kWholeNumber);
+  bench_cmd->add_option("--seed", bench.seed, "Scene generator seed")->capture_default_str();
   bench_cmd->add_option("--device", bench.device, "auto | cpu | gpu | INDEX")->capture_default_str();
   bench_cmd->add_option("--csv", bench.csv, "Also write the results as CSV");
   std::vector<std::string> bench_scenes;
-  bench_cmd->add_option("--scene", bench_scenes,
-                        "Instead of the sphere sweep: time these scene files (.json, .gltf, .glb; comma-separated) "
-                        "per accel and precision, with rays/s")
-      ->delimiter(',');
-  bench_cmd->add_option("--family", bench.families,
-                        "Instead of the sphere sweep: time --effects auto against all for these scene families "
-                        "(rtiow, lambertian, metal, glass, emissive, pinhole; comma-separated)")
-      ->delimiter(',');
+  auto* bench_scene_opt =
+      bench_cmd
+          ->add_option("--scene", bench_scenes,
+                       "Instead of the sphere sweep: time these scene files (.json, .gltf, .glb; comma-separated) "
+                       "per accel and precision, with rays/s")
+          ->delimiter(',');
+  bench_cmd
+      ->add_option("--family", bench.families,
+                   "Instead of the sphere sweep: time --effects auto against all for these scene families "
+                   "(rtiow, lambertian, metal, glass, emissive, pinhole; comma-separated), with the first of "
+                   "--spheres (default 488), --radius (default 0.1) and --accel (default octree)")
+      ->delimiter(',')
+      ->excludes(bench_scene_opt);
+  for (const char* generator : {"--spheres", "--radius", "--seed"})
+    bench_cmd->get_option(generator)->excludes(bench_scene_opt);
   bench_cmd->add_flag("--validation", bench.validation, "Enable the Khronos validation layer");
   bench_cmd->add_flag("--robust-buffers", bench.robust_buffers,
                       "Keep the driver's bounds checks on buffer accesses (see render --robust-buffers)");
   bench_cmd->add_flag("--quiet,-q", bench.quiet, "No progress on stderr");
 
+  check_option_values(app);
+  // CLI11 says "A subcommand is required" of `octrace frobnicate` and of
+  // `octrace --version`; name the word instead.
+  if (argc > 1 && std::strcmp(argv[1], "-h") != 0 && std::strcmp(argv[1], "--help") != 0) {
+    std::string commands;
+    bool known = false;
+    for (CLI::App* sub : app.get_subcommands({})) {
+      commands += (commands.empty() ? "" : ", ") + sub->get_name();
+      known = known || sub->check_name(argv[1]);
+    }
+    if (!known)
+      return fail(2, std::string(argv[1][0] == '-' ? "unknown option \"" : "unknown command \"") + argv[1] +
+                       "\" (a command comes first: " + commands + "; see --help)");
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return end(app.exit(e));
   } catch (const CLI::CallForAllHelp& e) {
     return end(app.exit(e));
+  } catch (const CLI::ConversionError& e) {
+    // "Could not convert: --spp = 99999999999": after check_option_values
+    // only a value beyond a narrower integer type's range gets here. A flag
+    // given twice shows both values ("--spp = 1,99999999999"); the last is
+    // the one read.
+    const std::string what = e.what(), head = "Could not convert: ";
+    const size_t eq = what.find(" = ");
+    if (what.rfind(head, 0) != 0 || eq == std::string::npos) return fail(2, what + " (see --help)");
+    const std::string values = what.substr(eq + 3);
+    return fail(2, what.substr(head.size(), eq - head.size()) + ": \"" + values.substr(values.rfind(',') + 1) +
+                       "\" is out of range (see --help)");
   } catch (const CLI::ParseError& e) {
     return fail(2, std::string(e.what()) + " (see --help)");
   }
@@ -1227,8 +1326,11 @@ int main(int argc, char** argv) {
       view_opts.validation = render_opts.validation;
       RenderSettings settings = render_opts.parsed(true);
       view_opts.stop = &g_stop;
+      scene_opts.check_dump();
+      const Scene scene = scene_opts.load();
+      view_opts.on_open = [&] { scene_opts.write_dump(scene); };
       SignalGuard signals;
-      code = run_view(scene_opts.load(), settings, view_opts);
+      code = run_view(scene, settings, view_opts);
 #else
       throw RuntimeError("this build has no window support (configure with -DOCTRACE_WINDOW=ON and libglfw3-dev)");
 #endif
@@ -1253,6 +1355,13 @@ int main(int argc, char** argv) {
       for (float r : bench.radii)  // every scene's parameters (radius, count), before the first render
         for (uint64_t n : bench.spheres) check_rtiow_params({n, r, bench.seed});
       if (!bench.csv.empty()) check_output_folder(bench.csv);
+      // The family bench renders one scene a family with one structure.
+      if (!bench.families.empty())
+        for (const auto& [flag, values] : {std::pair{"--spheres", bench_spheres.size()},
+                                           std::pair{"--radius", bench_radii.size()},
+                                           std::pair{"--accel", bench_accels.size()}})
+          if (bench_cmd->count(flag) && values > 1)
+            throw InputError(std::string(flag) + ": --family takes one value, got " + std::to_string(values));
       for (const auto& file : bench_scenes) {
         SceneOptions one;
         one.scene_file = file;

@@ -446,6 +446,7 @@ int run_view(const Scene& scene, const RenderSettings& settings, const ViewOptio
   }
   Viewer viewer(scene, settings, options);
   viewer.open();
+  if (options.on_open) options.on_open();
   viewer.run();
   return 0;
 }

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -38,6 +39,9 @@ struct ViewOptions {
   // Set (by Ctrl-C or SIGTERM): the window closes as if asked to; nothing is
   // saved that was not asked for.
   const std::atomic<bool>* stop = nullptr;
+  // Called once the window is open (the flags checked, the device made):
+  // where `view --dump-scene` writes its file.
+  std::function<void()> on_open;
 
   void add_to(CLI::App& cmd) {
     cmd.add_option("--max-spp", max_spp, "Stop accumulating at this many samples per pixel (0: never)")

@@ -87,7 +87,14 @@ void check_output_folder(const std::string& path) {
   if (folder.empty()) folder = ".";
   std::error_code ec;
   if (!std::filesystem::is_directory(folder, ec)) throw InputError(path + ": folder does not exist");
-  if (::access(folder.c_str(), W_OK) != 0) throw InputError(path + ": folder is not writable");
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a folder, not a file");
+  // access(W_OK) says yes to root for a read-only file system or /proc: make
+  // (and remove) a file of our own there, as write_file_atomically will.
+  const std::string probe = path + ".tmp-check-" + std::to_string(::getpid());
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0666);
+  if (fd < 0) throw InputError(path + ": cannot write in its folder: " + std::strerror(errno));
+  ::close(fd);
+  ::unlink(probe.c_str());
 }
 
 }  // namespace octrace

@@ -25,8 +25,10 @@ void remove_file_being_written() noexcept;
 // "cannot read file").
 std::string read_file(const std::string& path);
 
-// Checks, before any long work, that `path`'s folder exists and can be written
-// to. Throws InputError "PATH: folder does not exist" / "... is not writable".
+// Checks, before any long work, that `path` can be written: its folder exists,
+// it is not a folder itself, and a file can be made beside it (which is then
+// removed). Throws InputError "PATH: folder does not exist" / "PATH: is a
+// folder, not a file" / "PATH: cannot write in its folder: reason".
 void check_output_folder(const std::string& path);
 
 }  // namespace octrace

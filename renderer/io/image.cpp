@@ -745,7 +745,11 @@ ErrorMetrics compare_images(const Image& test, const Image& reference) {
 
 std::string stb_failure_reason() {
   const char* reason = stbi_failure_reason();
-  return reason ? reason : "corrupt or unsupported image data";
+  std::string text = reason ? reason : "corrupt or unsupported image data";
+  // stb names an unknown critical PNG chunk by its four bytes, whatever they are.
+  for (char& c : text)
+    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
+  return text;
 }
 
 std::string png_chunk_error(const unsigned char* bytes, size_t size) {

@@ -7,6 +7,7 @@
 
 #include "core/errors.h"
 #include "io/file.h"
+#include "scene/json_text.h"
 
 namespace octrace {
 
@@ -19,6 +20,9 @@ std::string accum_path(const std::string& prefix) { return prefix + ".accum"; }
 // PREFIX.accum: this line, one line of JSON (the CheckpointInfo), then the
 // sum, comp and sq arrays (width * height vec4 each, little-endian float32).
 constexpr char kAccumMagic[] = "octrace accumulation 1\n";
+
+// A state's width and height, at most (the header is checked against it).
+constexpr uint64_t kMaxStateSide = uint64_t(1) << 20;
 
 std::string hex(uint64_t v) {
   char buf[17];
@@ -116,17 +120,41 @@ nlohmann::json checkpoint_info_json(const CheckpointInfo& info) {
 }
 
 CheckpointInfo checkpoint_info_of(const nlohmann::json& j) {
+  if (!j.is_object()) throw InputError("expected a JSON object, got " + describe_json(j));
+  const auto field = [&](const char* name) -> const nlohmann::json& {
+    const auto it = j.find(name);
+    if (it == j.end()) throw InputError(std::string(name) + ": missing");
+    return *it;
+  };
+  const auto whole = [&](const char* name, uint64_t lo, uint64_t hi) {
+    const nlohmann::json& v = field(name);
+    if (!v.is_number_unsigned() || v.get<uint64_t>() < lo || v.get<uint64_t>() > hi)
+      throw InputError(std::string(name) + ": expected a whole number in " + std::to_string(lo) + ".." +
+                       std::to_string(hi) + ", got " + describe_json(v));
+    return v.get<uint64_t>();
+  };
+  const auto text = [&](const char* name) {
+    const nlohmann::json& v = field(name);
+    if (!v.is_string() || v.get_ref<const std::string&>().empty())
+      throw InputError(std::string(name) + ": expected a name, got " + describe_json(v));
+    return v.get<std::string>();
+  };
   CheckpointInfo info;
-  info.scene_hash = std::stoull(j.at("scene_hash").get<std::string>(), nullptr, 16);
-  info.width = j.at("width").get<int>();
-  info.height = j.at("height").get<int>();
-  info.sample_seed = j.at("sample_seed").get<uint32_t>();
-  info.first_sample = j.at("first_sample").get<uint32_t>();
-  info.bounce_limit = j.at("bounce_limit").get<uint32_t>();
-  info.rr_depth = j.at("rr_depth").get<uint32_t>();
-  info.precision = j.at("precision").get<std::string>();
-  info.accel = j.at("accel").get<std::string>();
-  info.samples = j.at("samples").get<uint32_t>();
+  const nlohmann::json& hash = field("scene_hash");
+  const std::string* digits = hash.is_string() ? &hash.get_ref<const std::string&>() : nullptr;
+  if (!digits || digits->empty() || digits->size() > 16 ||
+      digits->find_first_not_of("0123456789abcdefABCDEF") != std::string::npos)
+    throw InputError("scene_hash: expected 1 to 16 hexadecimal digits, got " + describe_json(hash));
+  info.scene_hash = std::stoull(*digits, nullptr, 16);
+  info.width = int(whole("width", 1, kMaxStateSide));
+  info.height = int(whole("height", 1, kMaxStateSide));
+  info.sample_seed = uint32_t(whole("sample_seed", 0, UINT32_MAX));
+  info.first_sample = uint32_t(whole("first_sample", 0, UINT32_MAX));
+  info.bounce_limit = uint32_t(whole("bounce_limit", 0, UINT32_MAX));
+  info.rr_depth = uint32_t(whole("rr_depth", 0, UINT32_MAX));
+  info.precision = text("precision");
+  info.accel = text("accel");
+  info.samples = uint32_t(whole("samples", 0, UINT32_MAX));
   return info;
 }
 
@@ -142,6 +170,12 @@ void write_checkpoint(const std::string& prefix, const Accumulation& acc, const 
   write_file_atomically(accum_path(prefix), bytes.data(), bytes.size(), "cannot write checkpoint");
 }
 
+void check_state_paths(const std::string& prefix, bool checkpoint) {
+  check_output_folder(mean_path(prefix));
+  check_output_folder(count_path(prefix));
+  if (checkpoint) check_output_folder(accum_path(prefix));
+}
+
 Accumulation read_checkpoint(const std::string& prefix, CheckpointInfo& info) {
   const std::string path = accum_path(prefix);
   const std::string bytes = read_file(path);
@@ -151,13 +185,13 @@ Accumulation read_checkpoint(const std::string& prefix, CheckpointInfo& info) {
   if (eol == std::string::npos) throw InputError(path + ": truncated header");
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(bytes.substr(magic, eol - magic));
+    j = nlohmann::json::parse(bytes.substr(magic, eol - magic), json_depth_limit<nlohmann::json>(""));
     info = checkpoint_info_of(j);
-  } catch (const std::exception& e) {
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(path + ": bad header: " + invalid_json_message(e.what()));
+  } catch (const InputError& e) {
     throw InputError(path + ": bad header: " + e.what());
   }
-  if (info.width < 1 || info.height < 1 || info.width > 1 << 20 || info.height > 1 << 20)
-    throw InputError(path + ": bad size " + std::to_string(info.width) + "x" + std::to_string(info.height));
   Accumulation acc;
   acc.width = info.width;
   acc.height = info.height;

@@ -59,8 +59,9 @@ struct CheckpointInfo {
 };
 
 // A CheckpointInfo as the JSON object of a checkpoint's header (scene_hash
-// as a hex string), and back; the reader throws nlohmann's exceptions on a
-// missing or mistyped field. Also what MPI ranks exchange (app/mpi_render).
+// as a hex string), and back; the reader throws InputError naming a
+// missing, mistyped or out-of-range field ("samples: expected a whole number
+// in 0..4294967295, got -1"). Also what MPI ranks exchange (app/mpi_render).
 nlohmann::json checkpoint_info_json(const CheckpointInfo& info);
 CheckpointInfo checkpoint_info_of(const nlohmann::json& j);
 
@@ -88,6 +89,11 @@ std::string checkpoint_mismatch(const CheckpointInfo& saved, const CheckpointInf
 // write_state writes them (for octrace merge).
 void write_checkpoint(const std::string& prefix, const Accumulation& acc, const CheckpointInfo& info,
                       const RenderState& state);
+// Checks, before any long work, that the state's files can be written
+// (check_output_folder): PREFIX.mean.pfm, PREFIX.count.pfm and, with
+// `checkpoint`, PREFIX.accum.
+void check_state_paths(const std::string& prefix, bool checkpoint);
+
 // Reads PREFIX.accum. Throws InputError naming the file when it is missing,
 // not a checkpoint, truncated or inconsistent.
 Accumulation read_checkpoint(const std::string& prefix, CheckpointInfo& info);

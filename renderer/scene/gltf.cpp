@@ -341,6 +341,9 @@ void check_external_files(const Json& doc, const std::string& file, const std::s
       if (!opened)
         throw InputError(file + ": " + item(array, i) + ".uri: cannot open " + path + ": " + std::strerror(errno));
       std::fclose(opened);
+      std::error_code ec;
+      if (std::filesystem::is_directory(path, ec))
+        throw InputError(file + ": " + item(array, i) + ".uri: " + path + " is a folder, not a file");
     }
   }
 }
@@ -447,7 +450,8 @@ File open_gltf(const std::string& bytes, const std::string& path) {
 
   Json doc;
   try {
-    doc = Json::parse(text.begin(), text.end());
+    doc = Json::parse(text.begin(), text.end(),
+                      json_depth_limit<Json>(path + ": " + (binary ? "GLB JSON chunk: " : "")));
   } catch (const Json::exception& e) {
     throw InputError(path + ": " + (binary ? "GLB JSON chunk: " : "") + invalid_json_message(e.what()));
   }
@@ -579,6 +583,10 @@ const tinygltf::Accessor& accessor(const File& f, int index, const std::string& 
   if (a.bufferView < 0 && a.count > kMaxZeroElements)
     f.fail(self, "count " + std::to_string(a.count) + " without a bufferView is more than octrace reads (" +
                      std::to_string(kMaxZeroElements) + ")");
+  // The count against its view before a reader allocates that many elements.
+  if (a.bufferView >= 0)
+    locate(f, self, a.bufferView, a.byteOffset, component_bytes(a.componentType) * size_t(type_components(a.type)),
+           a.count, self + ".bufferView");
   return a;
 }
 

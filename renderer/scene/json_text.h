@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include "core/errors.h"
+
 namespace octrace {
 
 // The value as the user wrote it, shortened, for "got ..." in messages.
@@ -15,6 +17,23 @@ std::string describe_json(const Json& v) {
   if (v.is_array()) return "an array of " + std::to_string(v.size()) + " elements";
   if (v.is_object()) return "an object";
   return text.substr(0, 37) + "...";
+}
+
+// How deep a JSON document may nest. nlohmann's parser takes any depth, but
+// dump() (describe_json) and tinygltf's reader recurse once a level, so a
+// document of many thousand levels would overflow the stack: the readers
+// refuse it while parsing (json_depth_limit).
+inline constexpr int kMaxJsonDepth = 512;
+
+// A parser callback for nlohmann's parse() that throws InputError
+// "WHERE: nested deeper than 512 levels" past kMaxJsonDepth and keeps every value.
+template <typename Json>
+typename Json::parser_callback_t json_depth_limit(const std::string& where) {
+  return [where](int depth, typename Json::parse_event_t, Json&) {
+    if (depth > kMaxJsonDepth)
+      throw InputError(where + "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    return true;
+  };
 }
 
 // "invalid JSON at line 3, column 5: syntax error ..." from the what() of

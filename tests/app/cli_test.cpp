@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -95,6 +96,19 @@ const BadInput BAD_INPUTS[] = {
     {"spheres_fraction", "--spheres 2.5", "--spheres: expected a whole number >= 0, got \"2.5\""},
     {"spheres_too_many", "--spheres 100000001", "--spheres: at most 100000000 small spheres, got 100000001"},
     {"seed_negative", "--seed -1", "--seed: expected a whole number >= 0, got \"-1\""},
+    // CLI11 reads integers with strtoull in base 0 and takes "" as 0: each
+    // of these rendered (--spp 0x10 as 16 samples, --seed past 2^64 as
+    // 2^64 - 1, --scene "" as the built-in scene).
+    {"spp_hex", "--spp 0x10", "--spp: expected a whole number >= 0, got \"0x10\""},
+    {"spp_sign", "--spp +5", "--spp: expected a whole number >= 0, got \"+5\""},
+    {"spp_empty", "--spp ''", "--spp: expected a value, got an empty string"},
+    {"spp_out_of_range", "--spp 99999999999", "--spp: \"99999999999\" is out of range"},
+    {"seed_too_large", "--seed 99999999999999999999",
+     "--seed: \"99999999999999999999\" is too large (at most 18446744073709551615)"},
+    {"radius_text", "--radius abc", "--radius: expected a number, got \"abc\""},
+    {"scene_empty", "--scene ''", "--scene: expected a value, got an empty string"},
+    {"dump_scene_empty", "--dump-scene ''", "--dump-scene: expected a value, got an empty string"},
+    {"checkpoint_empty", "--checkpoint ''", "--checkpoint: expected a value, got an empty string"},
     {"device_unknown", "--device banana", "--device"},
     {"device_index", "--device 99", "--device: index 99 out of range"},
     {"unknown_flag", "--frobnicate", "frobnicate"},
@@ -484,6 +498,101 @@ TEST(Cli, BenchRefusesBadSettingsBeforeTheDevice) {
   }
 }
 
+// Whole numbers are decimal: CLI11's strtoull in base 0 read "010" as 8.
+TEST(Cli, WholeNumbersAreDecimal) {
+  RunResult r = run_octrace("render --size 8x8 --spp 010 --quiet --json --out " + tmp("decimal.pfm"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  const nlohmann::json j = json_of(r.output);
+  ASSERT_FALSE(j.is_discarded()) << r.output;
+  EXPECT_EQ(j["samples"], 10) << r.output;
+}
+
+// A word that is no command is named (CLI11 said "A subcommand is required").
+TEST(Cli, AnUnknownCommandIsNamed) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"frobnicate", "unknown command \"frobnicate\" (a command comes first: render, "},
+      {"--version", "unknown option \"--version\" (a command comes first: render, "},
+  };
+  for (const auto& [args, message] : cases) {
+    RunResult r = run_octrace(args);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << ": " << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << ": " << r.output;
+  }
+}
+
+// Every output's path is checked before the render: a folder where a file
+// should go, or a place where no file can be made (/proc), failed after the
+// whole render, exit 1, with the outputs before it already written; and
+// --dump-scene was written before the device was chosen. Now: one line,
+// exit 2, and none of the command's files.
+TEST(Cli, OutputPathsAreCheckedBeforeTheRender) {
+  fs::create_directories(tmp("a_folder.png"));
+  fs::create_directories(tmp("a_folder.csv"));
+  fs::create_directories(tmp("st_folder.accum"));
+  const std::string first = tmp("paths_first.png"), state = tmp("paths_state"), dump = tmp("paths_dump.json");
+  const std::vector<std::string> files = {first, state + ".accum", state + ".mean.pfm", state + ".count.pfm", dump};
+  const std::pair<std::string, std::string> cases[] = {
+      {"--out " + first + " --out " + tmp("a_folder.png"), "a_folder.png: is a folder, not a file"},
+      {"--out " + first + " --out /proc/octrace_test.png", "/proc/octrace_test.png: cannot write in its folder"},
+      {"--state " + state + " --dump-scene " + dump + " --out " + tmp("a_folder.png"), "a_folder.png: is a folder"},
+      {"--state " + tmp("st_folder") + " --out " + first, "st_folder.accum: is a folder, not a file"},
+      {"--dump-scene " + dump + " --out " + first + " --device 99", "--device: index 99 out of range"},
+      {"--dump-scene " + tmp("a_folder.png") + " --out " + first, "a_folder.png: is a folder, not a file"},
+  };
+  for (const auto& [args, message] : cases) {
+    for (const auto& f : files) fs::remove(f);
+    RunResult r = run_octrace("render --size 8x8 --spp 1 --quiet " + args);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << ": " << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << ": " << r.output;
+    for (const auto& f : files) EXPECT_FALSE(fs::exists(f)) << args << ": " << f << " was written";
+  }
+  RunResult r = run_octrace("bench --device cpu --size 8x8 --spp 1 --spheres 10 --csv " + tmp("a_folder.csv"));
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("a_folder.csv: is a folder, not a file"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  // Alone, --dump-scene still writes its file and renders nothing.
+  r = run_octrace("render --size 8x8 --spp 1 --quiet --dump-scene " + dump);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dump));
+}
+
+// `--out` takes one file a flag: `-o a.png b.png` took b.png as a second
+// output (and `merge -o m.png s1 s2` took s1 as an image to write).
+TEST(Cli, OutTakesOneFileAFlag) {
+  const std::string a = tmp("one_a.png"), b = tmp("one_b.png");
+  fs::remove(a);
+  fs::remove(b);
+  RunResult r = run_octrace("render --size 8x8 --spp 1 --quiet -o " + a + " " + b);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("not expected: " + b), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(a));
+  r = run_octrace("render --size 8x8 --spp 1 --quiet -o " + a + " --out " + b);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(a) && fs::exists(b));
+}
+
+// bench's modes do not mix: --scene with --family or the sphere sweep's
+// generator flags, and --family with several counts, radii or structures
+// (it renders the first), are refused instead of one of them being dropped.
+TEST(Cli, BenchModesDoNotMix) {
+  const std::string scene = write_file("bench_modes.json", VALID_SCENE);
+  const std::pair<std::string, std::string> cases[] = {
+      {"--scene " + scene + " --family rtiow", "--scene excludes --family"},
+      {"--scene " + scene + " --spheres 5", "--spheres excludes --scene"},
+      {"--scene " + scene + " --radius 0.3", "--radius excludes --scene"},
+      {"--family rtiow --spheres 5,6", "--spheres: --family takes one value, got 2"},
+      {"--family rtiow --accel octree,bvh", "--accel: --family takes one value, got 2"},
+  };
+  for (const auto& [args, message] : cases) {
+    RunResult r = run_octrace("bench --device cpu --size 8x8 --spp 1 " + args);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << ": " << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << ": " << r.output;
+  }
+}
+
 // A JSON scene with meshes, dumped and loaded again, is the same scene: the
 // dump refers to the same files and leaves their materials to them.
 TEST(Cli, JsonMeshesRoundTripThroughDumpScene) {
@@ -513,10 +622,20 @@ TEST(Cli, CompareRejectsSizeMismatchAndMissingFiles) {
   ASSERT_EQ(run_octrace("render --size 8x8 --spp 1 --quiet --spheres 5 --out " + b).code, 0);
   RunResult r = run_octrace("compare " + a + " " + b);
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.output.find("16x8"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(a + " is 16x8, " + b + " is 8x8: compare needs images of one size"), std::string::npos)
+      << r.output;
   r = run_octrace("compare " + a + " " + tmp("nope.pfm"));
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.output.find("nope.pfm"), std::string::npos) << r.output;
+  // A NaN made every metric NaN, exit 0.
+  const float values[6] = {0.5f, 0.5f, 0.5f, 0.5f, std::nanf(""), 0.5f};
+  std::string pfm = "PF\n2 1\n-1.0\n";
+  pfm.append(reinterpret_cast<const char*>(values), sizeof values);
+  const std::string nan = write_file("cmp_nan.pfm", pfm);
+  r = run_octrace("compare " + nan + " " + nan);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find(nan + ": pixel (1, 0) is NaN: compare needs finite values"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
 }
 
 // The accumulation state is what a render is: renders over disjoint ranges of

@@ -182,6 +182,41 @@ TEST(Interrupt, StateOfAnotherRenderIsRefused) {
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("cut.accum: "), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("bytes of data, expected"), std::string::npos) << r.output;
+  // A --spp below the samples the state holds wrote a state whose header
+  // counted fewer samples than its pixels, which no render could load.
+  remove_state(tmp("fewer"));
+  r = run_octrace("render " + kScene + "--spp 1 --quiet --resume " + state + " --state " + tmp("fewer"));
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("mine.accum: cannot resume: it holds 2 spp, more than --spp 1"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(tmp("fewer.accum")));
+  // The header's fields, each checked and named (a negative count was read
+  // as 2^32 - 1 and a fractional width as its whole part; a bad hash said
+  // "stoull", a mistyped field gave nlohmann's own message).
+  const size_t magic_end = bytes.find('\n') + 1, header_end = bytes.find('\n', magic_end);
+  const nlohmann::json header = nlohmann::json::parse(bytes.substr(magic_end, header_end - magic_end));
+  const struct {
+    const char* field;
+    nlohmann::json value;
+    std::string message;
+  } fields[] = {
+      {"samples", -1, "samples: expected a whole number in 0..4294967295, got -1"},
+      {"samples", 99999999999, "samples: expected a whole number in 0..4294967295, got 99999999999"},
+      {"width", 40.5, "width: expected a whole number in 1..1048576, got 40.5"},
+      {"width", "40", "width: expected a whole number in 1..1048576, got \"40\""},
+      {"scene_hash", "zz", "scene_hash: expected 1 to 16 hexadecimal digits, got \"zz\""},
+      {"accel", 3, "accel: expected a name, got 3"},
+  };
+  for (const auto& f : fields) {
+    nlohmann::json bad = header;
+    bad[f.field] = f.value;
+    std::ofstream(tmp("bad.accum"), std::ios::binary)
+        << bytes.substr(0, magic_end) << bad.dump() << bytes.substr(header_end);
+    r = run_octrace("render " + kScene + "--spp 4 --quiet --resume " + tmp("bad") + " --out " + tmp("refused.png"));
+    EXPECT_EQ(r.code, 2) << f.message << ": " << r.output;
+    EXPECT_NE(r.output.find("bad.accum: bad header: " + f.message), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  }
   // --checkpoint needs somewhere to write.
   r = run_octrace("render " + kScene + "--spp 1 --quiet --checkpoint 1 --out " + tmp("refused.png"));
   EXPECT_EQ(r.code, 2) << r.output;

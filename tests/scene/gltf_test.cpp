@@ -924,6 +924,23 @@ TEST(GltfErrors, NotJson) {
   EXPECT_EQ(message.rfind("PATH: invalid JSON at line 1, column 2: ", 0), 0u) << message;
 }
 
+// tinygltf reads a document's values recursively: extras nested twenty
+// thousand levels deep overflowed its stack. Refused while octrace parses
+// the file first, past 512 levels, in a .gltf and in a .glb's JSON chunk
+// (600 here: the builder's own dump() recurses too).
+TEST(GltfErrors, DeepNestingIsRefusedNotACrash) {
+  GltfBuilder b = test::quad_gltf();
+  nlohmann::json deep = nlohmann::json::array();
+  for (int i = 0; i < 600; ++i) deep = nlohmann::json::array({std::move(deep)});
+  b.doc["extras"] = std::move(deep);
+  EXPECT_EQ(load_error(b, "deep.gltf"), "PATH: nested deeper than 512 levels");
+  EXPECT_EQ(load_error(b, "deep.glb"), "PATH: GLB JSON chunk: nested deeper than 512 levels");
+  nlohmann::json shallow = nlohmann::json::array();
+  for (int i = 0; i < 400; ++i) shallow = nlohmann::json::array({std::move(shallow)});
+  b.doc["extras"] = std::move(shallow);
+  EXPECT_NO_THROW(load(b, "shallow.gltf"));
+}
+
 TEST(GltfErrors, MissingBinAndImage) {
   GltfBuilder b = test::quad_gltf();
   std::filesystem::remove(tmp("external/quad.bin"));  // written by an earlier run
@@ -1062,6 +1079,10 @@ TEST(GltfErrors, BuffersViewsAccessorsAndIndicesOutOfRange) {
   b = test::quad_gltf();
   b.doc["accessors"][0]["count"] = 900;
   EXPECT_EQ(load_error(b, "count.gltf"), "PATH: accessors[0]: count 900 exceeds bufferView 0 (4 elements)");
+  // A count far past the view is refused before the reader allocates it
+  // (it said "out of host memory" at 2^32 - 1, and allocated 1.2 GB at 1e8).
+  b.doc["accessors"][0]["count"] = 4294967295u;
+  EXPECT_EQ(load_error(b, "huge_count.gltf"), "PATH: accessors[0]: count 4294967295 exceeds bufferView 0 (4 elements)");
   b.doc["accessors"][0]["count"] = 4;
   b.doc["accessors"][0]["byteOffset"] = 4;
   EXPECT_EQ(load_error(b, "offset.gltf"), "PATH: accessors[0]: count 4 exceeds bufferView 0 (3 elements)");

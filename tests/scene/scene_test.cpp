@@ -560,6 +560,17 @@ TEST(JsonErrors, SyntaxErrorsGiveLineAndColumn) {
   EXPECT_EQ(nan.rfind("scene.json: invalid JSON at line 1, column ", 0), 0u) << nan;
 }
 
+// nlohmann parses any depth, but describing a value (dump()) recurses: a
+// scene nested many thousand levels deep overflowed the stack. Refused while
+// parsing, past 512 levels; 512 itself still reads as far as the parser goes.
+TEST(JsonErrors, DeepNestingIsRefusedNotACrash) {
+  const auto nested = [](int levels) { return std::string(size_t(levels), '[') + std::string(size_t(levels), ']'); };
+  EXPECT_EQ(parse_error(nested(100000)), "scene.json: nested deeper than 512 levels");
+  EXPECT_EQ(parse_error(R"({"materials": [], "camera": )" + nested(600) + "}"),
+            "scene.json: nested deeper than 512 levels");
+  EXPECT_EQ(parse_error(nested(500)), "scene.json: expected a JSON object at the top level, got an array of 1 elements");
+}
+
 TEST(JsonErrors, MissingFile) {
   const std::string path = test_path("does_not_exist.json");
   EXPECT_EQ(input_error([&] { load_scene_json(path); }), path + ": cannot open file: No such file or directory");
