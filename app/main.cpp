@@ -1171,7 +1171,12 @@ int main(int argc, char** argv) {
   auto* view_cmd = app.add_subcommand("view", "Open a window that shows the image converge, pass by pass");
   scene_opts.add_to(*view_cmd);
   render_opts.add_to(*view_cmd);
-  view_cmd->remove_option(view_cmd->get_option("--spp"));  // the window accumulates until --max-spp
+  // The window accumulates until --max-spp; --spp stays a flag so that
+  // `view --spp 5` says so (CLI11 said "not expected: 5 --spp"; a hidden
+  // option has no name in CLI11's messages).
+  view_cmd->get_option("--spp")->description("Not for view (refused): it accumulates until --max-spp")->default_str("")->check(CLI::Validator(
+      [](std::string&) { return std::string("view accumulates until --max-spp N (or until its window closes)"); },
+      ""));
   view_opts.add_to(*view_cmd);
 
   auto* devices_cmd = app.add_subcommand("devices", "List Vulkan devices and the precision variants each can run");

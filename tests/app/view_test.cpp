@@ -133,6 +133,15 @@ TEST(ViewTest, WithoutDisplayOneLineNonZeroExit) {
   EXPECT_FALSE(fs::exists(shot));
 }
 
+// view accumulates until --max-spp: --spp is refused by name (CLI11 said
+// "The following arguments were not expected: 5 --spp").
+TEST(ViewTest, SppIsRefusedByName) {
+  RunResult r = run("", "view --device cpu --spp 5");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("--spp: view accumulates until --max-spp N"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+}
+
 TEST(ViewTest, ScreenshotWithoutTargetIsBadInput) {
   RunResult r = run("", "view --device cpu --screenshot " + tmp("no_target.png"));
   EXPECT_EQ(r.code, 2);
