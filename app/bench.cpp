@@ -1,4 +1,5 @@
 #include "bench.h"
+#include "octrace_version.h"
 
 #include <algorithm>
 #include <chrono>
@@ -93,9 +94,9 @@ void print_header(const VulkanContext& ctx, const RenderSettings& settings, cons
     bvh += "; BVH spatial splits up to " + float_string(settings.octree.bvh_spatial_refs) + " references per triangle";
   // ContextOptions::robust_buffers: said only where the checks are off.
   const char* robust = ctx.robust_buffers ? "" : "; buffer bounds checks off";
-  std::printf("Device: %s (%s, %s). Image %dx%d, %u spp, depth %u%s%s; render = device time of the passes "
-              "(timestamp queries), median of %u runs after a warm-up of %gs%s.\n\n",
-              ctx.info.name.c_str(), ctx.info.type.c_str(), ctx.info.driver.c_str(), settings.width,
+  std::printf("Device: %s (%s, %s); octrace %s. Image %dx%d, %u spp, depth %u%s%s; render = device time of the "
+              "passes (timestamp queries), median of %u runs after a warm-up of %gs%s.\n\n",
+              ctx.info.name.c_str(), ctx.info.type.c_str(), ctx.info.driver.c_str(), OCTRACE_COMMIT, settings.width,
               settings.height, settings.spp, settings.bounce_limit, bvh.c_str(), robust, o.repeat, o.warmup_s,
               more);
 }
@@ -210,10 +211,10 @@ int run_effects_bench(const VulkanContext& ctx, const BenchOptions& o, const Ren
       rows.push_back(row);
     }
   }
-  std::printf("Device: %s (%s, %s). Image %dx%d, %u spp, depth %u, rtiow %llu spheres r=%g with materials "
-              "replaced per family; render = device time, median of %u runs after a warm-up of %gs, auto "
-              "and all alternated.\n\n",
-              ctx.info.name.c_str(), ctx.info.type.c_str(), ctx.info.driver.c_str(), settings.width,
+  std::printf("Device: %s (%s, %s); octrace %s. Image %dx%d, %u spp, depth %u, rtiow %llu spheres r=%g with "
+              "materials replaced per family; render = device time, median of %u runs after a warm-up of %gs, "
+              "auto and all alternated.\n\n",
+              ctx.info.name.c_str(), ctx.info.type.c_str(), ctx.info.driver.c_str(), OCTRACE_COMMIT, settings.width,
               settings.height, settings.spp, settings.bounce_limit, (unsigned long long)n, radius, o.repeat,
               o.warmup_s);
   std::printf("| family | precision | features | auto ms (min-max) | all ms (min-max) | all / auto |\n");

@@ -24,6 +24,7 @@
 
 #include "bench.h"
 #include "mpi_render.h"
+#include "octrace_version.h"
 #include "io/image.h"
 #include "io/file.h"
 #include "core/clock.h"
@@ -787,7 +788,8 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
   double paths_per_s = t.render_device_ms > 0 ? paths / (t.render_device_ms / 1000.0) : 0.0;
   double rays_per_s = t.render_device_ms > 0 ? double(result.rays) / (t.render_device_ms / 1000.0) : 0.0;
   if (as_json) {
-    json j = {{"device", device_json(ctx.info)},
+    json j = {{"octrace", OCTRACE_COMMIT},
+              {"device", device_json(ctx.info)},
               {"robust_buffers", ctx.robust_buffers},
               {"scene", {{"source", scene_opts.describe()},
                          {"spheres", scene.spheres.size()},
@@ -1111,6 +1113,8 @@ int main(int argc, char** argv) {
 #endif
   CLI::App app{"octrace: a Vulkan compute path tracer (spheres, glTF meshes, JSON scenes)"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("octrace ") + OCTRACE_COMMIT,
+                       "The commit this binary was built from (git describe; -dirty: with uncommitted changes)");
   // A flag given twice takes its last value, as scripts that append flags expect.
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
 
@@ -1274,8 +1278,9 @@ int main(int argc, char** argv) {
 
   check_option_values(app);
   // CLI11 says "A subcommand is required" of `octrace frobnicate` and of
-  // `octrace --version`; name the word instead.
-  if (argc > 1 && std::strcmp(argv[1], "-h") != 0 && std::strcmp(argv[1], "--help") != 0) {
+  // `octrace --frobnicate`; name the word instead.
+  if (argc > 1 && std::strcmp(argv[1], "-h") != 0 && std::strcmp(argv[1], "--help") != 0 &&
+      std::strcmp(argv[1], "--version") != 0) {
     std::string commands;
     bool known = false;
     for (CLI::App* sub : app.get_subcommands({})) {
@@ -1291,6 +1296,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return end(app.exit(e));
   } catch (const CLI::CallForAllHelp& e) {
+    return end(app.exit(e));
+  } catch (const CLI::CallForVersion& e) {
     return end(app.exit(e));
   } catch (const CLI::ConversionError& e) {
     // "Could not convert: --spp = 99999999999": after check_option_values

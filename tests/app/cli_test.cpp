@@ -511,7 +511,7 @@ TEST(Cli, WholeNumbersAreDecimal) {
 TEST(Cli, AnUnknownCommandIsNamed) {
   const std::pair<const char*, const char*> cases[] = {
       {"frobnicate", "unknown command \"frobnicate\" (a command comes first: render, "},
-      {"--version", "unknown option \"--version\" (a command comes first: render, "},
+      {"--frobnicate", "unknown option \"--frobnicate\" (a command comes first: render, "},
   };
   for (const auto& [args, message] : cases) {
     RunResult r = run_octrace(args);
@@ -519,6 +519,21 @@ TEST(Cli, AnUnknownCommandIsNamed) {
     EXPECT_NE(r.output.find(message), std::string::npos) << args << ": " << r.output;
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << ": " << r.output;
   }
+}
+
+// The build's commit: `octrace --version` says it, and a render's --json
+// summary carries it, so that a figure names the code that made it.
+TEST(Cli, VersionNamesTheBuildsCommit) {
+  RunResult v = run_octrace("--version");
+  ASSERT_EQ(v.code, 0) << v.output;
+  ASSERT_EQ(v.output.rfind("octrace ", 0), 0u) << v.output;
+  const std::string commit = v.output.substr(8, v.output.find('\n') - 8);
+  EXPECT_FALSE(commit.empty()) << v.output;
+  RunResult r = run_octrace("render --size 8x8 --spp 1 --quiet --json --out " + tmp("version.pfm"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  const nlohmann::json j = json_of(r.output);
+  ASSERT_FALSE(j.is_discarded()) << r.output;
+  EXPECT_EQ(j["octrace"], commit) << r.output;
 }
 
 // Every output's path is checked before the render: a folder where a file
