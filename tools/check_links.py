@@ -6,22 +6,26 @@
 Checked in ROOT/README.md and every ROOT/docs/**/*.md, outside fenced code
 blocks and inline code:
   - markdown links and images, [text](target) and ![alt](target), and
-    <img src="target"> / <a href="target">: the target, relative to the file's
-    folder (a trailing #anchor dropped), must exist; where it is a markdown
-    file, its #anchor must be one of the file's headings, as GitHub names them.
+    <img src="target"> / <a href="target">: the target, percent-decoded
+    (%20 is a space) and relative to the file's folder, or to ROOT where it
+    starts with / (as GitHub resolves it), a trailing #anchor dropped, must
+    exist; where it is a markdown file, its #anchor must be one of the
+    file's headings, as GitHub names them.
     http(s):, mailto: and pure #anchor targets are not checked.
   - inline code that is a bare repository path, such as `docs/results/h100/bench.md`
     or `tools/accuracy.py`: one word that starts with a top-level folder of the
     repository (app, renderer, shaders, tests, tools, docs, .ci) and names a
     file (has an extension) or a folder (ends in /); it must exist relative to
     ROOT. Words with wildcards or placeholders (* < > { } [ ] $ |) are skipped.
-Prints one line per missing target, FILE:LINE: kind 'target', and exits 1 if
-there is any; exit 0 and a one-line count otherwise. Python standard library only.
+Prints one line per missing target, FILE:LINE: kind 'target' (and one per
+file that is not UTF-8 text), and exits 1 if there is any; exit 0 and a
+one-line count otherwise. Python standard library only.
 """
 import argparse
 import pathlib
 import re
 import sys
+import urllib.parse
 
 LINK = re.compile(r"!?\[(?:[^\[\]]|\[[^\[\]]*\])*\]\(\s*<?([^()\s>]+(?:\([^()\s]*\)[^()\s>]*)*)>?(?:\s+\"[^\"]*\")?\s*\)")
 HTML = re.compile(r"<(img|a)\b[^>]*?\b(src|href)\s*=\s*[\"']([^\"']+)[\"']", re.IGNORECASE)
@@ -94,7 +98,8 @@ def check_file(root, path):
             if external(target) or target.startswith("#"):
                 continue
             file_part, _, anchor = target.partition("#")
-            resolved = path.parent / file_part
+            file_part = urllib.parse.unquote(file_part)
+            resolved = root / file_part.lstrip("/") if file_part.startswith("/") else path.parent / file_part
             if not resolved.exists():
                 yield number, kind, target
             elif anchor and resolved.is_file() and resolved.suffix == ".md" and anchor not in anchors(resolved):
@@ -114,6 +119,12 @@ def main():
         sys.exit(f"{root}: no README.md and no docs/*.md")
     missing = 0
     for path in files:
+        try:
+            path.read_text(encoding="utf-8")
+        except UnicodeDecodeError as e:
+            print(f"{path.relative_to(root)}: not UTF-8 text (byte {e.start})")
+            missing += 1
+            continue
         for number, kind, target in check_file(root, path):
             print(f"{path.relative_to(root)}:{number}: {kind} '{target}' points at nothing")
             missing += 1

@@ -14,8 +14,8 @@ run = subprocess.run([sys.executable, str(source / "tools" / "check_links.py"), 
                      capture_output=True, text=True)
 reported = sorted(run.stdout.splitlines())
 expected = sorted([
-    "README.md:10: link 'missing-page.md' points at nothing",
-    "README.md:12: image 'images/missing-picture.png' points at nothing",
+    "README.md:11: link 'missing-page.md' points at nothing",
+    "README.md:13: image 'images/missing-picture.png' points at nothing",
 ])
 if run.returncode != 1 or reported != expected:
     print(f"exit code {run.returncode} (expected 1)")

@@ -1,0 +1,75 @@
+"""What the tools/ scripts share about their command lines, so that they meet
+bad input as octrace itself does: one line naming the flag or file and what
+is wrong, exit status 2, and no output file begun.
+
+  import tool_args                       (a script in tools/)
+  sys.path.insert(0, str(Path(__file__).resolve().parents[1]))   (in tools/peer/)
+
+  parser = tool_args.Parser(description=...)          argparse, one-line errors
+  parser.add_argument("--octrace", type=tool_args.executable, ...)
+  parser.add_argument("--rounds", type=tool_args.positive_int, ...)
+  parser.add_argument("--out", type=tool_args.output_file, ...)
+  tool_args.fail("ab_render.py", "--variant 'x': ...")   a check of its own
+"""
+import argparse
+import os
+import shutil
+import sys
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse with its errors on one line ("TOOL: --rounds: must be a whole
+    number >= 1, got '0' (see --help)") instead of the usage and the error."""
+
+    def error(self, message):
+        print(f"{self.prog}: {message} (see --help)", file=sys.stderr)
+        sys.exit(2)
+
+
+def fail(tool, message):
+    """Ends the tool with "TOOL: MESSAGE" on stderr and exit status 2 (bad input)."""
+    print(f"{tool}: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
+def executable(text):
+    """A program to run: a path to an executable file, or a name on PATH."""
+    if not text:
+        raise argparse.ArgumentTypeError("expected a program, got an empty string")
+    if os.sep in text:
+        if not os.path.isfile(text):
+            raise argparse.ArgumentTypeError(f"{text}: no such file (build it first: tools/build.sh)")
+        if not os.access(text, os.X_OK):
+            raise argparse.ArgumentTypeError(f"{text}: not executable")
+        return text
+    found = shutil.which(text)
+    if not found:
+        raise argparse.ArgumentTypeError(f"{text}: not found on PATH")
+    return found
+
+
+def positive_int(text):
+    """A whole number >= 1 (rounds, runs, repeats)."""
+    if not text.isdigit() or int(text) < 1:
+        raise argparse.ArgumentTypeError(f"must be a whole number >= 1, got {text!r}")
+    return int(text)
+
+
+def output_file(text):
+    """A file to write: its folder must exist and not be a file, and the path
+    must not be a folder; checked before any work."""
+    if not text:
+        raise argparse.ArgumentTypeError("expected a file name, got an empty string")
+    folder = os.path.dirname(text) or "."
+    if not os.path.isdir(folder):
+        raise argparse.ArgumentTypeError(f"{text}: folder {folder} does not exist")
+    if os.path.isdir(text):
+        raise argparse.ArgumentTypeError(f"{text}: is a folder, not a file")
+    return text
+
+
+def input_file(text):
+    """A file to read, which must exist."""
+    if not os.path.isfile(text):
+        raise argparse.ArgumentTypeError(f"{text}: no such file")
+    return text
