@@ -32,18 +32,26 @@ import subprocess
 import sys
 import time
 
+import tool_args
+
 
 def parse_variant(text):
     label, _, rest = text.partition("=")
     if not label:
-        sys.exit(f"ab_render.py: variant '{text}' has no label (LABEL=...)")
+        tool_args.fail("ab_render.py", f"--variant '{text}' has no label (LABEL=...)")
     env_part, _, flags = rest.partition("--")
     env = {}
     for item in env_part.split():
         k, sep, v = item.partition("=")
         if not sep:
-            sys.exit(f"ab_render.py: variant '{text}': '{item}' is not ENV=VALUE")
+            tool_args.fail("ab_render.py", f"--variant '{text}': '{item}' is not ENV=VALUE")
         env[k] = v
+    if "BIN" in env:
+        # Another binary for this variant: checked now, not when its turn comes.
+        try:
+            tool_args.executable(env["BIN"])
+        except argparse.ArgumentTypeError as e:
+            tool_args.fail("ab_render.py", f"--variant '{text}': BIN={e}")
     return label, env, flags.split()
 
 
@@ -64,19 +72,17 @@ def render(binary, args, variant):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--octrace", required=True, help="octrace binary")
+    ap = tool_args.Parser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--octrace", required=True, type=tool_args.executable, help="octrace binary")
     ap.add_argument("--render", required=True, help="render options shared by every variant (one string)")
     ap.add_argument("--variant", action="append", required=True, help="LABEL=[ENV=VALUE ...] [-- flags]")
-    ap.add_argument("--rounds", type=int, default=5)
-    ap.add_argument("--out", help="markdown file to write the table to")
+    ap.add_argument("--rounds", type=tool_args.positive_int, default=5)
+    ap.add_argument("--out", type=tool_args.output_file, help="markdown file to write the table to")
     ap.add_argument("--metric", choices=["render", "wall", "write", "readback", "scene", "accel_build"], default="render",
                     help="render: device time of the passes; wall: the whole process; write: the image's file; "
                          "readback: the accumulation's read-back; scene: the scene's loading; accel_build: the acceleration structure's "
                          "build on the host")
     a = ap.parse_args()
-    if a.rounds < 1:
-        sys.exit("ab_render.py: --rounds must be at least 1")
     variants = [parse_variant(v) for v in a.variant]
     args = a.render.split()
     info = {}

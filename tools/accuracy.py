@@ -15,20 +15,26 @@ It also measures the precision targets of the fp16 variant:
     renders with different seeds);
   * converged: --converged-spp at --size: relative MSE of each level against
     the reference, beside that of an fp32 render with another seed.
-These go to OUT/precision.md.
+These go to OUT/precision.md. Both compare with fp32, so --precisions must
+include it.
 
   tools/accuracy.py [--octrace build/app/octrace] [--device cpu] [--size 160x90] [--out docs/results/accuracy_lavapipe]
   tools/accuracy.py --replot DIR     (redraw DIR/accuracy.png from DIR/accuracy.csv)
 
 Default settings run in a few minutes on lavapipe. Uses Debian's
-python3-matplotlib (installed by tools/setup.sh).
+python3-matplotlib (installed by tools/setup.sh). Bad input exits with 2
+before any render; a render that fails ends the tool with octrace's error
+line and its exit status, and removes OUT/tmp.
 """
 import argparse
 import csv
 import json
 import os
+import re
 import subprocess
 import sys
+
+import tool_args
 
 PRECISIONS = ["fp32", "fp16", "fp16-all"]
 
@@ -36,8 +42,46 @@ PRECISIONS = ["fp32", "fp16", "fp16-all"]
 def run(cmd):
     out = subprocess.run(cmd, capture_output=True, text=True)
     if out.returncode != 0:
-        sys.exit(f"accuracy: {' '.join(cmd)} failed: {out.stderr.strip()}")
+        # octrace says what is wrong on its last line of stderr.
+        lines = out.stderr.strip().splitlines() or [f"exit {out.returncode}"]
+        print(f"accuracy.py: octrace {cmd[1]} failed: {lines[-1]}", file=sys.stderr)
+        sys.exit(out.returncode if out.returncode > 0 else 1)
     return out.stdout
+
+
+def size(text):
+    """WIDTHxHEIGHT, as octrace takes it (checked here for --study-size,
+    which is first used after the sweep)."""
+    if not re.fullmatch(r"[1-9][0-9]{0,8}x[1-9][0-9]{0,8}", text):
+        raise argparse.ArgumentTypeError(f"expected WIDTHxHEIGHT (e.g. 160x90), got {text!r}")
+    return text
+
+
+def depth_list(text):
+    """Comma-separated bounce limits, each >= 1."""
+    try:
+        return [tool_args.positive_int(d) for d in text.split(",")]
+    except argparse.ArgumentTypeError:
+        raise argparse.ArgumentTypeError(f"expected whole numbers >= 1 separated by commas, got {text!r}")
+
+
+def precision_list(text):
+    """Comma-separated precisions octrace knows, fp32 among them."""
+    names = text.split(",")
+    for name in names:
+        if name not in PRECISIONS:
+            raise argparse.ArgumentTypeError(f"{name!r} is not one of {', '.join(PRECISIONS)}")
+    if "fp32" not in names:
+        raise argparse.ArgumentTypeError("must include fp32 (the precision targets compare against it)")
+    return names
+
+
+def remove_tmp(tmp):
+    """Removes the renders in tmp (OUT/tmp) and the folder."""
+    if os.path.isdir(tmp):
+        for name in os.listdir(tmp):
+            os.remove(os.path.join(tmp, name))
+        os.rmdir(tmp)
 
 
 class Octrace:
@@ -95,16 +139,16 @@ def progress(msg):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--octrace", default="build/app/octrace")
+    ap = tool_args.Parser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--octrace", type=tool_args.executable, default="build/app/octrace")
     ap.add_argument("--device", default="auto")
-    ap.add_argument("--size", default="160x90", help="image size of the sweep and the converged test")
-    ap.add_argument("--study-size", default="1200x800", help="image size of the study's 10 spp comparison")
-    ap.add_argument("--ref-spp", type=int, default=4096)
-    ap.add_argument("--max-spp", type=int, default=256)
-    ap.add_argument("--converged-spp", type=int, default=1024)
-    ap.add_argument("--depths", default="4,8,16,50")
-    ap.add_argument("--precisions", default=",".join(PRECISIONS))
+    ap.add_argument("--size", type=size, default="160x90", help="image size of the sweep and the converged test")
+    ap.add_argument("--study-size", type=size, default="1200x800", help="image size of the study's 10 spp comparison")
+    ap.add_argument("--ref-spp", type=tool_args.positive_int, default=4096)
+    ap.add_argument("--max-spp", type=tool_args.positive_int, default=256)
+    ap.add_argument("--converged-spp", type=tool_args.positive_int, default=1024)
+    ap.add_argument("--depths", type=depth_list, default="4,8,16,50")
+    ap.add_argument("--precisions", type=precision_list, default=",".join(PRECISIONS))
     ap.add_argument("--rr-depth", type=int, default=3,
                     help="also sweep fp32 at depth 50 with Russian roulette from this bounce (0: no)")
     ap.add_argument("--nee-off", action="store_true",
@@ -116,6 +160,9 @@ def main():
     args = ap.parse_args()
 
     if args.replot:
+        for name in ("accuracy.csv", "accuracy.md"):
+            if not os.path.isfile(os.path.join(args.replot, name)):
+                tool_args.fail("accuracy.py", f"--replot {args.replot}: no {name} there")
         with open(os.path.join(args.replot, "accuracy.csv"), newline="") as f:
             rows = list(csv.DictReader(f))
         with open(os.path.join(args.replot, "accuracy.md")) as f:
@@ -123,12 +170,26 @@ def main():
         plot(rows, os.path.join(args.replot, "accuracy.png"), title)
         return
 
+    if os.path.exists(args.out) and not os.path.isdir(args.out):
+        tool_args.fail("accuracy.py", f"--out {args.out}: is a file, not a folder")
+    created = not os.path.isdir(args.out)
     os.makedirs(args.out, exist_ok=True)
     tmp = os.path.join(args.out, "tmp")
     os.makedirs(tmp, exist_ok=True)
+    try:
+        measure_all(args, tmp)
+    finally:
+        remove_tmp(tmp)  # on success too: the renders are temporaries
+        if created and not os.listdir(args.out):
+            os.rmdir(args.out)  # a failure before any output: leave no empty folder
+    print(open(os.path.join(args.out, "precision.md")).read())
+
+
+def measure_all(args, tmp):
+    """The sweep and the precision targets, renders in tmp."""
     o = Octrace(args.octrace, args.device, args.scene_flags.split())
-    precisions = args.precisions.split(",")
-    depths = [int(d) for d in args.depths.split(",")]
+    precisions = args.precisions
+    depths = args.depths
 
     ref = os.path.join(tmp, "reference.pfm")
     progress(f"reference: fp32, {args.ref_spp} spp, {args.size}")
@@ -224,10 +285,6 @@ def main():
             err, info = conv[precision]
             f.write(f"| {precision} | {err['rel_mse']:.3g} | {err['rel_mse'] / conv_floor['rel_mse']:.2f} | "
                     f"{err['ssim']:.4f} | {info['nonfinite_samples']} |\n")
-    for name in os.listdir(tmp):
-        os.remove(os.path.join(tmp, name))
-    os.rmdir(tmp)
-    print(open(os.path.join(args.out, "precision.md")).read())
 
 
 if __name__ == "__main__":

@@ -26,7 +26,9 @@ Needs perf, gdb and objdump (Debian: linux-perf, gdb, binutils;
 `OCTRACE_SETUP_PROFILING=1 tools/setup.sh` installs them), and the right
 to attach to a child process (root, or kernel.yama.ptrace_scope 0 and
 kernel.perf_event_paranoid <= 1). A tool for developers; CI does not run it.
-Optimisation log 84 has what it found.
+Optimisation log 84 has what it found. Bad input exits with 2: where the
+render fails, with octrace's error line; where it ends too soon, perf
+fails or the tool stops early, the render is stopped.
 """
 import argparse
 import collections
@@ -36,13 +38,38 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 import time
+
+import tool_args
 
 
 def fail(message):
-    print(f"llvmpipe_profile.py: {message}", file=sys.stderr)
-    sys.exit(2)
+    tool_args.fail("llvmpipe_profile.py", message)
+
+
+def seconds(text):
+    """A number of seconds >= 0 (--wait)."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = -1.0
+    if not 0 <= value < 1e6:  # NaN fails this too
+        raise argparse.ArgumentTypeError(f"must be a number of seconds >= 0, got {text!r}")
+    return value
+
+
+def positive_seconds(text):
+    """A number of seconds > 0 (--seconds)."""
+    if seconds(text) == 0:
+        raise argparse.ArgumentTypeError(f"must be a number of seconds > 0, got {text!r}")
+    return float(text)
+
+
+def last_line(path):
+    """The last non-empty line of a log (octrace's error, where it failed)."""
+    with open(path, errors="replace") as f:
+        lines = [line.strip() for line in f if line.strip()]
+    return lines[-1] if lines else "no output"
 
 
 def executable_anonymous_mappings(pid):
@@ -58,13 +85,13 @@ def executable_anonymous_mappings(pid):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+    parser = tool_args.Parser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter,
                                      epilog="\n\n".join(__doc__.split("\n\n")[1:]))
-    parser.add_argument("--octrace", default="build/app/octrace")
+    parser.add_argument("--octrace", type=tool_args.executable, default="build/app/octrace")
     parser.add_argument("--out", default="build/llvmpipe_profile")
-    parser.add_argument("--wait", type=float, default=2.5, help="seconds before sampling starts")
-    parser.add_argument("--seconds", type=float, default=3.0, help="seconds of sampling")
+    parser.add_argument("--wait", type=seconds, default=2.5, help="seconds before sampling starts")
+    parser.add_argument("--seconds", type=positive_seconds, default=3.0, help="seconds of sampling")
     parser.add_argument("render", nargs=argparse.REMAINDER, help="-- then the render arguments")
     args = parser.parse_args()
     render = args.render[1:] if args.render[:1] == ["--"] else args.render
@@ -73,36 +100,54 @@ def main():
     for tool in ("perf", "gdb", "objdump"):
         if shutil.which(tool) is None:
             fail(f"{tool} is not installed (Debian: OCTRACE_SETUP_PROFILING=1 tools/setup.sh)")
-    if not os.access(args.octrace, os.X_OK):
-        fail(f"{args.octrace}: no such executable (build first, or pass --octrace)")
+    if os.path.exists(args.out) and not os.path.isdir(args.out):
+        fail(f"--out {args.out}: is a file, not a folder")
     os.makedirs(args.out, exist_ok=True)
     env = dict(os.environ)
     env.setdefault("XDG_RUNTIME_DIR", "/tmp")
 
     command = [args.octrace, "render", "--device", "cpu", *render, "--out", os.path.join(args.out, "image.png")]
-    with open(os.path.join(args.out, "render.log"), "w") as log:
+    log_path = os.path.join(args.out, "render.log")
+    with open(log_path, "w") as log:
         proc = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, env=env)
-        time.sleep(args.wait)
-        if proc.poll() is not None:
-            fail(f"the render ended within --wait ({args.wait} s); give it more work (see {args.out}/render.log)")
-        perf_data = os.path.join(args.out, "perf.data")
-        subprocess.run(["perf", "record", "-F", "4000", "-p", str(proc.pid), "-o", perf_data, "--",
-                        "sleep", str(args.seconds)], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        if proc.poll() is not None:
-            fail(f"the render ended while perf sampled it; give it more work (see {args.out}/render.log)")
-        for old in glob.glob(os.path.join(args.out, "code_*.bin")):
-            os.remove(old)
-        mappings = executable_anonymous_mappings(proc.pid)
-        gdb = ["gdb", "-p", str(proc.pid), "-batch"]
-        for start, end in mappings:
-            gdb += ["-ex", f"dump binary memory {args.out}/code_{start:x}.bin {start:#x} {end:#x}"]
-        subprocess.run(gdb, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        proc.wait()
+        try:
+            time.sleep(args.wait)
+            if proc.poll() is not None:
+                if proc.returncode != 0:  # octrace refused its arguments, or failed
+                    fail(f"the render failed (exit {proc.returncode}): {last_line(log_path)}")
+                fail(f"the render ended within --wait ({args.wait} s); give it more work (see {log_path})")
+            perf_data = os.path.join(args.out, "perf.data")
+            # perf dies too where the render ends while it samples: that is
+            # checked first, as the likelier cause.
+            perf = subprocess.run(["perf", "record", "-F", "4000", "-p", str(proc.pid), "-o", perf_data, "--",
+                                   "sleep", str(args.seconds)], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                                  text=True)
+            if proc.poll() is not None:
+                if proc.returncode != 0:
+                    fail(f"the render failed (exit {proc.returncode}): {last_line(log_path)}")
+                fail(f"the render ended while perf sampled it; give it more work (see {log_path})")
+            if perf.returncode != 0:
+                why = (perf.stderr.strip().splitlines() or ["no message"])[-1]
+                fail(f"perf record failed (exit {perf.returncode}): {why}")
+            for old in glob.glob(os.path.join(args.out, "code_*.bin")):
+                os.remove(old)
+            mappings = executable_anonymous_mappings(proc.pid)
+            gdb = ["gdb", "-p", str(proc.pid), "-batch"]
+            for start, end in mappings:
+                gdb += ["-ex", f"dump binary memory {args.out}/code_{start:x}.bin {start:#x} {end:#x}"]
+            subprocess.run(gdb, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            proc.wait()
+        finally:
+            if proc.poll() is None:  # the tool stops early: stop the render too
+                proc.terminate()
+                proc.wait()
     if proc.returncode != 0:
-        fail(f"the render failed (exit {proc.returncode}); see {args.out}/render.log")
+        fail(f"the render failed (exit {proc.returncode}): {last_line(log_path)}")
 
-    script = subprocess.run(["perf", "script", "-i", perf_data, "-F", "ip,dso"],
-                            check=True, capture_output=True, text=True).stdout
+    script = subprocess.run(["perf", "script", "-i", perf_data, "-F", "ip,dso"], capture_output=True, text=True)
+    if script.returncode != 0:
+        fail(f"perf script failed (exit {script.returncode}): {(script.stderr.strip().splitlines() or [''])[-1]}")
+    script = script.stdout
     counts = collections.Counter()  # address -> samples in code of no file (perf's "[JIT]")
     total = 0
     for line in script.splitlines():

@@ -3,20 +3,33 @@
 curved sheet, placed by K nodes (default 1) on a square layout, for
 measuring the octree build over many triangles and instancing:
 
+    tools/make_grid_glb.py N OUT.glb [K]
     tools/make_grid_glb.py 708 /tmp/grid1m.glb          # 1,002,528 triangles
     tools/make_grid_glb.py 187 /tmp/grid400.glb 400     # 69,938 triangles, 400 instances
 
-Python standard library only.
+Bad input (N or K not a whole number >= 1, N too large for 32-bit indices,
+OUT in a folder that does not exist) exits with 2. Python standard library only.
 """
+import argparse
 import json
 import math
 import struct
-import sys
+
+import tool_args
+
+MAX_N = 65535  # the largest grid whose (N + 1)^2 vertices 32-bit indices reach
 
 
 def main():
-    n, out = int(sys.argv[1]), sys.argv[2]
-    k = int(sys.argv[3]) if len(sys.argv) > 3 else 1
+    parser = tool_args.Parser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("n", metavar="N", type=tool_args.positive_int, help="quads per side of the grid")
+    parser.add_argument("out", metavar="OUT.glb", type=tool_args.output_file, help="the .glb to write")
+    parser.add_argument("k", metavar="K", type=tool_args.positive_int, nargs="?", default=1,
+                        help="nodes placing the grid (instances; default 1)")
+    args = parser.parse_args()
+    n, out, k = args.n, args.out, args.k
+    if n > MAX_N:
+        parser.error(f"argument N: at most {MAX_N} (32-bit indices), got {n}")
     side = math.ceil(math.sqrt(k))
     verts = bytearray()
     for y in range(n + 1):

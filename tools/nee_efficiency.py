@@ -19,7 +19,9 @@ sampling adds little.
 
   tools/nee_efficiency.py [--octrace build/app/octrace] [--device cpu] [--out docs/results/nee_lavapipe]
 
-Writes OUT/nee.md. Default settings run in a few minutes on lavapipe.
+Writes OUT/nee.md. Default settings run in a few minutes on lavapipe. Bad
+input exits with 2 before any render; a render that fails ends the tool with
+octrace's error line and its exit status, and removes OUT/tmp.
 """
 import argparse
 import json
@@ -28,12 +30,27 @@ import statistics
 import subprocess
 import sys
 
+import tool_args
+
 
 def run(cmd):
     out = subprocess.run(cmd, capture_output=True, text=True)
     if out.returncode != 0:
-        sys.exit(f"nee_efficiency: {' '.join(cmd)} failed: {out.stderr.strip()}")
+        # The program's last line of stderr says what is wrong (octrace's
+        # error); named after the running script, as nee_cost_ab.py uses this.
+        lines = out.stderr.strip().splitlines() or [f"exit {out.returncode}"]
+        print(f"{os.path.basename(sys.argv[0])}: {os.path.basename(cmd[0])} {cmd[1]} failed: {lines[-1]}",
+              file=sys.stderr)
+        sys.exit(out.returncode if out.returncode > 0 else 1)
     return out.stdout
+
+
+def spp_list(text):
+    """Comma-separated sample counts, each >= 1."""
+    try:
+        return [tool_args.positive_int(s) for s in text.split(",")]
+    except argparse.ArgumentTypeError:
+        raise argparse.ArgumentTypeError(f"expected whole numbers >= 1 separated by commas, got {text!r}")
 
 
 def render(args, scene_flags, path, spp, nee, seed, size):
@@ -117,9 +134,8 @@ def far_light_scene(octrace, device, tmp):
     (r = 0.5, radiance 50) 30 above it, which lights little: where NEE costs
     a shadow ray per vertex for almost nothing. Returns the JSON's path."""
     far = os.path.join(tmp, "rtiow_far_light.json")
-    subprocess.run([octrace, "render", "--quiet", "--device", device, "--size", "8x8", "--spp", "1",
-                    "--dump-scene", far, "--out", os.path.join(tmp, "dump.png")], check=True,
-                   capture_output=True)
+    run([octrace, "render", "--quiet", "--device", device, "--size", "8x8", "--spp", "1",
+         "--dump-scene", far, "--out", os.path.join(tmp, "dump.png")])
     with open(far) as f:
         scene = json.load(f)
     scene["materials"].append({"type": "emissive", "radiance": [50, 50, 50]})
@@ -130,21 +146,41 @@ def far_light_scene(octrace, device, tmp):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--octrace", default="build/app/octrace")
+    ap = tool_args.Parser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--octrace", type=tool_args.executable, default="build/app/octrace")
     ap.add_argument("--device", default="auto")
     ap.add_argument("--size", default="96x54")
-    ap.add_argument("--ref-spp", type=int, default=2048)
+    ap.add_argument("--ref-spp", type=tool_args.positive_int, default=2048)
     ap.add_argument("--spps", default="16,32,64")
-    ap.add_argument("--repeats", type=int, default=5, help="timed runs per setting (median)")
+    ap.add_argument("--repeats", type=tool_args.positive_int, default=5, help="timed runs per setting (median)")
     ap.add_argument("--out", default="docs/results/nee")
     args = ap.parse_args()
+    try:
+        spps = spp_list(args.spps)  # kept as text in args: nee.md quotes it
+    except argparse.ArgumentTypeError as e:
+        ap.error(f"argument --spps: {e}")
+    if os.path.exists(args.out) and not os.path.isdir(args.out):
+        tool_args.fail("nee_efficiency.py", f"--out {args.out}: is a file, not a folder")
+    created = not os.path.isdir(args.out)
     os.makedirs(args.out, exist_ok=True)
     tmp = os.path.join(args.out, "tmp")
     os.makedirs(tmp, exist_ok=True)
+    try:
+        measure_all(args, tmp, spps)
+    finally:
+        # The renders and scenes in tmp are temporaries, on failure too.
+        for name in os.listdir(tmp):
+            os.remove(os.path.join(tmp, name))
+        os.rmdir(tmp)
+        if created and not os.listdir(args.out):
+            os.rmdir(args.out)  # a failure before any output: leave no empty folder
+    print(open(os.path.join(args.out, "nee.md")).read())
+
+
+def measure_all(args, tmp, spps):
+    """The renders, and OUT/nee.md."""
     here = os.path.dirname(os.path.abspath(__file__))
     small = ["--scene", os.path.join(here, "nee", "small_light.json")]
-    spps = [int(s) for s in args.spps.split(",")]
 
     device, rows = efficiency(args, small, tmp, spps, "small sphere light")
     quad = ["--scene", write_quad_light(tmp, here)]
@@ -169,7 +205,9 @@ def main():
         cost.append((name, t["on"], t["off"], t["on"] / t["off"]))
         print(f"{name}: on {t['on']:.1f} ms, off {t['off']:.1f} ms", file=sys.stderr)
 
-    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+    # The commit of the tools' checkout, whatever the current folder.
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
+                            cwd=here).stdout.strip() or "unknown"
     with open(os.path.join(args.out, "nee.md"), "w") as f:
         f.write(f"Device: {device['name']} ({device['type']}); commit {commit}; "
                 f"`tools/nee_efficiency.py --device {args.device} --size {args.size} --ref-spp {args.ref_spp} "
@@ -193,10 +231,6 @@ def main():
         f.write("| scene | NEE on ms | NEE off ms | on / off |\n|---|---:|---:|---:|\n")
         for name, on, off, ratio in cost:
             f.write(f"| {name} | {on:.1f} | {off:.1f} | {ratio:.2f} |\n")
-    for name in os.listdir(tmp):
-        os.remove(os.path.join(tmp, name))
-    os.rmdir(tmp)
-    print(open(os.path.join(args.out, "nee.md")).read())
 
 
 if __name__ == "__main__":

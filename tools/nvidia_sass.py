@@ -20,7 +20,9 @@ sizes only. This reads the code itself, in two steps:
      unpack it here; step 3 needs only the .code files.)
   3. tools/nvidia_sass.py disasm DIR --nvdisasm PATH [--arch SM90]
      nvdisasm -b ARCH (raw code) on each .code file -> DIR/pipeline_N.sass,
-     on the GPU machine (nvdisasm comes with the CUDA toolkit).
+     on the GPU machine (nvdisasm comes with the CUDA toolkit). Where
+     nvdisasm fails on a file, the tool stops with its error (exit 2) and
+     removes the .sass files it wrote.
   4. tools/nvidia_sass.py stats FILE.sass[.gz] ...
      Counts per file: instructions, global loads and stores, local memory
      (the walks' stacks), shared memory, branches, convergence barriers,
@@ -36,14 +38,15 @@ import gzip
 import os
 import re
 import subprocess
-import sys
+import zlib
+
+import tool_args
 
 ZSTD_MAGIC = bytes.fromhex("28b52ffd")
 
 
 def fail(message):
-    print(f"nvidia_sass.py: {message}", file=sys.stderr)
-    sys.exit(2)
+    tool_args.fail("nvidia_sass.py", message)
 
 
 def sections(obj):
@@ -102,11 +105,18 @@ def disasm(out_dir, nvdisasm, arch):
     codes = sorted(f for f in os.listdir(out_dir) if f.endswith(".code"))
     if not codes:
         fail(f"{out_dir}: no .code files (run unpack first)")
+    written = []
     for f in codes:
         src = os.path.join(out_dir, f)
         dst = src[:-len(".code")] + ".sass"
         p = subprocess.run([nvdisasm, "-b", arch, src], capture_output=True, text=True)
+        if p.returncode != 0:
+            for done in written:
+                os.remove(done)  # no half set of .sass files
+            why = (p.stderr.strip().splitlines() or ["no message"])[-1]
+            fail(f"{nvdisasm} -b {arch} {src}: exit {p.returncode}: {why}")
         open(dst, "w").write(p.stdout)
+        written.append(dst)
         print(f"{dst}: nvdisasm exit {p.returncode}, {p.stdout.count(chr(10))} lines"
               + (f" ({p.stderr.strip()[:200]})" if p.returncode else ""))
 
@@ -133,31 +143,40 @@ def stats(files):
     for f in files:
         if not os.path.isfile(f):
             fail(f"{f}: no such file")
-    print("| file | instructions | " + " | ".join(c for c, _ in CLASSES) + " |")
-    print("|---|" + "---:|" * (len(CLASSES) + 1))
+    rows = []  # every file is counted before the table starts, so that a bad one leaves no half table
     for f in files:
         counts = [0] * len(CLASSES)
         total = 0
-        for line in (gzip.open(f, "rt") if f.endswith(".gz") else open(f)):
-            m = INSTRUCTION.search(line)
-            if not m:
-                continue
-            total += 1
-            for i, (_, test) in enumerate(CLASSES):
-                if test(m.group(1), line):
-                    counts[i] += 1
-        print(f"| {os.path.basename(f)} | {total} | " + " | ".join(str(c) for c in counts) + " |")
+        try:
+            with (gzip.open(f, "rt") if f.endswith(".gz") else open(f)) as text:
+                for line in text:
+                    m = INSTRUCTION.search(line)
+                    if not m:
+                        continue
+                    total += 1
+                    for i, (_, test) in enumerate(CLASSES):
+                        if test(m.group(1), line):
+                            counts[i] += 1
+        except (OSError, EOFError, zlib.error) as e:  # gzip's BadGzipFile is an OSError
+            fail(f"{f}: not readable{' gzip' if f.endswith('.gz') else ''} text ({e})")
+        except UnicodeDecodeError:
+            fail(f"{f}: not text (nvdisasm's output, a .sass or .sass.gz file)")
+        rows.append(f"| {os.path.basename(f)} | {total} | " + " | ".join(str(c) for c in counts) + " |")
+    print("| file | instructions | " + " | ".join(c for c, _ in CLASSES) + " |")
+    print("|---|" + "---:|" * (len(CLASSES) + 1))
+    for row in rows:
+        print(row)
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = tool_args.Parser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = ap.add_subparsers(dest="cmd", required=True)
     u = sub.add_parser("unpack", help="the pipelines' code out of a pipeline cache dump")
     u.add_argument("cache")
     u.add_argument("out_dir")
     d = sub.add_parser("disasm", help="nvdisasm on every .code file of a folder")
     d.add_argument("out_dir")
-    d.add_argument("--nvdisasm", default="nvdisasm")
+    d.add_argument("--nvdisasm", type=tool_args.executable, default="nvdisasm")
     d.add_argument("--arch", default="SM90")
     s = sub.add_parser("stats", help="instruction counts of .sass files")
     s.add_argument("files", nargs="+")
@@ -165,6 +184,8 @@ def main():
     if a.cmd == "unpack":
         if not os.path.isfile(a.cache):
             fail(f"{a.cache}: no such file")
+        if os.path.exists(a.out_dir) and not os.path.isdir(a.out_dir):
+            fail(f"{a.out_dir}: is a file, not a folder")
         unpack(a.cache, a.out_dir)
     elif a.cmd == "disasm":
         disasm(a.out_dir, a.nvdisasm, a.arch)

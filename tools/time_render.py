@@ -13,11 +13,13 @@ import subprocess
 import sys
 import time
 
+import tool_args
+
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--runs", type=int, default=5)
-    ap.add_argument("--octrace", default="build/app/octrace")
+    ap = tool_args.Parser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--runs", type=tool_args.positive_int, default=5)
+    ap.add_argument("--octrace", type=tool_args.executable, default="build/app/octrace")
     ap.add_argument("flags", nargs=argparse.REMAINDER)
     args = ap.parse_args()
     flags = [f for f in args.flags if f != "--"]

@@ -11,26 +11,33 @@ by design; colours, textures and their placement must not.
       [--size 600x400] [--spp 64] [--device auto]
 
 Needs the Python packages pyrender and trimesh (pip install pyrender trimesh)
-and Debian's libegl1 and libegl-mesa0 (tools/setup.sh installs them).
+and Debian's libegl1 and libegl-mesa0 (tools/setup.sh installs them). Bad
+input exits with 2 before any render; where octrace fails, with its error line.
 """
 import argparse
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
+
+import tool_args
 
 # Off-screen OpenGL through Mesa's EGL without a display (llvmpipe here).
 os.environ.setdefault("PYOPENGL_PLATFORM", "egl")
 os.environ.setdefault("EGL_PLATFORM", "surfaceless")
 
-import numpy as np  # noqa: E402
-import pyrender  # noqa: E402
-import trimesh  # noqa: E402
-from PIL import Image, ImageDraw  # noqa: E402
+
+def size(text):
+    """WIDTHxHEIGHT."""
+    if not re.fullmatch(r"[1-9][0-9]{0,8}x[1-9][0-9]{0,8}", text):
+        raise argparse.ArgumentTypeError(f"expected WIDTHxHEIGHT (e.g. 600x400), got {text!r}")
+    return text
 
 
 def look_at_pose(eye, target, up):
+    import numpy as np
     eye, target, up = (np.asarray(v, dtype=float) for v in (eye, target, up))
     z = eye - target
     z /= np.linalg.norm(z)
@@ -43,20 +50,34 @@ def look_at_pose(eye, target, up):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--octrace", default="build/app/octrace")
-    ap.add_argument("--scene", required=True, help=".gltf or .glb")
-    ap.add_argument("--out", required=True, help="the side-by-side PNG")
-    ap.add_argument("--size", default="600x400")
-    ap.add_argument("--spp", type=int, default=64)
+    ap = tool_args.Parser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--octrace", type=tool_args.executable, default="build/app/octrace")
+    ap.add_argument("--scene", required=True, type=tool_args.input_file, help=".gltf or .glb")
+    ap.add_argument("--out", required=True, type=tool_args.output_file, help="the side-by-side PNG")
+    ap.add_argument("--size", type=size, default="600x400")
+    ap.add_argument("--spp", type=tool_args.positive_int, default=64)
     ap.add_argument("--device", default="auto")
     args = ap.parse_args()
     width, height = (int(v) for v in args.size.split("x"))
+    # The viewer's modules, checked before the render.
+    try:
+        import numpy as np
+        import pyrender
+        import trimesh
+        from PIL import Image, ImageDraw
+    except ImportError as e:
+        tool_args.fail("viewer_compare.py", f"needs the Python module {e.name or e} (pip install pyrender trimesh)")
 
     with tempfile.TemporaryDirectory() as tmp:
         dump, ours = os.path.join(tmp, "scene.json"), os.path.join(tmp, "octrace.png")
-        subprocess.run([args.octrace, "render", "--scene", args.scene, "--size", args.size, "--spp", str(args.spp),
-                        "--device", args.device, "--quiet", "--dump-scene", dump, "--out", ours], check=True)
+        r = subprocess.run([args.octrace, "render", "--scene", args.scene, "--size", args.size, "--spp", str(args.spp),
+                            "--device", args.device, "--quiet", "--dump-scene", dump, "--out", ours],
+                           stderr=subprocess.PIPE, text=True)
+        if r.returncode != 0:  # octrace says what is wrong on its last line
+            why = (r.stderr.strip().splitlines() or [f"exit {r.returncode}"])[-1]
+            print(f"viewer_compare.py: octrace render failed: {why}", file=sys.stderr)
+            return r.returncode if r.returncode > 0 else 1
+        sys.stderr.write(r.stderr)  # its warnings, as before
         camera = json.load(open(dump))["camera"]
         octrace_image = Image.open(ours).convert("RGB")
 

@@ -32,6 +32,8 @@ import subprocess
 import sys
 import tempfile
 
+import tool_args
+
 
 def render(binary, args, out_dir):
     cmd = [binary, "render"] + args + ["--walk-stats", "--json", "-q", "--out", os.path.join(out_dir, "walk.pfm")]
@@ -42,33 +44,47 @@ def render(binary, args, out_dir):
     return json.loads(p.stdout)
 
 
+def split_flags(what, text):
+    """Shell-style words of a flags string; bad quoting ends the tool in one line."""
+    try:
+        return shlex.split(text)
+    except ValueError as e:  # e.g. "No closing quotation"
+        tool_args.fail("walk_stats.py", f"{what}: {e} in {text!r}")
+
+
 def busy(count, slots):
     """The share of a subgroup's lanes busy at the steps counted (octrace's walk.*_slots)."""
     return f"{100.0 * count / slots:.0f}%" if slots else "-"
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--octrace", required=True, help="the octrace binary")
+    ap = tool_args.Parser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--octrace", required=True, type=tool_args.executable, help="the octrace binary")
     ap.add_argument("--accel", default="octree,bvh", help="comma-separated structures (default octree,bvh)")
     ap.add_argument("--render", default="", help="flags every render shares")
     ap.add_argument("--scene", action="append", required=True, help="LABEL=FLAGS of one scene (repeatable)")
-    ap.add_argument("--out", help="also write the table as markdown here")
+    ap.add_argument("--out", type=tool_args.output_file, help="also write the table as markdown here")
     a = ap.parse_args()
 
-    shared = shlex.split(a.render)
+    shared = split_flags("--render", a.render)
     accels = [x for x in a.accel.split(",") if x]
+    if not accels:
+        tool_args.fail("walk_stats.py", f"--accel {a.accel!r}: no structure named (e.g. octree,bvh)")
+    # Every --scene is read before the first render.
+    scenes = []
+    for spec in a.scene:
+        label, sep, flags = spec.partition("=")
+        if not sep or not label:
+            tool_args.fail("walk_stats.py", f"--scene '{spec}' is not LABEL=FLAGS")
+        scenes.append((label, split_flags(f"--scene '{label}=...'", flags)))
     header = ("| scene | accel | queries | nodes | leaves | box tests | primitive tests | primitives per leaf "
               "| mesh instances | lanes busy: queries | nodes | primitives |")
     rows = [header, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     device = ""
-    for spec in a.scene:
-        label, sep, flags = spec.partition("=")
-        if not sep or not label:
-            sys.exit(f"walk_stats.py: --scene '{spec}' is not LABEL=FLAGS")
+    for label, flags in scenes:
         for accel in accels:
             with tempfile.TemporaryDirectory() as out_dir:
-                j = render(a.octrace, shared + shlex.split(flags) + ["--accel", accel], out_dir)
+                j = render(a.octrace, shared + flags + ["--accel", accel], out_dir)
             device = j["device"]["name"]
             w = j["walk"]
             q = w["queries"] or 1

@@ -32,6 +32,10 @@ import re
 import statistics
 import subprocess
 import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+import tool_args  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCENE = os.path.join(HERE, "..", "scenes", "peer_field.json")
@@ -42,6 +46,12 @@ def run(cmd, log, cwd=None):
     with open(log, "a") as f:
         f.write("$ " + " ".join(cmd) + "\n" + p.stdout + p.stderr + "\n")
     if p.returncode != 0:
+        # octrace says what it refused on a line of its own: quote that one
+        # (its exit 2, bad input such as --octrace-args, stays 2).
+        said = [l for l in p.stderr.splitlines() if l.startswith("octrace: error:")]
+        if said:
+            print(f"compare.py: octrace failed (exit {p.returncode}): {said[-1]} ({log})", file=sys.stderr)
+            sys.exit(2 if p.returncode == 2 else 1)
         sys.exit(f"compare.py: {' '.join(cmd)} failed with exit {p.returncode} (see {log})")
     return p.stdout
 
@@ -62,24 +72,37 @@ def octrace_run(a, log, extra):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = tool_args.Parser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--peer", required=True, help="folder of the headless peer (build.sh, src/)")
-    ap.add_argument("--octrace", required=True, help="octrace binary")
+    ap.add_argument("--octrace", required=True, type=tool_args.executable, help="octrace binary")
     ap.add_argument("--out", required=True, help="output folder")
-    ap.add_argument("--rounds", type=int, default=5)
+    ap.add_argument("--rounds", type=tool_args.positive_int, default=5)
     ap.add_argument("--size", default="1920x1080")
-    ap.add_argument("--spp", type=int, default=64)
-    ap.add_argument("--depth", type=int, default=50)
+    ap.add_argument("--spp", type=tool_args.positive_int, default=64)
+    ap.add_argument("--depth", type=tool_args.positive_int, default=50)
     ap.add_argument("--device", default="gpu")
     ap.add_argument("--octrace-args", default="", help="extra render options for octrace (a variant)")
     a = ap.parse_args()
-    a.width, a.height = (int(v) for v in a.size.split("x"))
+    # Everything checked before the peer is built or anything runs.
+    w, x, h = a.size.partition("x")
+    if not (x and w.isdigit() and h.isdigit() and int(w) > 0 and int(h) > 0):
+        tool_args.fail("compare.py", f"--size {a.size!r}: expected WIDTHxHEIGHT, e.g. 1920x1080")
+    a.width, a.height = int(w), int(h)
     a.octrace = os.path.abspath(a.octrace)
-    os.makedirs(a.out, exist_ok=True)
-    log = os.path.join(a.out, "compare.log")
-    open(log, "w").close()
     peer = os.path.abspath(a.peer)
     bench = os.path.join(peer, "karim_bench")
+    if not os.path.isdir(peer):
+        tool_args.fail("compare.py", f"--peer {a.peer}: no such folder (see tools/peer/README.md)")
+    if not os.path.exists(bench) and not os.path.isfile(os.path.join(peer, "build.sh")):
+        tool_args.fail("compare.py", f"--peer {a.peer}: neither karim_bench nor build.sh in it (see tools/peer/README.md)")
+    if os.path.exists(a.out) and not os.path.isdir(a.out):
+        tool_args.fail("compare.py", f"--out {a.out}: is a file, not a folder")
+    try:
+        os.makedirs(a.out, exist_ok=True)
+    except OSError as e:
+        tool_args.fail("compare.py", f"--out {a.out}: cannot make the folder: {e.strerror}")
+    log = os.path.join(a.out, "compare.log")
+    open(log, "w").close()
     if not os.path.exists(bench):
         print("building the peer (build.sh) ...", file=sys.stderr)
         run(["./build.sh"], log, cwd=peer)

@@ -25,11 +25,15 @@ import json
 import os
 import platform
 import resource
+import shutil
 import statistics
 import subprocess
 import sys
 import time
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+import tool_args  # noqa: E402
 
 MITSUBA_VERSION = "3.9.1"
 ROOT = Path(__file__).resolve().parents[2]
@@ -56,6 +60,24 @@ def run(cmd, **kw):
     if out.returncode != 0:
         fail(f"{' '.join(map(str, cmd))} failed ({out.returncode}): {out.stderr.strip()[-2000:]}")
     return out
+
+
+def python_program(text):
+    """--python: an executable file, or a name on PATH."""
+    if not text or not shutil.which(text):
+        raise argparse.ArgumentTypeError(f"{text}: no such program, or not executable")
+    return text
+
+
+def check_python(py):
+    """Ends the tool in one line if the --python given cannot import Mitsuba
+    (or numpy, which the sky's export needs): checked before any work."""
+    p = subprocess.run([py, "-c", "import mitsuba, numpy"], capture_output=True, text=True)
+    if p.returncode != 0:
+        why = (p.stderr.strip().splitlines() or [f"exit {p.returncode}"])[-1]
+        tool_args.fail("mitsuba_compare.py",
+                       f"--python {py}: it lacks Mitsuba or numpy ({why}); give a Python with mitsuba=={MITSUBA_VERSION} "
+                       "and numpy, or leave --python out and the tool makes its own venv .venv-mitsuba")
 
 
 def mitsuba_python(arg):
@@ -144,19 +166,29 @@ def stats(xs):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--rounds", type=int, default=5)
-    ap.add_argument("--octrace", default=str(ROOT / "build/app/octrace"))
-    ap.add_argument("--python", help="a Python with mitsuba installed (default: .venv-mitsuba, created if missing)")
+    ap = tool_args.Parser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--rounds", type=tool_args.positive_int, default=5)
+    ap.add_argument("--octrace", type=tool_args.executable, default=str(ROOT / "build/app/octrace"))
+    ap.add_argument("--python", type=python_program,
+                    help="a Python with mitsuba installed (default: .venv-mitsuba, created if missing)")
     ap.add_argument("--out", default="/tmp/mitsuba_compare")
-    ap.add_argument("--markdown", help="also write the table and settings to this markdown file")
+    ap.add_argument("--markdown", type=tool_args.output_file,
+                    help="also write the table and settings to this markdown file")
     ap.add_argument("--octrace-flags", default="",
                     help="extra render flags for octrace's timed runs (e.g. \"--tail-depth 2\"); default none")
     args = ap.parse_args()
+    # The cheap checks first: the venv and Mitsuba's install come after them.
     if args.rounds < 5:
-        fail("--rounds: at least 5 (the table reports a median of >= 5)")
+        tool_args.fail("mitsuba_compare.py", "--rounds: at least 5 (the table reports a median of >= 5)")
     out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    if out.exists() and not out.is_dir():
+        tool_args.fail("mitsuba_compare.py", f"--out {out}: is a file, not a folder")
+    if args.python:
+        check_python(args.python)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        tool_args.fail("mitsuba_compare.py", f"--out {out}: cannot make the folder: {e.strerror}")
     env = dict(os.environ, XDG_RUNTIME_DIR=os.environ.get("XDG_RUNTIME_DIR", "/tmp"))
     py = mitsuba_python(args.python)
 
