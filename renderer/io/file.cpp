@@ -15,35 +15,40 @@
 namespace octrace {
 
 namespace {
-// The temporary being written (one at a time: writes happen on the main
-// thread), for remove_file_being_written.
-char g_writing[4096];
-std::atomic<bool> g_is_writing{false};
-}  // namespace
+// The temporaries written and not yet renamed (writes happen on the main
+// thread; a set holds at most kPending files), for remove_file_being_written.
+constexpr int kPending = 4;
+char g_writing[kPending][4096];
+std::atomic<bool> g_is_writing[kPending];
 
-void remove_file_being_written() noexcept {
-  if (g_is_writing.load()) ::unlink(g_writing);
+// Where the temporary of slot k is tracked, if its name fits.
+void track(int k, const std::string& tmp) {
+  if (k >= kPending || tmp.size() >= sizeof g_writing[k]) return;
+  std::memcpy(g_writing[k], tmp.c_str(), tmp.size() + 1);
+  g_is_writing[k] = true;
+}
+void untrack(int k) {
+  if (k < kPending) g_is_writing[k] = false;
 }
 
-void write_file_atomically(const std::string& path, const void* data, size_t size, const std::string& what) {
+// Writes `size` bytes to a new temporary beside `path` and flushes it to
+// disk; returns its name. On failure nothing is left and RuntimeError
+// "PATH: WHAT: reason" is thrown.
+std::string write_temporary(int slot, const std::string& path, const void* data, size_t size, const std::string& what) {
   // A name of our own with O_EXCL rather than mkstemp: mkstemp creates the
   // file 0600, and the renamed result should get the usual permissions.
   static std::atomic<uint64_t> counter{0};
   const std::string tmp = path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-  const bool tracked = tmp.size() < sizeof g_writing;
-  if (tracked) {
-    std::memcpy(g_writing, tmp.c_str(), tmp.size() + 1);
-    g_is_writing = true;
-  }
+  track(slot, tmp);
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
   if (fd < 0) {
-    g_is_writing = false;
+    untrack(slot);
     throw RuntimeError(path + ": " + what + ": " + std::strerror(errno));
   }
   const auto fail = [&](int err, bool open) {
     if (open) ::close(fd);
     ::unlink(tmp.c_str());
-    g_is_writing = false;
+    untrack(slot);
     throw RuntimeError(path + ": " + what + ": " + std::strerror(err));
   };
   const char* bytes = static_cast<const char*>(data);
@@ -56,8 +61,45 @@ void write_file_atomically(const std::string& path, const void* data, size_t siz
   // fsync before rename: otherwise a crash can leave the new name with empty contents.
   if (::fsync(fd) != 0) fail(errno, true);
   if (::close(fd) != 0) fail(errno, false);
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) fail(errno, false);
-  g_is_writing = false;
+  return tmp;
+}
+}  // namespace
+
+void remove_file_being_written() noexcept {
+  for (int k = 0; k < kPending; ++k)
+    if (g_is_writing[k].load()) ::unlink(g_writing[k]);
+}
+
+void write_file_atomically(const std::string& path, const void* data, size_t size, const std::string& what) {
+  write_files_atomically({{path, data, size, what}});
+}
+
+void write_files_atomically(const std::vector<FileToWrite>& files) {
+  // Every file to its temporary first; a failure removes those written.
+  std::vector<std::string> temps;
+  try {
+    for (const FileToWrite& f : files)
+      temps.push_back(write_temporary(int(temps.size()), f.path, f.data, f.size, f.what));
+  } catch (const RuntimeError&) {
+    for (size_t k = 0; k < temps.size(); ++k) {
+      ::unlink(temps[k].c_str());
+      untrack(int(k));
+    }
+    throw;
+  }
+  // Then the renames, each atomic; only one failing here (rare: the
+  // temporary was made in the same folder) leaves the ones before it.
+  for (size_t k = 0; k < temps.size(); ++k) {
+    if (std::rename(temps[k].c_str(), files[k].path.c_str()) != 0) {
+      const int err = errno;
+      for (size_t j = k; j < temps.size(); ++j) {
+        ::unlink(temps[j].c_str());
+        untrack(int(j));
+      }
+      throw RuntimeError(files[k].path + ": " + files[k].what + ": " + std::strerror(err));
+    }
+    untrack(int(k));
+  }
 }
 
 std::string read_file(const std::string& path) {

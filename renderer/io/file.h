@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace octrace {
 
@@ -16,9 +17,21 @@ namespace octrace {
 void write_file_atomically(const std::string& path, const void* data, size_t size,
                            const std::string& what = "cannot write");
 
-// Removes the temporary file that write_file_atomically is writing at this
-// moment, if any: async-signal-safe, for a handler that ends the process at
-// once (a second Ctrl-C), so that no partial file is left behind.
+// Several files that belong together (a state's .accum, .mean.pfm and
+// .count.pfm): every one is written to its temporary and flushed before
+// any is renamed, so that a failure while writing leaves none of them new
+// (each keeps its old contents). At most 4 files.
+struct FileToWrite {
+  std::string path;
+  const void* data;
+  size_t size;
+  std::string what = "cannot write";
+};
+void write_files_atomically(const std::vector<FileToWrite>& files);
+
+// Removes the temporary files that write_file(s)_atomically is writing at
+// this moment, if any: async-signal-safe, for a handler that ends the
+// process at once (a second Ctrl-C), so that no partial file is left behind.
 void remove_file_being_written() noexcept;
 
 // The whole file. Throws InputError "PATH: cannot open file: reason" (or

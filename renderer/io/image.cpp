@@ -684,11 +684,15 @@ void check_image_path(const std::string& path) {
   check_output_folder(path);
 }
 
-void write_image(const Image& image, const std::string& path) {
+std::vector<unsigned char> encode_image(const Image& image, const std::string& path) {
   ImageFormat format = image_format(path);
-  const Bytes bytes = format == ImageFormat::png   ? encode_png(image, path)
-                      : format == ImageFormat::pfm ? encode_pfm(image)
-                                                   : encode_exr(image, path);
+  return format == ImageFormat::png   ? encode_png(image, path)
+         : format == ImageFormat::pfm ? encode_pfm(image)
+                                      : encode_exr(image, path);
+}
+
+void write_image(const Image& image, const std::string& path) {
+  const Bytes bytes = encode_image(image, path);
   write_file_atomically(path, bytes.data(), bytes.size(), "cannot write image");
 }
 

@@ -23,6 +23,9 @@ struct Image {
 // failed run never leaves a truncated image. Throws InputError for an unknown
 // extension, RuntimeError when the file cannot be written.
 void write_image(const Image& image, const std::string& path);
+// The file's bytes that write_image writes (for several files written as
+// one set: write_files_atomically).
+std::vector<unsigned char> encode_image(const Image& image, const std::string& path);
 // Throws InputError if the extension is unknown before anything is rendered.
 void check_image_path(const std::string& path);
 

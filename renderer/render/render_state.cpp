@@ -32,13 +32,26 @@ std::string hex(uint64_t v) {
 
 }  // namespace
 
-void write_state(const RenderState& state, const std::string& prefix) {
+namespace {
+
+// PREFIX.mean.pfm and PREFIX.count.pfm, encoded, and with `accum` (a
+// checkpoint's PREFIX.accum) written as one set (write_files_atomically): a
+// failure leaves none of the state's files new.
+void write_state_files(const RenderState& state, const std::string& prefix, const std::string* accum) {
   Image count{state.mean.width, state.mean.height, std::vector<float>(state.mean.rgb.size())};
   for (size_t i = 0; i < state.count.size(); ++i)
     for (int c = 0; c < 3; ++c) count.rgb[3 * i + c] = state.count[i];
-  write_image(state.mean, mean_path(prefix));
-  write_image(count, count_path(prefix));
+  const std::vector<unsigned char> mean_bytes = encode_image(state.mean, mean_path(prefix)),
+                                   count_bytes = encode_image(count, count_path(prefix));
+  std::vector<FileToWrite> files = {{mean_path(prefix), mean_bytes.data(), mean_bytes.size(), "cannot write image"},
+                                    {count_path(prefix), count_bytes.data(), count_bytes.size(), "cannot write image"}};
+  if (accum) files.push_back({accum_path(prefix), accum->data(), accum->size(), "cannot write checkpoint"});
+  write_files_atomically(files);
 }
+
+}  // namespace
+
+void write_state(const RenderState& state, const std::string& prefix) { write_state_files(state, prefix, nullptr); }
 
 RenderState read_state(const std::string& prefix) {
   RenderState state;
@@ -166,8 +179,7 @@ void write_checkpoint(const std::string& prefix, const Accumulation& acc, const 
   std::memcpy(bytes.data() + header, acc.sum.data(), plane);
   std::memcpy(bytes.data() + header + plane, acc.comp.data(), plane);
   std::memcpy(bytes.data() + header + 2 * plane, acc.sq.data(), plane);
-  write_state(state, prefix);
-  write_file_atomically(accum_path(prefix), bytes.data(), bytes.size(), "cannot write checkpoint");
+  write_state_files(state, prefix, &bytes);
 }
 
 void check_state_paths(const std::string& prefix, bool checkpoint) {

@@ -23,7 +23,9 @@ struct RenderState {
   std::vector<float> count;  // per pixel
 };
 
-// Written atomically, like every image. Throws as write_image does.
+// PREFIX.mean.pfm and PREFIX.count.pfm, written as one set: each flushed to
+// a temporary before either is renamed (write_files_atomically), so a failed
+// write leaves neither new. Throws as write_image does.
 void write_state(const RenderState& state, const std::string& prefix);
 // Throws InputError naming the file when one is missing, unreadable, of
 // another size than its partner, or holds a count that is not a finite
@@ -84,9 +86,9 @@ inline float pixel_variance_of_mean(float m2, double n) {
 // resume it, in words ("sample seed 3, this render 1"); empty if none.
 std::string checkpoint_mismatch(const CheckpointInfo& saved, const CheckpointInfo& now);
 
-// PREFIX.accum: the raw buffers and the info (one file, written atomically,
-// so the two always agree), and PREFIX.mean.pfm + PREFIX.count.pfm as
-// write_state writes them (for octrace merge).
+// PREFIX.accum: the raw buffers and the info (one file, so the two always
+// agree), and PREFIX.mean.pfm + PREFIX.count.pfm as write_state writes them
+// (for octrace merge); the three written as one set.
 void write_checkpoint(const std::string& prefix, const Accumulation& acc, const CheckpointInfo& info,
                       const RenderState& state);
 // Checks, before any long work, that the state's files can be written

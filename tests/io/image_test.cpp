@@ -17,6 +17,7 @@
 
 #include "core/errors.h"
 #include "io/deflate.h"
+#include "io/file.h"
 
 namespace octrace {
 namespace {
@@ -117,6 +118,34 @@ TEST(Deflate, PiecesInflateToTheData) {
       EXPECT_EQ(back, input) << pieces << " pieces of " << input.size() << " bytes";
     }
   }
+}
+
+std::string contents(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A set of files (a state's three) is written as one: every file flushed to
+// its temporary before any is renamed, so a failure while writing one
+// leaves the others as they were (a render's --state wrote its .mean.pfm
+// and .count.pfm, then failed on .accum) and no temporary behind.
+TEST(FileSets, AFailedWriteLeavesEveryFileOfTheSetAsItWas) {
+  const std::string folder = fresh_folder();
+  const std::string a = folder + "/a.txt", b = folder + "/b.txt";
+  std::ofstream(a) << "old a";
+  const std::string new_a = "new a", new_b = "new b", new_c = "new c";
+  const std::string c = folder + "/missing/c.txt";
+  EXPECT_THROW(write_files_atomically({{a, new_a.data(), new_a.size()},
+                                       {b, new_b.data(), new_b.size()},
+                                       {c, new_c.data(), new_c.size()}}),
+               RuntimeError);
+  EXPECT_EQ(contents(a), "old a");
+  EXPECT_FALSE(fs::exists(b));
+  EXPECT_EQ(files_in(folder), (std::vector<std::string>{"a.txt"}));
+  write_files_atomically({{a, new_a.data(), new_a.size()}, {b, new_b.data(), new_b.size()}});
+  EXPECT_EQ(contents(a), "new a");
+  EXPECT_EQ(contents(b), "new b");
+  EXPECT_EQ(files_in(folder), (std::vector<std::string>{"a.txt", "b.txt"}));
 }
 
 TEST(ImageIo, PngRoundTripIsWithinEightBitQuantisation) {
