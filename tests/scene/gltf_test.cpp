@@ -955,6 +955,12 @@ TEST(GltfErrors, MissingBinAndImage) {
   b.add("images", {{"uri", "missing.png"}});
   EXPECT_EQ(load_error(b, "image.gltf"), "PATH: images[0].uri: cannot open " + tmp("missing.png") +
                                              ": No such file or directory");
+
+  // A folder where the .bin should be (tinygltf said "File not found").
+  std::filesystem::create_directories(tmp("folder/quad.bin"));
+  test::write_bytes(tmp("folder/quad.gltf"), test::quad_gltf().with_buffer("quad.bin").dump());
+  EXPECT_EQ(input_error([] { load_gltf_scene(tmp("folder/quad.gltf")); }),
+            tmp("folder/quad.gltf") + ": buffers[0].uri: " + tmp("folder/quad.bin") + " is a folder, not a file");
 }
 
 // Found by tests/fuzz/fuzz_gltf.cpp: tinygltf hands an image's bufferView to
