@@ -56,8 +56,8 @@ bool all_digits(const std::string& text) {
 // and a value too large as the largest; and it takes "" as 0 or as "not
 // given". So: an empty value is refused everywhere; an integer is decimal
 // digits only (a minus sign first where the type is signed), its leading
-// zeros dropped, and at most 2^64 - 1; a narrower type's own limit is
-// CLI11's "Could not convert" check.
+// zeros dropped, and within 64 bits; a narrower type's own limit is
+// CLI11's "Could not convert" check (both say "out of range").
 std::string check_option_value(std::string& value, const std::string& type) {
   if (value.empty()) return "expected a value, got an empty string";
   const bool is_uint = type == "UINT", is_int = type == "INT";
@@ -75,7 +75,7 @@ std::string check_option_value(std::string& value, const std::string& type) {
   digits.erase(0, std::min(digits.find_first_not_of('0'), digits.size() - 1));
   const std::string max = is_uint ? "18446744073709551615" : negative ? "9223372036854775808" : "9223372036854775807";
   if (digits.size() > max.size() || (digits.size() == max.size() && digits > max))
-    return "\"" + value + "\" is too large (at most " + (negative ? "-" : "") + max + ")";
+    return "\"" + value + "\" is out of range";  // as CLI11's check says of a narrower type's
   value = (negative ? "-" : "") + digits;
   return "";
 }
@@ -88,6 +88,34 @@ void check_option_values(CLI::App& app) {
     opt->transform(CLI::Validator([type](std::string& value) { return check_option_value(value, type); }, ""));
   }
   for (CLI::App* sub : app.get_subcommands({})) check_option_values(*sub);
+}
+
+// The images (and a --dump-scene file) written as one set
+// (write_files_atomically): a failed write leaves none of them new.
+void write_outputs(const Image& image, const std::vector<std::string>& outputs, const Scene* scene,
+                   const std::string& dump_path) {
+  std::vector<std::vector<unsigned char>> images;
+  for (const auto& o : outputs) images.push_back(encode_image(image, o));
+  std::vector<FileToWrite> files;
+  for (size_t k = 0; k < outputs.size(); ++k)
+    files.push_back({outputs[k], images[k].data(), images[k].size(), "cannot write image"});
+  const std::string text = scene ? scene_to_json(*scene) : std::string();
+  if (scene) files.push_back({dump_path, text.data(), text.size()});
+  if (!files.empty()) write_files_atomically(files);
+}
+
+// Two outputs of one command at one path: the later would overwrite the
+// earlier (`-o a.png --dump-scene a.png` left the scene's JSON in a.png).
+// Paths compare as absolute, normalised paths.
+void check_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& named) {
+  std::map<std::string, std::string> seen;  // normalised path -> its flag
+  for (const auto& [path, flag] : named) {
+    const std::string key = std::filesystem::absolute(path).lexically_normal().string();
+    const auto [at, fresh] = seen.emplace(key, flag);
+    if (!fresh)
+      throw InputError(path + ": named twice as an output (" + at->second + " and " + flag +
+                       "): the second would overwrite the first");
+  }
 }
 
 // Flags that choose and describe the scene, shared by every command that renders.
@@ -606,6 +634,14 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
   for (const auto& o : outputs) check_image_path(o);
   if (!state.empty()) check_state_paths(state, true);
   scene_opts.check_dump();
+  {
+    std::vector<std::pair<std::string, std::string>> named;  // (path, the flag that names it)
+    for (const auto& o : outputs) named.emplace_back(o, "--out");
+    if (!state.empty())
+      for (const char* ext : {".accum", ".mean.pfm", ".count.pfm"}) named.emplace_back(state + ext, "--state");
+    if (!scene_opts.dump_scene.empty()) named.emplace_back(scene_opts.dump_scene, "--dump-scene");
+    check_distinct_outputs(named);
+  }
   if (checkpoint_seconds < 0 || std::isnan(checkpoint_seconds))
     throw InputError("--checkpoint: must be a number of seconds >= 0");
   if (checkpoint_seconds > 0 && state.empty())
@@ -774,8 +810,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
   }
 
   start = Clock::now();
-  for (const auto& o : outputs) write_image(result.mean, o);
-  scene_opts.write_dump(scene);
+  write_outputs(result.mean, outputs, scene_opts.dump_scene.empty() ? nullptr : &scene, scene_opts.dump_scene);
   double write_ms = ms_since(start);
   const int exit_code = result.interrupted ? 128 + g_signal.load() : 0;
   if (result.interrupted && !as_json)
@@ -987,10 +1022,18 @@ int cmd_merge(const std::vector<std::string>& inputs, const std::vector<std::str
   if (outputs.empty() && state.empty()) throw InputError("merge: give --out and/or --state");
   for (const auto& o : outputs) check_image_path(o);
   if (!state.empty()) check_state_paths(state, false);
+  {
+    std::vector<std::pair<std::string, std::string>> named;
+    for (const auto& o : outputs) named.emplace_back(o, "--out");
+    if (!state.empty())
+      for (const char* ext : {".mean.pfm", ".count.pfm"}) named.emplace_back(state + ext, "--state");
+    check_distinct_outputs(named);
+  }
   std::vector<RenderState> states;
   for (const auto& in : inputs) states.push_back(read_state(in));
   RenderState merged = merge_states(states);
-  for (const auto& o : outputs) write_image(merged.mean, o);
+  // The images first, as one set; then the state (one set of its own).
+  write_outputs(merged.mean, outputs, nullptr, "");
   if (!state.empty()) write_state(merged, state);
   if (!quiet) {
     double total = 0;

@@ -16,8 +16,8 @@ namespace octrace {
 
 namespace {
 // The temporaries written and not yet renamed (writes happen on the main
-// thread; a set holds at most kPending files), for remove_file_being_written.
-constexpr int kPending = 4;
+// thread), for remove_file_being_written: the first kPending of a set.
+constexpr int kPending = 8;
 char g_writing[kPending][4096];
 std::atomic<bool> g_is_writing[kPending];
 

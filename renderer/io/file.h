@@ -20,7 +20,8 @@ void write_file_atomically(const std::string& path, const void* data, size_t siz
 // Several files that belong together (a state's .accum, .mean.pfm and
 // .count.pfm): every one is written to its temporary and flushed before
 // any is renamed, so that a failure while writing leaves none of them new
-// (each keeps its old contents). At most 4 files.
+// (each keeps its old contents). A second Ctrl-C removes the temporaries
+// of the first 8 files of a set (remove_file_being_written).
 struct FileToWrite {
   std::string path;
   const void* data;

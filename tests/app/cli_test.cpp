@@ -104,7 +104,7 @@ const BadInput BAD_INPUTS[] = {
     {"spp_empty", "--spp ''", "--spp: expected a value, got an empty string"},
     {"spp_out_of_range", "--spp 99999999999", "--spp: \"99999999999\" is out of range"},
     {"seed_too_large", "--seed 99999999999999999999",
-     "--seed: \"99999999999999999999\" is too large (at most 18446744073709551615)"},
+     "--seed: \"99999999999999999999\" is out of range"},
     {"radius_text", "--radius abc", "--radius: expected a number, got \"abc\""},
     {"scene_empty", "--scene ''", "--scene: expected a value, got an empty string"},
     {"dump_scene_empty", "--dump-scene ''", "--dump-scene: expected a value, got an empty string"},
@@ -554,6 +554,11 @@ TEST(Cli, OutputPathsAreCheckedBeforeTheRender) {
       {"--state " + tmp("st_folder") + " --out " + first, "st_folder.accum: is a folder, not a file"},
       {"--dump-scene " + dump + " --out " + first + " --device 99", "--device: index 99 out of range"},
       {"--dump-scene " + tmp("a_folder.png") + " --out " + first, "a_folder.png: is a folder, not a file"},
+      // Two outputs at one path: the scene's JSON overwrote the image, an
+      // image the state's counts (which merge then read as counts).
+      {"--out " + first + " --dump-scene " + first, "paths_first.png: named twice as an output (--out and --dump-scene)"},
+      {"--state " + state + " --out " + state + ".count.pfm", "paths_state.count.pfm: named twice as an output (--out and --state)"},
+      {"--out " + first + " --out " + first, "paths_first.png: named twice as an output (--out and --out)"},
   };
   for (const auto& [args, message] : cases) {
     for (const auto& f : files) fs::remove(f);
@@ -571,6 +576,22 @@ TEST(Cli, OutputPathsAreCheckedBeforeTheRender) {
   r = run_octrace("render --size 8x8 --spp 1 --quiet --dump-scene " + dump);
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_TRUE(fs::exists(dump));
+}
+
+// A command's outputs are written as one set: a write that fails (here a
+// file size limit of 1 KiB, which the 16x16 PNG fits and the PFM does
+// not) leaves none of them, where the PNG written before the PFM stayed.
+TEST(Cli, AFailedWriteLeavesNoneOfTheOutputs) {
+  const std::string png = tmp("set.png"), pfm = tmp("set.pfm"), dump = tmp("set.json");
+  for (const auto& f : {png, pfm, dump}) fs::remove(f);
+  RunResult r = run_octrace("render --size 16x16 --spp 1 --quiet --out " + png + " --out " + pfm + " --dump-scene " + dump,
+                            "trap '' XFSZ; ulimit -f 2;");
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("set.pfm: cannot write image: File too large"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  for (const auto& f : {png, pfm, dump}) EXPECT_FALSE(fs::exists(f)) << f << " was written";
+  for (const auto& entry : fs::directory_iterator(OCTRACE_TEST_TMP))
+    EXPECT_EQ(entry.path().filename().string().find("cli_set."), std::string::npos) << entry.path() << " left";
 }
 
 // `--out` takes one file a flag: `-o a.png b.png` took b.png as a second
