@@ -60,13 +60,13 @@ bool all_digits(const std::string& text) {
 // CLI11's "Could not convert" check (both say "out of range").
 std::string check_option_value(std::string& value, const std::string& type) {
   if (value.empty()) return "expected a value, got an empty string";
-  const bool is_uint = type == "UINT", is_int = type == "INT";
   if (type == "FLOAT") {
     char* end = nullptr;
     if (std::isspace(static_cast<unsigned char>(value[0])) || (std::strtod(value.c_str(), &end), *end != '\0'))
       return "expected a number, got \"" + value + "\"";
     return "";
   }
+  const bool is_uint = type == "UINT", is_int = type == "INT";
   if (!is_uint && !is_int) return "";
   const bool negative = is_int && value[0] == '-';
   std::string digits = value.substr(negative ? 1 : 0);
@@ -104,14 +104,30 @@ void write_outputs(const Image& image, const std::vector<std::string>& outputs, 
   if (!files.empty()) write_files_atomically(files);
 }
 
-// Two outputs of one command at one path: the later would overwrite the
-// earlier (`-o a.png --dump-scene a.png` left the scene's JSON in a.png).
-// Paths compare as absolute, normalised paths.
-void check_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& named) {
-  std::map<std::string, std::string> seen;  // normalised path -> its flag
+// Every file a command will write, checked before any work: each image's
+// format and folder, the state's files (state_paths), the --dump-scene
+// file (check_output_folder), and that no two share a path: the later would
+// overwrite the earlier (`-o a.png --dump-scene a.png` left the scene's JSON
+// in a.png). Paths compare as absolute, normalised paths.
+void check_outputs(const std::vector<std::string>& images, const std::string& state, bool checkpoint,
+                   const std::string& dump) {
+  std::vector<std::pair<std::string, const char*>> named;  // (path, the flag that names it)
+  for (const auto& o : images) {
+    check_image_path(o);
+    named.emplace_back(o, "--out");
+  }
+  if (!state.empty())
+    for (const auto& path : state_paths(state, checkpoint)) {
+      check_output_folder(path);
+      named.emplace_back(path, "--state");
+    }
+  if (!dump.empty()) {
+    check_output_folder(dump);
+    named.emplace_back(dump, "--dump-scene");
+  }
+  std::map<std::string, const char*> seen;  // normalised path -> its flag
   for (const auto& [path, flag] : named) {
-    const std::string key = std::filesystem::absolute(path).lexically_normal().string();
-    const auto [at, fresh] = seen.emplace(key, flag);
+    const auto [at, fresh] = seen.emplace(std::filesystem::absolute(path).lexically_normal().string(), flag);
     if (!fresh)
       throw InputError(path + ": named twice as an output (" + at->second + " and " + flag +
                        "): the second would overwrite the first");
@@ -175,11 +191,7 @@ struct SceneOptions {
     return scene;
   }
 
-  // --dump-scene: its path checked before any work, the file written with
-  // the command's other outputs (so that a run refused on the way leaves none).
-  void check_dump() const {
-    if (!dump_scene.empty()) check_output_folder(dump_scene);
-  }
+  // --dump-scene alone, or in view: render writes it with its images (write_outputs).
   void write_dump(const Scene& scene) const {
     if (!dump_scene.empty()) save_scene_json(scene, dump_scene);
   }
@@ -631,17 +643,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
     throw InputError("--batch-ms: sizes the batches of an MPI job's ranks only (mpirun -np N octrace render ...)");
   const bool writes = !under_mpi || mpi_rank() == 0;
   if (writes && outputs.empty() && scene_opts.dump_scene.empty() && state.empty()) outputs.push_back("out.png");
-  for (const auto& o : outputs) check_image_path(o);
-  if (!state.empty()) check_state_paths(state, true);
-  scene_opts.check_dump();
-  {
-    std::vector<std::pair<std::string, std::string>> named;  // (path, the flag that names it)
-    for (const auto& o : outputs) named.emplace_back(o, "--out");
-    if (!state.empty())
-      for (const char* ext : {".accum", ".mean.pfm", ".count.pfm"}) named.emplace_back(state + ext, "--state");
-    if (!scene_opts.dump_scene.empty()) named.emplace_back(scene_opts.dump_scene, "--dump-scene");
-    check_distinct_outputs(named);
-  }
+  check_outputs(outputs, state, true, scene_opts.dump_scene);
   if (checkpoint_seconds < 0 || std::isnan(checkpoint_seconds))
     throw InputError("--checkpoint: must be a number of seconds >= 0");
   if (checkpoint_seconds > 0 && state.empty())
@@ -1020,15 +1022,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
 int cmd_merge(const std::vector<std::string>& inputs, const std::vector<std::string>& outputs,
               const std::string& state, bool quiet) {
   if (outputs.empty() && state.empty()) throw InputError("merge: give --out and/or --state");
-  for (const auto& o : outputs) check_image_path(o);
-  if (!state.empty()) check_state_paths(state, false);
-  {
-    std::vector<std::pair<std::string, std::string>> named;
-    for (const auto& o : outputs) named.emplace_back(o, "--out");
-    if (!state.empty())
-      for (const char* ext : {".mean.pfm", ".count.pfm"}) named.emplace_back(state + ext, "--state");
-    check_distinct_outputs(named);
-  }
+  check_outputs(outputs, state, false, "");
   std::vector<RenderState> states;
   for (const auto& in : inputs) states.push_back(read_state(in));
   RenderState merged = merge_states(states);
@@ -1221,9 +1215,12 @@ int main(int argc, char** argv) {
   // The window accumulates until --max-spp; --spp stays a flag so that
   // `view --spp 5` says so (CLI11 said "not expected: 5 --spp"; a hidden
   // option has no name in CLI11's messages).
-  view_cmd->get_option("--spp")->description("Not for view (refused): it accumulates until --max-spp")->default_str("")->check(CLI::Validator(
-      [](std::string&) { return std::string("view accumulates until --max-spp N (or until its window closes)"); },
-      ""));
+  view_cmd->get_option("--spp")
+      ->description("Not for view (refused): it accumulates until --max-spp")
+      ->default_str("")
+      ->check(CLI::Validator(
+          [](std::string&) { return std::string("view accumulates until --max-spp N (or until its window closes)"); },
+          ""));
   view_opts.add_to(*view_cmd);
 
   auto* devices_cmd = app.add_subcommand("devices", "List Vulkan devices and the precision variants each can run");
@@ -1381,7 +1378,7 @@ int main(int argc, char** argv) {
       view_opts.validation = render_opts.validation;
       RenderSettings settings = render_opts.parsed(true);
       view_opts.stop = &g_stop;
-      scene_opts.check_dump();
+      check_outputs({}, "", false, scene_opts.dump_scene);
       const Scene scene = scene_opts.load();
       view_opts.on_open = [&] { scene_opts.write_dump(scene); };
       SignalGuard signals;

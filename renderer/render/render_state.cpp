@@ -30,10 +30,6 @@ std::string hex(uint64_t v) {
   return buf;
 }
 
-}  // namespace
-
-namespace {
-
 // PREFIX.mean.pfm and PREFIX.count.pfm, encoded, and with `accum` (a
 // checkpoint's PREFIX.accum) written as one set (write_files_atomically): a
 // failure leaves none of the state's files new.
@@ -182,10 +178,10 @@ void write_checkpoint(const std::string& prefix, const Accumulation& acc, const 
   write_state_files(state, prefix, &bytes);
 }
 
-void check_state_paths(const std::string& prefix, bool checkpoint) {
-  check_output_folder(mean_path(prefix));
-  check_output_folder(count_path(prefix));
-  if (checkpoint) check_output_folder(accum_path(prefix));
+std::vector<std::string> state_paths(const std::string& prefix, bool checkpoint) {
+  std::vector<std::string> paths = {mean_path(prefix), count_path(prefix)};
+  if (checkpoint) paths.push_back(accum_path(prefix));
+  return paths;
 }
 
 Accumulation read_checkpoint(const std::string& prefix, CheckpointInfo& info) {

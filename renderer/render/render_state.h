@@ -91,10 +91,9 @@ std::string checkpoint_mismatch(const CheckpointInfo& saved, const CheckpointInf
 // (for octrace merge); the three written as one set.
 void write_checkpoint(const std::string& prefix, const Accumulation& acc, const CheckpointInfo& info,
                       const RenderState& state);
-// Checks, before any long work, that the state's files can be written
-// (check_output_folder): PREFIX.mean.pfm, PREFIX.count.pfm and, with
-// `checkpoint`, PREFIX.accum.
-void check_state_paths(const std::string& prefix, bool checkpoint);
+// The files a state is written to: PREFIX.mean.pfm, PREFIX.count.pfm and,
+// with `checkpoint`, PREFIX.accum (for the checks before any long work).
+std::vector<std::string> state_paths(const std::string& prefix, bool checkpoint);
 
 // Reads PREFIX.accum. Throws InputError naming the file when it is missing,
 // not a checkpoint, truncated or inconsistent.

@@ -25,13 +25,20 @@ std::string describe_json(const Json& v) {
 // refuse it while parsing (json_depth_limit).
 inline constexpr int kMaxJsonDepth = 512;
 
-// A parser callback for nlohmann's parse() that throws InputError
-// "WHERE: nested deeper than 512 levels" past kMaxJsonDepth and keeps every value.
+// Throws InputError "WHERE: nested deeper than 512 levels" past
+// kMaxJsonDepth; `depth` as nlohmann's parser callbacks receive it. WHERE
+// ends in ": " (or is empty).
+inline void check_json_depth(int depth, const std::string& where) {
+  if (depth > kMaxJsonDepth)
+    throw InputError(where + "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+}
+
+// A parser callback for nlohmann's parse() that keeps every value and
+// checks the depth (check_json_depth).
 template <typename Json>
 typename Json::parser_callback_t json_depth_limit(const std::string& where) {
   return [where](int depth, typename Json::parse_event_t, Json&) {
-    if (depth > kMaxJsonDepth)
-      throw InputError(where + "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    check_json_depth(depth, where);
     return true;
   };
 }

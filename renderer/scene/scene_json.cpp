@@ -566,8 +566,7 @@ Scene parse_scene_json(const std::string& text, const std::string& source) {
   Scene scene;
   using Event = Json::parse_event_t;
   const auto on_event = [&](int depth, Event event, Json& parsed) {
-    if (depth > kMaxJsonDepth)
-      throw InputError(source + ": nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    check_json_depth(depth, source + ": ");
     switch (event) {
       case Event::object_start:
       case Event::array_start:
