@@ -30,31 +30,11 @@ import argparse
 import csv
 import json
 import os
-import re
-import subprocess
 import sys
 
 import tool_args
 
 PRECISIONS = ["fp32", "fp16", "fp16-all"]
-
-
-def run(cmd):
-    out = subprocess.run(cmd, capture_output=True, text=True)
-    if out.returncode != 0:
-        # octrace says what is wrong on its last line of stderr.
-        lines = out.stderr.strip().splitlines() or [f"exit {out.returncode}"]
-        print(f"accuracy.py: octrace {cmd[1]} failed: {lines[-1]}", file=sys.stderr)
-        sys.exit(out.returncode if out.returncode > 0 else 1)
-    return out.stdout
-
-
-def size(text):
-    """WIDTHxHEIGHT, as octrace takes it (checked here for --study-size,
-    which is first used after the sweep)."""
-    if not re.fullmatch(r"[1-9][0-9]{0,8}x[1-9][0-9]{0,8}", text):
-        raise argparse.ArgumentTypeError(f"expected WIDTHxHEIGHT (e.g. 160x90), got {text!r}")
-    return text
 
 
 def depth_list(text):
@@ -92,10 +72,10 @@ class Octrace:
         cmd = [self.binary, "render", "--json", "--quiet", "--device", self.device, "--size", size,
                "--spp", str(spp), "--depth", str(depth), "--precision", precision,
                "--sample-seed", str(seed), "--out", path] + self.scene_flags + list(extra)
-        return json.loads(run(cmd))
+        return json.loads(tool_args.run(cmd))
 
     def compare(self, test, reference):
-        return json.loads(run([self.binary, "compare", "--json", test, reference]))
+        return json.loads(tool_args.run([self.binary, "compare", "--json", test, reference]))
 
 
 def plot(rows, path, title):
@@ -142,8 +122,8 @@ def main():
     ap = tool_args.Parser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--octrace", type=tool_args.executable, default="build/app/octrace")
     ap.add_argument("--device", default="auto")
-    ap.add_argument("--size", type=size, default="160x90", help="image size of the sweep and the converged test")
-    ap.add_argument("--study-size", type=size, default="1200x800", help="image size of the study's 10 spp comparison")
+    ap.add_argument("--size", type=tool_args.size, default="160x90", help="image size of the sweep and the converged test")
+    ap.add_argument("--study-size", type=tool_args.size, default="1200x800", help="image size of the study's 10 spp comparison")
     ap.add_argument("--ref-spp", type=tool_args.positive_int, default=4096)
     ap.add_argument("--max-spp", type=tool_args.positive_int, default=256)
     ap.add_argument("--converged-spp", type=tool_args.positive_int, default=1024)

@@ -21,11 +21,11 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import tool_args  # noqa: E402
-from nee_efficiency import far_light_scene, run  # noqa: E402
+from nee_efficiency import far_light_scene  # noqa: E402
 
 
 def render(binary, args, scene, nee, out):
-    r = run([binary, "render", "--json", "--quiet", "--device", args.device, "--size", "160x90",
+    r = tool_args.run([binary, "render", "--json", "--quiet", "--device", args.device, "--size", "160x90",
              "--spp", "16", "--nee", nee, "--scene", scene, "--out", out])
     return json.loads(r)["times_ms"]["render"]
 

@@ -33,18 +33,6 @@ import sys
 import tool_args
 
 
-def run(cmd):
-    out = subprocess.run(cmd, capture_output=True, text=True)
-    if out.returncode != 0:
-        # The program's last line of stderr says what is wrong (octrace's
-        # error); named after the running script, as nee_cost_ab.py uses this.
-        lines = out.stderr.strip().splitlines() or [f"exit {out.returncode}"]
-        print(f"{os.path.basename(sys.argv[0])}: {os.path.basename(cmd[0])} {cmd[1]} failed: {lines[-1]}",
-              file=sys.stderr)
-        sys.exit(out.returncode if out.returncode > 0 else 1)
-    return out.stdout
-
-
 def spp_list(text):
     """Comma-separated sample counts, each >= 1."""
     try:
@@ -56,11 +44,11 @@ def spp_list(text):
 def render(args, scene_flags, path, spp, nee, seed, size):
     cmd = [args.octrace, "render", "--json", "--quiet", "--device", args.device, "--size", size,
            "--spp", str(spp), "--sample-seed", str(seed), "--nee", nee, "--out", path] + scene_flags
-    return json.loads(run(cmd))
+    return json.loads(tool_args.run(cmd))
 
 
 def rel_mse(args, test, ref):
-    return json.loads(run([args.octrace, "compare", "--json", test, ref]))["rel_mse"]
+    return json.loads(tool_args.run([args.octrace, "compare", "--json", test, ref]))["rel_mse"]
 
 
 def write_sun_sky(tmp, here):
@@ -95,7 +83,7 @@ def write_quad_light(tmp, here):
     emissive triangles (make_grid_glb.py's one-quad sheet, 10 x 10, scaled
     to 0.2 x 0.2) of the same radiance, at the sphere's place."""
     glb = os.path.abspath(os.path.join(tmp, "quad.glb"))
-    run([sys.executable, os.path.join(here, "make_grid_glb.py"), "1", glb])
+    tool_args.run([sys.executable, os.path.join(here, "make_grid_glb.py"), "1", glb])
     with open(os.path.join(here, "nee", "small_light.json")) as f:
         scene = json.load(f)
     light = next(i for i, m in enumerate(scene["materials"]) if m["type"] == "emissive")
@@ -134,7 +122,7 @@ def far_light_scene(octrace, device, tmp):
     (r = 0.5, radiance 50) 30 above it, which lights little: where NEE costs
     a shadow ray per vertex for almost nothing. Returns the JSON's path."""
     far = os.path.join(tmp, "rtiow_far_light.json")
-    run([octrace, "render", "--quiet", "--device", device, "--size", "8x8", "--spp", "1",
+    tool_args.run([octrace, "render", "--quiet", "--device", device, "--size", "8x8", "--spp", "1",
          "--dump-scene", far, "--out", os.path.join(tmp, "dump.png")])
     with open(far) as f:
         scene = json.load(f)

@@ -10,10 +10,13 @@ is wrong, exit status 2, and no output file begun.
   parser.add_argument("--rounds", type=tool_args.positive_int, ...)
   parser.add_argument("--out", type=tool_args.output_file, ...)
   tool_args.fail("ab_render.py", "--variant 'x': ...")   a check of its own
+  out = tool_args.run([octrace, "render", ...])         stdout, or the tool ends
 """
 import argparse
 import os
+import re
 import shutil
+import subprocess
 import sys
 
 
@@ -73,3 +76,23 @@ def input_file(text):
     if not os.path.isfile(text):
         raise argparse.ArgumentTypeError(f"{text}: no such file")
     return text
+
+
+def size(text):
+    """WIDTHxHEIGHT, as octrace takes it (each side 1 to 9 digits)."""
+    if not re.fullmatch(r"[1-9][0-9]{0,8}x[1-9][0-9]{0,8}", text):
+        raise argparse.ArgumentTypeError(f"expected WIDTHxHEIGHT (e.g. 1200x800), got {text!r}")
+    return text
+
+
+def run(cmd):
+    """Runs a program and returns its stdout; if it fails, ends the tool with
+    "TOOL: PROGRAM ARG failed: " and the program's last line of stderr (where
+    octrace says what is wrong), and the program's exit status."""
+    out = subprocess.run(cmd, capture_output=True, text=True)
+    if out.returncode != 0:
+        lines = out.stderr.strip().splitlines() or [f"exit {out.returncode}"]
+        print(f"{os.path.basename(sys.argv[0])}: {os.path.basename(cmd[0])} {cmd[1]} failed: {lines[-1]}",
+              file=sys.stderr)
+        sys.exit(out.returncode if out.returncode > 0 else 1)
+    return out.stdout

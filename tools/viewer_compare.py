@@ -17,7 +17,6 @@ input exits with 2 before any render; where octrace fails, with its error line.
 import argparse
 import json
 import os
-import re
 import subprocess
 import sys
 import tempfile
@@ -27,13 +26,6 @@ import tool_args
 # Off-screen OpenGL through Mesa's EGL without a display (llvmpipe here).
 os.environ.setdefault("PYOPENGL_PLATFORM", "egl")
 os.environ.setdefault("EGL_PLATFORM", "surfaceless")
-
-
-def size(text):
-    """WIDTHxHEIGHT."""
-    if not re.fullmatch(r"[1-9][0-9]{0,8}x[1-9][0-9]{0,8}", text):
-        raise argparse.ArgumentTypeError(f"expected WIDTHxHEIGHT (e.g. 600x400), got {text!r}")
-    return text
 
 
 def look_at_pose(eye, target, up):
@@ -54,7 +46,7 @@ def main():
     ap.add_argument("--octrace", type=tool_args.executable, default="build/app/octrace")
     ap.add_argument("--scene", required=True, type=tool_args.input_file, help=".gltf or .glb")
     ap.add_argument("--out", required=True, type=tool_args.output_file, help="the side-by-side PNG")
-    ap.add_argument("--size", type=size, default="600x400")
+    ap.add_argument("--size", type=tool_args.size, default="600x400")
     ap.add_argument("--spp", type=tool_args.positive_int, default=64)
     ap.add_argument("--device", default="auto")
     args = ap.parse_args()
