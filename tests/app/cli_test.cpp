@@ -463,6 +463,36 @@ TEST(Cli, BenchGivesTimeOverTheBvhs) {
   }
 }
 
+// `bench --scene`'s paths/s and rays/s are at the median time: every run
+// traces the same samples, so the same paths (width x height x spp) and the
+// same rays as `render` at those settings.
+TEST(Cli, BenchRatesAreAtTheMedianTime) {
+  const std::string json = write_file("bench_rates.json", VALID_SCENE);
+  const std::string settings = " --accel bvh --size 16x8 --spp 2";
+  const std::string csv = tmp("bench_rates.csv");
+  RunResult r = run_octrace("bench --device cpu --scene " + json + settings +
+                            " --repeat 7 --warmup 0 --quiet --csv " + csv);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("at the median time"), std::string::npos) << r.output;
+  const auto lines = csv_cells(csv);
+  ASSERT_EQ(lines.size(), 2u);
+  const auto& head = lines[0];
+  const auto& row = lines[1];
+  ASSERT_EQ(row.size(), head.size());
+  const double median_s = std::stod(row[column(head, "median_ms")]) / 1000.0,
+               min_s = std::stod(row[column(head, "min_ms")]) / 1000.0,
+               max_s = std::stod(row[column(head, "max_ms")]) / 1000.0;
+  ASSERT_LT(min_s, max_s) << "seven runs of one time: the median is not told from the last run";
+  const double paths = std::stod(row[column(head, "paths_per_s")]) * median_s,
+               rays = std::stod(row[column(head, "rays_per_s")]) * median_s;
+  EXPECT_NEAR(paths, 16 * 8 * 2, 1e-4 * 256);
+  r = run_octrace("render --device cpu --scene " + json + settings + " --json --out " + tmp("bench_rates.png"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  const double render_rays = json_of(r.output)["rays"].get<double>();
+  EXPECT_GE(render_rays, paths);
+  EXPECT_NEAR(rays, render_rays, 1e-4 * render_rays);
+}
+
 // `bench --warmup` takes seconds >= 0: anything else is a one-line input
 // error (exit 2) before any device work.
 TEST(Cli, BenchRejectsABadWarmup) {
