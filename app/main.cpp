@@ -295,7 +295,8 @@ struct RenderOptions {
     cmd.add_option("--hidden-parts", hidden_parts,
                    "Spheres that overlap opaque ones: cull (the trees hold only the parts no opaque sphere "
                    "covers: a dense field tests a few spheres a ray instead of a hundred), keep (whole spheres), "
-                   "auto (cull where the camera stays: render and bench; keep in view, whose camera moves); "
+                   "auto (cull where the camera stays: render and bench; keep in view, whose camera moves, and "
+                   "which refuses cull); "
                    "other speed, and in dense overlapping fields a few values in millions differ (keep: the "
                    "image of whole spheres, bit for bit)")
         ->capture_default_str();
@@ -360,7 +361,12 @@ struct RenderOptions {
                    "those still going for the next: auto | off | PATHS (auto: the threads the GPU holds at once, "
                    "where its driver says; off: every level but the last queues them); same image")
         ->capture_default_str();
-    cmd.add_option("--device", device, "auto | cpu | gpu | INDEX (see `octrace devices`)")->capture_default_str();
+    cmd.add_option("--device", device,
+                   cmd.get_name() == "render"
+                       ? "auto | cpu | gpu | INDEX (see `octrace devices`), or several devices: all (every GPU) | a "
+                         "list of indices like 0,2 (docs/multi_gpu.md)"
+                       : "auto | cpu | gpu | INDEX (see `octrace devices`)")
+        ->capture_default_str();
     cmd.add_flag("--validation", validation, "Enable the Khronos validation layer (also OCTRACE_VALIDATION=1)");
     cmd.add_flag("--pipeline-stats", pipeline_stats,
                  "Print the driver's statistics of the compiled path-tracing pipeline (registers, spills, ...; "
@@ -1236,7 +1242,7 @@ int main(int argc, char** argv) {
   std::string merge_state;
   auto* merge_cmd = app.add_subcommand("merge", "Merge accumulation states (render --state) weighted by their counts");
   merge_cmd->add_option("states", merge_inputs, "State prefixes (PREFIX.mean.pfm + PREFIX.count.pfm)")->required();
-  merge_cmd->add_option("--out,-o", merge_outputs, "Output image(s): .png .pfm .exr")
+  merge_cmd->add_option("--out,-o", merge_outputs, "Output image(s): .png .pfm .exr (give --out, --state or both)")
       ->allow_extra_args(false)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   merge_cmd->add_option("--state", merge_state, "Also save the merged state under this prefix");
@@ -1247,7 +1253,8 @@ int main(int argc, char** argv) {
   std::vector<float> bench_radii{0.1f};
   std::vector<std::string> bench_accels{"octree", "brute"}, bench_precisions{"fp32"};
   std::string bench_size;
-  auto* bench_cmd = app.add_subcommand("bench", "Render time per accel against sphere count (the study's experiment) or of scene files (--scene)");
+  auto* bench_cmd = app.add_subcommand("bench", "Render time per accel against sphere count (the study's experiment), of scene files "
+                                                "(--scene), or of specialised against general pipelines (--family)");
   bench_cmd->add_option("--spheres", bench_spheres, "Sphere counts (comma-separated)")->delimiter(',')
       ->capture_default_str();
   bench_cmd->add_option("--radius", bench_radii, "Radii of the small spheres (comma-separated)")->delimiter(',')
