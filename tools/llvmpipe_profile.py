@@ -68,8 +68,7 @@ def positive_seconds(text):
 def last_line(path):
     """The last non-empty line of a log (octrace's error, where it failed)."""
     with open(path, errors="replace") as f:
-        lines = [line.strip() for line in f if line.strip()]
-    return lines[-1] if lines else "no output"
+        return tool_args.last_line(f.read(), "no output")
 
 
 def executable_anonymous_mappings(pid):
@@ -127,8 +126,7 @@ def main():
                     fail(f"the render failed (exit {proc.returncode}): {last_line(log_path)}")
                 fail(f"the render ended while perf sampled it; give it more work (see {log_path})")
             if perf.returncode != 0:
-                why = (perf.stderr.strip().splitlines() or ["no message"])[-1]
-                fail(f"perf record failed (exit {perf.returncode}): {why}")
+                fail(f"perf record failed (exit {perf.returncode}): {tool_args.last_line(perf.stderr, 'no message')}")
             for old in glob.glob(os.path.join(args.out, "code_*.bin")):
                 os.remove(old)
             mappings = executable_anonymous_mappings(proc.pid)
@@ -146,7 +144,7 @@ def main():
 
     script = subprocess.run(["perf", "script", "-i", perf_data, "-F", "ip,dso"], capture_output=True, text=True)
     if script.returncode != 0:
-        fail(f"perf script failed (exit {script.returncode}): {(script.stderr.strip().splitlines() or [''])[-1]}")
+        fail(f"perf script failed (exit {script.returncode}): {tool_args.last_line(script.stderr)}")
     script = script.stdout
     counts = collections.Counter()  # address -> samples in code of no file (perf's "[JIT]")
     total = 0

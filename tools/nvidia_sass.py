@@ -113,8 +113,7 @@ def disasm(out_dir, nvdisasm, arch):
         if p.returncode != 0:
             for done in written:
                 os.remove(done)  # no half set of .sass files
-            why = (p.stderr.strip().splitlines() or ["no message"])[-1]
-            fail(f"{nvdisasm} -b {arch} {src}: exit {p.returncode}: {why}")
+            fail(f"{nvdisasm} -b {arch} {src}: exit {p.returncode}: {tool_args.last_line(p.stderr, 'no message')}")
         open(dst, "w").write(p.stdout)
         written.append(dst)
         print(f"{dst}: nvdisasm exit {p.returncode}, {p.stdout.count(chr(10))} lines"

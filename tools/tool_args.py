@@ -11,6 +11,7 @@ is wrong, exit status 2, and no output file begun.
   parser.add_argument("--out", type=tool_args.output_file, ...)
   tool_args.fail("ab_render.py", "--variant 'x': ...")   a check of its own
   out = tool_args.run([octrace, "render", ...])         stdout, or the tool ends
+  tool_args.last_line(p.stderr, "no message")           where a program said what is wrong
 """
 import argparse
 import os
@@ -85,14 +86,24 @@ def size(text):
     return text
 
 
-def run(cmd):
+def last_line(text, default=""):
+    """The last non-empty line of a program's output (where octrace, perf or
+    nvdisasm says what is wrong), or `default` where it printed nothing."""
+    lines = (text or "").strip().splitlines()
+    return lines[-1].strip() if lines else default
+
+
+def run(cmd, echo_stderr=False):
     """Runs a program and returns its stdout; if it fails, ends the tool with
     "TOOL: PROGRAM ARG failed: " and the program's last line of stderr (where
-    octrace says what is wrong), and the program's exit status."""
+    octrace says what is wrong), and the program's exit status. With
+    `echo_stderr`, a program that succeeds has its stderr (its warnings)
+    passed on to the tool's."""
     out = subprocess.run(cmd, capture_output=True, text=True)
     if out.returncode != 0:
-        lines = out.stderr.strip().splitlines() or [f"exit {out.returncode}"]
-        print(f"{os.path.basename(sys.argv[0])}: {os.path.basename(cmd[0])} {cmd[1]} failed: {lines[-1]}",
-              file=sys.stderr)
+        why = last_line(out.stderr, f"exit {out.returncode}")
+        print(f"{os.path.basename(sys.argv[0])}: {os.path.basename(cmd[0])} {cmd[1]} failed: {why}", file=sys.stderr)
         sys.exit(out.returncode if out.returncode > 0 else 1)
+    if echo_stderr:
+        sys.stderr.write(out.stderr)
     return out.stdout

@@ -17,7 +17,6 @@ input exits with 2 before any render; where octrace fails, with its error line.
 import argparse
 import json
 import os
-import subprocess
 import sys
 import tempfile
 
@@ -62,14 +61,9 @@ def main():
 
     with tempfile.TemporaryDirectory() as tmp:
         dump, ours = os.path.join(tmp, "scene.json"), os.path.join(tmp, "octrace.png")
-        r = subprocess.run([args.octrace, "render", "--scene", args.scene, "--size", args.size, "--spp", str(args.spp),
-                            "--device", args.device, "--quiet", "--dump-scene", dump, "--out", ours],
-                           stderr=subprocess.PIPE, text=True)
-        if r.returncode != 0:  # octrace says what is wrong on its last line
-            why = (r.stderr.strip().splitlines() or [f"exit {r.returncode}"])[-1]
-            print(f"viewer_compare.py: octrace render failed: {why}", file=sys.stderr)
-            return r.returncode if r.returncode > 0 else 1
-        sys.stderr.write(r.stderr)  # its warnings, as before
+        # octrace's warnings passed on; where it fails, its error line and exit status.
+        tool_args.run([args.octrace, "render", "--scene", args.scene, "--size", args.size, "--spp", str(args.spp),
+                       "--device", args.device, "--quiet", "--dump-scene", dump, "--out", ours], echo_stderr=True)
         camera = json.load(open(dump))["camera"]
         octrace_image = Image.open(ours).convert("RGB")
 

@@ -74,7 +74,7 @@ def check_python(py):
     (or numpy, which the sky's export needs): checked before any work."""
     p = subprocess.run([py, "-c", "import mitsuba, numpy"], capture_output=True, text=True)
     if p.returncode != 0:
-        why = (p.stderr.strip().splitlines() or [f"exit {p.returncode}"])[-1]
+        why = tool_args.last_line(p.stderr, f"exit {p.returncode}")
         tool_args.fail("mitsuba_compare.py",
                        f"--python {py}: it lacks Mitsuba or numpy ({why}); give a Python with mitsuba=={MITSUBA_VERSION} "
                        "and numpy, or leave --python out and the tool makes its own venv .venv-mitsuba")
