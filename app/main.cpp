@@ -361,12 +361,7 @@ struct RenderOptions {
                    "those still going for the next: auto | off | PATHS (auto: the threads the GPU holds at once, "
                    "where its driver says; off: every level but the last queues them); same image")
         ->capture_default_str();
-    cmd.add_option("--device", device,
-                   cmd.get_name() == "render"
-                       ? "auto | cpu | gpu | INDEX (see `octrace devices`), or several devices: all (every GPU) | a "
-                         "list of indices like 0,2 (docs/multi_gpu.md)"
-                       : "auto | cpu | gpu | INDEX (see `octrace devices`)")
-        ->capture_default_str();
+    cmd.add_option("--device", device, "auto | cpu | gpu | INDEX (see `octrace devices`)")->capture_default_str();
     cmd.add_flag("--validation", validation, "Enable the Khronos validation layer (also OCTRACE_VALIDATION=1)");
     cmd.add_flag("--pipeline-stats", pipeline_stats,
                  "Print the driver's statistics of the compiled path-tracing pipeline (registers, spills, ...; "
@@ -1169,6 +1164,10 @@ int main(int argc, char** argv) {
   auto* render_cmd = app.add_subcommand("render", "Render headless to PNG (sRGB), PFM or EXR (linear)");
   scene_opts.add_to(*render_cmd);
   render_opts.add_to(*render_cmd);
+  // render alone renders on several devices at once (view and bench on one).
+  render_cmd->get_option("--device")->description(
+      "auto | cpu | gpu | INDEX (see `octrace devices`), or several devices: all (every GPU) | a list of indices "
+      "like 0,2 (docs/multi_gpu.md)");
   // One file a flag (--out a.png --out b.pfm): a list after one flag would
   // take the words after it, as `merge -o m.png s1 s2` takes the states.
   render_cmd->add_option("--out,-o", outputs, "Output image(s), format by extension: .png .pfm .exr (default out.png)")

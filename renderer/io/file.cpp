@@ -75,16 +75,20 @@ void write_file_atomically(const std::string& path, const void* data, size_t siz
 }
 
 void write_files_atomically(const std::vector<FileToWrite>& files) {
-  // Every file to its temporary first; a failure removes those written.
   std::vector<std::string> temps;
+  // The temporaries from `first` on removed (those before it are renamed).
+  const auto discard = [&](size_t first) {
+    for (size_t k = first; k < temps.size(); ++k) {
+      ::unlink(temps[k].c_str());
+      untrack(int(k));
+    }
+  };
+  // Every file to its temporary first; a failure removes those written.
   try {
     for (const FileToWrite& f : files)
       temps.push_back(write_temporary(int(temps.size()), f.path, f.data, f.size, f.what));
   } catch (const RuntimeError&) {
-    for (size_t k = 0; k < temps.size(); ++k) {
-      ::unlink(temps[k].c_str());
-      untrack(int(k));
-    }
+    discard(0);
     throw;
   }
   // Then the renames, each atomic; only one failing here (rare: the
@@ -92,10 +96,7 @@ void write_files_atomically(const std::vector<FileToWrite>& files) {
   for (size_t k = 0; k < temps.size(); ++k) {
     if (std::rename(temps[k].c_str(), files[k].path.c_str()) != 0) {
       const int err = errno;
-      for (size_t j = k; j < temps.size(); ++j) {
-        ::unlink(temps[j].c_str());
-        untrack(int(j));
-      }
+      discard(k);
       throw RuntimeError(files[k].path + ": " + files[k].what + ": " + std::strerror(err));
     }
     untrack(int(k));
