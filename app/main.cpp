@@ -242,6 +242,7 @@ struct RenderOptions {
   std::string tail_depth = "auto";
   std::string tail_step = "auto";
   std::string tail_fill = "auto";
+  std::string tail_subgroup = "auto";
   std::string bvh_sphere_order = "auto";
   std::string instancing = "auto";
   std::string hidden_parts = "auto";
@@ -361,6 +362,11 @@ struct RenderOptions {
                    "those still going for the next: auto | off | PATHS (auto: the threads the GPU holds at once, "
                    "where its driver says; off: every level but the last queues them); same image")
         ->capture_default_str();
+    cmd.add_option("--tail-subgroup", tail_subgroup,
+                   "Tail levels: a level that takes fewer paths than this gives each path a whole subgroup, whose "
+                   "lanes share the octree's leaf tests: auto | off | PATHS (auto: with --tail-fill and the "
+                   "octree, the fill over the subgroup size; off with --walk-stats); same image")
+        ->capture_default_str();
     cmd.add_option("--device", device, "auto | cpu | gpu | INDEX (see `octrace devices`)")->capture_default_str();
     cmd.add_flag("--validation", validation, "Enable the Khronos validation layer (also OCTRACE_VALIDATION=1)");
     cmd.add_flag("--pipeline-stats", pipeline_stats,
@@ -371,7 +377,7 @@ struct RenderOptions {
                  "them where the device has VK_EXT_pipeline_robustness; same image)");
   }
 
-  // --tail-depth, --tail-step and --tail-fill: auto
+  // --tail-depth, --tail-step, --tail-fill and --tail-subgroup: auto
   // (RenderSettings::kTailAuto), off (0) or a count from 1 to `max`;
   // `what` names the count in the message.
   static uint32_t parse_tail_count(const std::string& text, const std::string& setting, const std::string& what,
@@ -418,6 +424,7 @@ struct RenderOptions {
     s.tail_depth = parse_tail_count(tail_depth, "tail_depth", "a bounce");
     s.tail_step = parse_tail_count(tail_step, "tail_step", "a bounce count");
     s.tail_fill = parse_tail_count(tail_fill, "tail_fill", "a path count", 1000000000);
+    s.tail_subgroup = parse_tail_count(tail_subgroup, "tail_subgroup", "a path count", 1000000000);
     parse_size(size, s);
     validate_settings(s);
     return s;
@@ -454,6 +461,7 @@ std::string message_for_cli(const SettingError& e) {
       {"tail_depth", "--tail-depth"},
       {"tail_step", "--tail-step"},
       {"tail_fill", "--tail-fill"},
+      {"tail_subgroup", "--tail-subgroup"},
       {"device", "--device"},
       {"rtiow.radius", "--radius"},
       {"rtiow.spheres", "--spheres"},
@@ -857,6 +865,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
               {"tail_depth", result.tail_depth},
               {"tail_step", result.tail_step},
               {"tail_fill", result.tail_fill},
+              {"tail_subgroup", result.tail_subgroup},
               {"features", feature_names(result.features)},
               {"times_ms", {{"scene", scene_ms},
                             {"device_init", device_ms},

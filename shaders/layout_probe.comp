@@ -67,6 +67,10 @@ void main() {
   tail_control.groups_x = 42;
   tail_control.groups_y = 43;
   tail_control.groups_z = 44;
+  tail_control.subgroup_groups_x = 45;
+  tail_control.subgroup_groups_y = 46;
+  tail_control.subgroup_groups_z = 47;
+  tail_control.unused = 48;
 
   resolve.width = 1;
   resolve.height = 2;

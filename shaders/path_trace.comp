@@ -4,6 +4,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 
 #include "shared/shared.h"
 #include "shading/precision.glsl"
@@ -68,6 +69,12 @@ layout(constant_id = SPEC_TRIANGLE_LIGHTS) const bool TRIANGLE_LIGHTS = true;
 #define HAS_SPHERE_LIGHTS (HAS_SPHERES && (HAS_EMISSIVE || HAS_SURFACE_EMISSION))
 // Emissive triangles as lights need triangles too.
 #define HAS_TRIANGLE_LIGHTS (TRIANGLE_LIGHTS && HAS_TRIANGLES && (HAS_EMISSIVE || HAS_SURFACE_EMISSION))
+
+// Which part of a dispatch of samples this pipeline runs (STAGE_*, below).
+layout(constant_id = SPEC_STAGE) const uint STAGE = STAGE_WHOLE;
+// The subgroup stage (tail_subgroup_pass): every lane of a subgroup traces
+// the same path, and the octree walks split each leaf's tests among them.
+#define SPLIT_LEAVES (STAGE == STAGE_TAIL_SUBGROUP)
 
 #include "shared/rng.h"
 #include "sampling/warp.glsl"
@@ -439,7 +446,9 @@ void whole_pass() {
 // closed mesh, glass and metal between close spheres) no longer hold a warp
 // of short ones. accumulate.comp then adds each pixel's values in sample
 // order. The arithmetic and its order are those of whole_pass: the same bits.
-layout(constant_id = SPEC_STAGE) const uint STAGE = STAGE_WHOLE;
+// A level of fewer paths than TAIL_SUBGROUP runs in STAGE_TAIL_SUBGROUP
+// instead (tail_subgroup_pass).
+layout(constant_id = SPEC_TAIL_SUBGROUP) const uint TAIL_SUBGROUP = 0u;
 layout(std430, binding = BINDING_TAIL_VALUES) buffer TailValueBuf { vec4 tail_values[]; };
 layout(std430, binding = BINDING_TAIL_QUEUE) buffer TailQueueBuf { GpuTailPath tail_queue[]; };
 layout(std430, binding = BINDING_TAIL_CONTROL) buffer TailControlBuf { TailControl tail_control[]; };
@@ -484,6 +493,16 @@ void store_value(uint s, uint index, PathState p) {
   tail_values[s * (pass.width * pass.height) + index] = vec4(path_value(p), uintBitsToFloat(p.segments));
 }
 
+// Sizes level `level`'s dispatches for a path queued in `slot`: the tail
+// stage's one workgroup per 64 slots, the subgroup stage's one per
+// workgroup's subgroups among the first TAIL_SUBGROUP slots (if its
+// subgroups come out larger, its loop takes the rest).
+void count_queued(uint level, uint slot) {
+  if (slot % (WORKGROUP_SIZE * WORKGROUP_SIZE) == 0u) atomicAdd(tail_control[level].groups_x, 1u);
+  const uint paths_per_group = max(WORKGROUP_SIZE * WORKGROUP_SIZE / gl_SubgroupSize, 1u);
+  if (slot < TAIL_SUBGROUP && slot % paths_per_group == 0u) atomicAdd(tail_control[level].subgroup_groups_x, 1u);
+}
+
 // One invocation per sample: workgroup z is the round of lanes (sample s =
 // z * lanes + lane), the pixel as whole_pass maps it.
 void head_pass() {
@@ -500,8 +519,7 @@ void head_pass() {
     uint slot = atomicAdd(tail_control[0].count, 1u);
     if (slot < pass.tail_capacity) {
       tail_store(slot, p, index, s);
-      // The tail's dispatch size: one workgroup per 64 slots taken.
-      if (slot % (WORKGROUP_SIZE * WORKGROUP_SIZE) == 0u) atomicAdd(tail_control[0].groups_x, 1u);
+      count_queued(0u, slot);
       if (WALK_STATS) flush_walk_counts();
       return;
     }
@@ -524,14 +542,15 @@ void tail_pass() {
   const uint level = pass.tail_level;
   const uint slot = gl_WorkGroupID.x * (WORKGROUP_SIZE * WORKGROUP_SIZE) + gl_LocalInvocationIndex;
   const uint taken = min(tail_control[level].count, pass.tail_capacity);
-  if (slot >= taken) return;
+  // Fewer than TAIL_SUBGROUP: the subgroup stage takes the level.
+  if (slot >= taken || taken < TAIL_SUBGROUP) return;
   GpuTailPath q = tail_queue[(level & 1u) * pass.tail_capacity + slot];
   PathState p = tail_load(q);
   const uint end = taken < pass.tail_fill ? pass.bounce_limit : min(pass.tail_end, pass.bounce_limit);
   if (!trace_path(p, q.pixel, pass.sample_index + q.sample_offset, end)) {
     uint next = atomicAdd(tail_control[level + 1u].count, 1u);
     tail_store(((level + 1u) & 1u) * pass.tail_capacity + next, p, q.pixel, q.sample_offset);
-    if (next % (WORKGROUP_SIZE * WORKGROUP_SIZE) == 0u) atomicAdd(tail_control[level + 1u].groups_x, 1u);
+    count_queued(level + 1u, next);
     if (WALK_STATS) flush_walk_counts();
     return;
   }
@@ -539,8 +558,34 @@ void tail_pass() {
   store_value(q.sample_offset, q.pixel, p);
 }
 
+// A tail level of fewer paths than TAIL_SUBGROUP (RenderSettings::
+// tail_subgroup: at most the threads the GPU holds at once over its
+// subgroup size), which tail_pass leaves alone: each path takes a whole
+// subgroup and is finished there. Every lane traces the same path with the
+// same numbers, and the octree walks (accel/octree_walk.glsl, SPLIT_LEAVES)
+// share each leaf's tests among the lanes, whose nearest hits a subgroup
+// minimum then agrees on: the order-independent tie rule (closest_hit.glsl)
+// makes that the hit one lane alone would find, so the image is the same.
+// With fewer paths than the GPU holds, a path's bounces run one after the
+// other at the pace of its walks' memory reads (optimisation log 140): a
+// leaf's tests then take one round of reads instead of one per reference.
+// The loop takes whatever paths the dispatch's subgroups did not cover.
+void tail_subgroup_pass() {
+  const uint level = pass.tail_level;
+  const uint taken = min(tail_control[level].count, pass.tail_capacity);
+  if (taken >= TAIL_SUBGROUP) return;
+  for (uint slot = gl_WorkGroupID.x * gl_NumSubgroups + gl_SubgroupID; slot < taken;
+       slot += gl_NumWorkGroups.x * gl_NumSubgroups) {
+    GpuTailPath q = tail_queue[(level & 1u) * pass.tail_capacity + slot];
+    PathState p = tail_load(q);
+    trace_path(p, q.pixel, pass.sample_index + q.sample_offset, pass.bounce_limit);
+    if (subgroupElect()) store_value(q.sample_offset, q.pixel, p);
+  }
+}
+
 void main() {
   if (STAGE == STAGE_HEAD) head_pass();
   else if (STAGE == STAGE_TAIL) tail_pass();
+  else if (STAGE == STAGE_TAIL_SUBGROUP) tail_subgroup_pass();
   else whole_pass();
 }

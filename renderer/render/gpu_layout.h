@@ -158,7 +158,8 @@ static_assert(offsetof(GpuTailPath, bounce_flags) == 44);
 static_assert(offsetof(GpuTailPath, segments) == 60);
 static_assert(offsetof(GpuTailPath, from_prim) == 76);
 static_assert(offsetof(GpuTailPath, prev_pdf) == 92);
-static_assert(sizeof(TailControl) == 16);
+static_assert(sizeof(TailControl) == 32);
+static_assert(offsetof(TailControl, subgroup_groups_x) == 16);
 // Vulkan guarantees at least 128 bytes of push constants on every device.
 static_assert(sizeof(PassParams) <= 128);
 

@@ -101,6 +101,13 @@ struct PathTracer::State {
   }
   // RenderSettings::tail_fill resolved (0: every level queues its survivors).
   uint32_t tail_fill() const { return tail_step() == 0 ? 0u : fill_setting(); }
+  // RenderSettings::tail_subgroup resolved (0: no subgroup stage).
+  uint32_t tail_subgroup() const {
+    if (tail_depth() == 0 || settings.walk_stats) return 0u;
+    if (settings.tail_subgroup != RenderSettings::kTailAuto) return settings.tail_subgroup;
+    if (settings.accel != Accel::Octree || ctx.info.subgroup_size == 0) return 0u;
+    return tail_fill() / ctx.info.subgroup_size;
+  }
   // Whether a dispatch runs as head and sum (and tail, with a queue): one
   // sample per invocation and each pixel's values added after. Auto on a
   // software device has it without a queue: its compiler (llvmpipe 22.3)
@@ -135,8 +142,9 @@ struct PathTracer::State {
   uint32_t tail_samples = 0;   // samples one head dispatch takes (tail_values holds them)
   uint32_t tail_capacity = 0;  // GpuTailPath entries of tail_queue
   // The whole paths (STAGE_WHOLE), or staged its head, with a queue its
-  // tail (path_trace.comp STAGE_*), and the sum (accumulate.comp).
-  ComputePipeline pipeline, tail_pipeline, accumulate_pipeline;
+  // tail and with RenderSettings::tail_subgroup its subgroup stage
+  // (path_trace.comp STAGE_*), and the sum (accumulate.comp).
+  ComputePipeline pipeline, tail_pipeline, tail_subgroup_pipeline, accumulate_pipeline;
   GpuTimer timer;
 
   explicit State(const VulkanContext& c) : ctx(c) {}
@@ -215,7 +223,7 @@ uint32_t tail_queue_entries(uint64_t paths, bool gpu, uint64_t bytes, uint64_t l
 
 void PathTracer::State::bind_accumulation() {
   State& s = *this;
-  for (ComputePipeline* p : {&s.pipeline, &s.tail_pipeline, &s.accumulate_pipeline}) {
+  for (ComputePipeline* p : {&s.pipeline, &s.tail_pipeline, &s.tail_subgroup_pipeline, &s.accumulate_pipeline}) {
     if (p->pipeline == VK_NULL_HANDLE) continue;
     bind_buffers(*p, {{gpu::BINDING_ACCUM_SUM, &s.accum_sum},
                       {gpu::BINDING_ACCUM_COMP, &s.accum_comp},
@@ -237,6 +245,12 @@ void PathTracer::State::create_pipeline() {
     throw SettingError("precision", std::string(" ") + precision_name(settings.precision) + ": the device " +
                                         s.ctx.info.name + " lacks " +
                                         (s.ctx.info.shader_float16 ? "storageBuffer16BitAccess" : "shaderFloat16"));
+  // The shader's subgroup stage needs subgroup arithmetic, which every
+  // pipeline compiled from it declares.
+  if (!s.ctx.info.subgroup_arithmetic)
+    throw std::runtime_error("the device " + s.ctx.info.name +
+                             " lacks subgroup arithmetic in compute shaders (VkPhysicalDeviceSubgroupProperties), "
+                             "which the path tracer needs");
   auto start = Clock::now();
   s.features = settings.all_effects ? s.every_feature : s.scene_features;
   // A scene split over several buffers (GpuScene::part_log2) has a pipeline
@@ -256,6 +270,8 @@ void PathTracer::State::create_pipeline() {
   create_stage(s.pipeline, s.staged() ? gpu::STAGE_HEAD : gpu::STAGE_WHOLE, spirv, spirv_bytes);
   if (s.tail_depth() > 0) create_stage(s.tail_pipeline, gpu::STAGE_TAIL, spirv, spirv_bytes);
   else destroy_compute_pipeline(s.tail_pipeline);
+  if (s.tail_subgroup() > 0) create_stage(s.tail_subgroup_pipeline, gpu::STAGE_TAIL_SUBGROUP, spirv, spirv_bytes);
+  else destroy_compute_pipeline(s.tail_subgroup_pipeline);
   if (s.staged())
     create_compute_pipeline(s.accumulate_pipeline, s.ctx, accumulate_spv, sizeof(accumulate_spv), gpu::BINDING_COUNT,
                             sizeof(gpu::PassParams));
@@ -316,7 +332,8 @@ void PathTracer::State::create_stage(ComputePipeline& p, uint32_t stage, const u
                            {gpu::SPEC_SKY_LIGHT, f.sky_light},
                            {gpu::SPEC_TRIANGLE_LIGHTS, f.triangle_lights},
                            {gpu::SPEC_PART_LOG2, g.part_log2},
-                           {gpu::SPEC_STAGE, stage}},
+                           {gpu::SPEC_STAGE, stage},
+                           {gpu::SPEC_TAIL_SUBGROUP, s.tail_subgroup()}},
                           // Brute force reaches llvmpipe's loop limit first; the
                           // optimizer would change where it cuts (vk/specialize.h).
                           settings.accel != Accel::Brute);
@@ -389,6 +406,7 @@ bool PathTracer::octant_culling() const { return state_->octant_culling(); }
 uint32_t PathTracer::tail_depth() const { return state_->tail_depth(); }
 uint32_t PathTracer::tail_step() const { return state_->tail_step(); }
 uint32_t PathTracer::tail_fill() const { return state_->tail_fill(); }
+uint32_t PathTracer::tail_subgroup() const { return state_->tail_subgroup(); }
 const Buffer& PathTracer::accum_sum() const { return state_->accum_sum; }
 const Buffer& PathTracer::accum_comp() const { return state_->accum_comp; }
 const RenderSettings& PathTracer::settings() const { return state_->settings; }
@@ -498,7 +516,7 @@ void PathTracer::State::record_staged_passes(VkCommandBuffer cmd, gpu::PassParam
   for (uint64_t span = step; queue && step > 0 && levels < gpu::MAX_TAIL_LEVELS && span < after_head; ++levels)
     span += uint64_t(step) << levels;
   std::array<gpu::TailControl, gpu::MAX_TAIL_LEVELS> empty;
-  empty.fill(gpu::TailControl{0u, 0u, 1u, 1u});
+  empty.fill(gpu::TailControl{0u, 0u, 1u, 1u, 0u, 1u, 1u, 0u});
   for (uint32_t done = 0; done < count; done += pc.sample_count) {
     pc.sample_index = first_sample + done;
     pc.sample_count = std::min(per_dispatch, count - done);
@@ -525,6 +543,15 @@ void PathTracer::State::record_staged_passes(VkCommandBuffer cmd, gpu::PassParam
       // count) are the VkDispatchIndirectCommand.
       vkCmdDispatchIndirect(cmd, s.tail_control.buffer,
                             level * sizeof(gpu::TailControl) + offsetof(gpu::TailControl, groups_x));
+      // A level of fewer paths than tail_subgroup: the subgroup stage (the
+      // tail stage's invocations left them alone). The two write other
+      // parts of the same buffers, which a barrier orders all the same.
+      if (s.tail_subgroup_pipeline.pipeline != VK_NULL_HANDLE) {
+        compute_barrier(cmd);
+        bind(s.tail_subgroup_pipeline);
+        vkCmdDispatchIndirect(cmd, s.tail_control.buffer,
+                              level * sizeof(gpu::TailControl) + offsetof(gpu::TailControl, subgroup_groups_x));
+      }
     }
     compute_barrier(cmd);
     bind(s.accumulate_pipeline);
@@ -776,6 +803,7 @@ void PathTracer::finish_result(RenderResult& r, Clock::time_point start) {
   r.tail_depth = s.tail_depth();
   r.tail_step = s.tail_step();
   r.tail_fill = s.tail_fill();
+  r.tail_subgroup = s.tail_subgroup();
   r.pipeline_statistics = s.pipeline.statistics;
 }
 

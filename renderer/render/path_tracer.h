@@ -86,6 +86,7 @@ struct RenderResult {
   uint32_t tail_depth = 0;   // the tail queue's bounce in force (RenderSettings::tail_depth; 0: off)
   uint32_t tail_step = 0;    // bounces per tail level in force (RenderSettings::tail_step; 0: one level)
   uint32_t tail_fill = 0;    // RenderSettings::tail_fill in force (0: every level queues its survivors)
+  uint32_t tail_subgroup = 0;  // RenderSettings::tail_subgroup in force (0: no subgroup stage)
   uint32_t samples = 0;      // samples per pixel the state holds (settings.spp unless interrupted)
   bool interrupted = false;  // render(): RenderControl::stop ended it early
 };
@@ -258,6 +259,8 @@ class PathTracer {
   uint32_t tail_step() const;
   // RenderSettings::tail_fill resolved (0 without levels or without a fill).
   uint32_t tail_fill() const;
+  // RenderSettings::tail_subgroup resolved (0: no subgroup stage).
+  uint32_t tail_subgroup() const;
 
  private:
   // What a result has besides the images (read_result).

@@ -167,6 +167,15 @@ struct RenderSettings {
   // resident at once where its driver says (DeviceInfo::resident_threads),
   // else 0. The image is the same, bit for bit.
   uint32_t tail_fill = kTailAuto;
+  // With a tail queue: a tail level that takes fewer paths than this gives
+  // each its own subgroup, whose lanes share the octree walks' leaf tests
+  // (shaders/path_trace.comp tail_subgroup_pass): a path's bounce then waits
+  // on one round of reads a leaf, not one a reference. 0: off. kTailAuto:
+  // with tail levels, a fill and the octree, the fill over the device's
+  // subgroup size (all the subgroups the GPU holds at once), else 0; off
+  // with walk_stats, whose counts are of one walk a path. The image is the
+  // same, bit for bit.
+  uint32_t tail_subgroup = kTailAuto;
 };
 
 // The bounce at which RenderSettings::tail_depth's auto queues paths on a

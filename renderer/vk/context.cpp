@@ -209,6 +209,8 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index, const std::functi
       info.llvmpipe_release = mesa_release(driver.driverInfo);
     info.nvidia = driver.driverID == VK_DRIVER_ID_NVIDIA_PROPRIETARY;
     info.subgroup_size = subgroup.subgroupSize;
+    info.subgroup_arithmetic = (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0 &&
+                               (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT) != 0;
     static const char kHex[] = "0123456789abcdef";
     for (uint8_t byte : id.deviceUUID) {
       info.uuid += kHex[byte >> 4];

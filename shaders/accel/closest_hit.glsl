@@ -33,6 +33,33 @@ struct Hit {
 
 const uint NO_PRIM = 0xffffffffu;
 
+// Whether every lane of a subgroup walks the same ray and the octree walks
+// split each leaf's tests among them (path_trace.comp's subgroup stage);
+// the includer may define it, as a constant expression, before this file.
+#ifndef SPLIT_LEAVES
+#define SPLIT_LEAVES false
+#endif
+
+// After a leaf whose tests the subgroup's lanes split (SPLIT_LEAVES): the
+// nearest of their hits, on every lane. Each lane kept the nearest of its
+// share, by the tie rule below (the nearer, at exactly the same distance the
+// lower id), which orders hits as (t, prim) and does not depend on the order
+// of the tests: the minimum over the lanes is the hit one lane testing them
+// all would keep. The lanes holding it hold the same hit, kind and
+// instance too (a lane replaces the hit it came in with only by one before
+// it in that order, and within an instance an id names one primitive), so
+// the minimum of those is theirs. The includer enables
+// GL_KHR_shader_subgroup_arithmetic.
+void agree_on_hit(inout Hit hit) {
+  const float t = subgroupMin(hit.t);
+  const uint prim = subgroupMin(hit.t == t ? hit.prim : NO_PRIM);
+  const bool holds = hit.t == t && hit.prim == prim;
+  hit.kind = subgroupMin(holds ? hit.kind : 0xffffffffu);
+  hit.inst = subgroupMin(holds ? hit.inst : 0xffffffffu);
+  hit.t = t;
+  hit.prim = prim;
+}
+
 // --walk-stats (RenderStats.walk, shared.h WALK_*): this invocation's counts
 // of what the walks did since path_trace.comp last added them to the stats
 // buffer; with WALK_STATS off (the default) the counting compiles out.
@@ -180,7 +207,9 @@ void test_instance_triangle(Ray oray, RayShear osh, InstanceRef ir, uint local, 
 #define OCTREE_SLAB FusedSlabRay
 #define OCTREE_SLAB_MAKE fused_slab_ray
 #define OCTREE_LEAF(k) test_instance_triangle(ray, sh, ir, ref_at(k), from_prim, hit)
+#define OCTREE_SPLIT (SPLIT_LEAVES && ACCEL == ACCEL_OCTREE)
 #include "accel/octree_walk.glsl"
+#undef OCTREE_SPLIT
 #undef OCTREE_WALK_NAME
 #undef OCTREE_BVH_WIDE
 #undef OCTREE_BVH_WHILE
@@ -253,7 +282,11 @@ void test_primitive_at(Ray ray, SlabRay sr, uint k, uint from_prim, bool into_fr
 #define OCTREE_SLAB SlabRay
 #define OCTREE_SLAB_MAKE slab_ray
 #define OCTREE_LEAF(k) test_primitive_at(ray, sr, k, from_prim, into_from, hit)
+// Spheres alone: a top-level leaf holding an instance would have the lanes
+// walk different meshes.
+#define OCTREE_SPLIT (SPLIT_LEAVES && ACCEL == ACCEL_OCTREE && !HAS_TRIANGLES)
 #include "accel/octree_walk.glsl"
+#undef OCTREE_SPLIT
 #undef OCTREE_WALK_NAME
 #undef OCTREE_BVH_WIDE
 #undef OCTREE_BVH_WHILE
@@ -336,7 +369,9 @@ void test_primitive_any_at(Ray ray, SlabRay sr, uint k, uint from_prim, bool int
 #define OCTREE_SLAB SlabRay
 #define OCTREE_SLAB_MAKE slab_ray
 #define OCTREE_LEAF(k) test_primitive_any_at(ray, sr, k, from_prim, into_from, hit)
+#define OCTREE_SPLIT (SPLIT_LEAVES && ACCEL == ACCEL_OCTREE && !HAS_TRIANGLES)
 #include "accel/octree_walk.glsl"
+#undef OCTREE_SPLIT
 #undef OCTREE_WALK_NAME
 #undef OCTREE_BVH_WIDE
 #undef OCTREE_BVH_WHILE

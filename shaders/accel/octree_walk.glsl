@@ -6,7 +6,11 @@
 // reference in slot k of the refs array is tested; it may use the walk's
 // parameters and its slab terms `sr`) and
 // OCTREE_SLAB / OCTREE_SLAB_MAKE (the slab test's per-ray type and what
-// makes it: accel/octree.glsl), then undefines them. The walk is the same
+// makes it: accel/octree.glsl), and OCTREE_SPLIT (a constant expression:
+// whether the subgroup's lanes, all walking this ray, split each leaf's
+// references, lane l testing l, l + the subgroup's size, ..., and then agree
+// on the nearest hit: accel/closest_hit.glsl agree_on_hit), then undefines
+// them. The walk is the same
 // at both levels; only the leaf and the slab test's form differ.
 // With ACCEL == ACCEL_BVH the arrays hold a BVH, which accel/bvh_walk.glsl
 // walks, binary where the includer's OCTREE_BVH_WIDE (a constant
@@ -32,6 +36,9 @@ void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, Ra
     }
     return;
   }
+  // The leaf loops' first reference and stride (OCTREE_SPLIT).
+  const uint leaf_lane = OCTREE_SPLIT ? gl_SubgroupInvocationID : 0u;
+  const uint leaf_lanes = OCTREE_SPLIT ? gl_SubgroupSize : 1u;
   OCTREE_SLAB sr = OCTREE_SLAB_MAKE(ray);
   vec3 inv_dir = sr.inv;
   uint sign_mask = (floatBitsToUint(ray.dir.x) >> 31) | ((floatBitsToUint(ray.dir.y) >> 31) << 1) |
@@ -68,7 +75,8 @@ void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, Ra
     uint leaf_first = big_first, leaf_end = big_end;
     while (true) {
       if (WALK_STATS && leaf_end > leaf_first) ++walk_leaves;
-      for (uint k = leaf_first; k < leaf_end; ++k) OCTREE_LEAF(k);
+      for (uint k = leaf_first + leaf_lane; k < leaf_end; k += leaf_lanes) OCTREE_LEAF(k);
+      if (OCTREE_SPLIT && leaf_end > leaf_first) agree_on_hit(hit);
       if (sp == 0u) break;
       leaf_first = 0u;
       leaf_end = 0u;
@@ -79,7 +87,8 @@ void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, Ra
       uint leaf_first = 0u, leaf_end = 0u;
 #include "accel/octree_descend.glsl"
       if (WALK_STATS && leaf_end > leaf_first) ++walk_leaves;
-      for (uint k = leaf_first; k < leaf_end; ++k) OCTREE_LEAF(k);
+      for (uint k = leaf_first + leaf_lane; k < leaf_end; k += leaf_lanes) OCTREE_LEAF(k);
+      if (OCTREE_SPLIT && leaf_end > leaf_first) agree_on_hit(hit);
     }
   }
 }

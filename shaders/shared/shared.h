@@ -256,6 +256,11 @@ OCT_CONST(uint, SPEC_STAGE, 29u);
 OCT_CONST(uint, STAGE_WHOLE, 0u);
 OCT_CONST(uint, STAGE_HEAD, 1u);
 OCT_CONST(uint, STAGE_TAIL, 2u);
+// A tail level of fewer paths than SPEC_TAIL_SUBGROUP (RenderSettings::
+// tail_subgroup; 0: none) runs in this stage instead: a subgroup a path,
+// whose lanes share each octree leaf's tests (path_trace.comp).
+OCT_CONST(uint, STAGE_TAIL_SUBGROUP, 3u);
+OCT_CONST(uint, SPEC_TAIL_SUBGROUP, 37u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 255u);
 
@@ -624,8 +629,9 @@ struct GpuTailPath {
   float prev_pdf;
 };
 
-// 16 bytes: a tail queue's fill and, from byte 4, the indirect dispatch of
-// the tail level that takes it (a VkDispatchIndirectCommand); one per level
+// 32 bytes: a tail queue's fill and, from byte 4, the indirect dispatch of
+// the tail level that takes it (a VkDispatchIndirectCommand), from byte 16
+// that of its subgroup stage (STAGE_TAIL_SUBGROUP); one per level
 // (PassParams.tail_level: the head fills level 0's, each level but the last
 // the next one's), all reset before each head.
 struct TailControl {
@@ -633,6 +639,13 @@ struct TailControl {
   uint groups_x;  // workgroups of 64 the tail needs: one per 64 slots taken
   uint groups_y;  // 1
   uint groups_z;  // 1
+  // Workgroups of 64 the subgroup stage needs: one per 64 / subgroup size
+  // slots among the first SPEC_TAIL_SUBGROUP taken (a level of more runs
+  // in the tail stage, and these return at once).
+  uint subgroup_groups_x;
+  uint subgroup_groups_y;  // 1
+  uint subgroup_groups_z;  // 1
+  uint unused;
 };
 
 // 16 bytes, the push constants of the resolve pass.

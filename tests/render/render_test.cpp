@@ -187,26 +187,36 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
       ASSERT_EQ(want.tail_depth, 0u);
       // A fill of 300 paths finishes them in the level where fewer
       // than 300 are left (with 37 x 23 pixels, some levels on); 10^9 in
-      // the first level.
-      for (auto [depth, per_dispatch, lanes, entries, step, fill] :
-           {std::tuple{1u, 0u, 0u, 0u, 0u, 0u}, {2u, 0u, 0u, 0u, 0u, 0u}, {5u, 3u, 4u, 0u, 0u, 0u},
-            {2u, 5u, 8u, 0u, 0u, 0u}, {1u, 0u, 2u, 64u, 0u, 0u}, {3u, 0u, 0u, 1u, 0u, 0u}, {60u, 0u, 0u, 0u, 0u, 0u},
-            {1u, 0u, 0u, 0u, 1u, 0u}, {2u, 5u, 4u, 0u, 2u, 0u}, {1u, 0u, 2u, 64u, 1u, 0u}, {2u, 0u, 0u, 1u, 3u, 0u},
-            {1u, 0u, 0u, 0u, 1u, 300u}, {2u, 5u, 4u, 0u, 1u, 1000000000u}, {1u, 0u, 2u, 64u, 1u, 40u}}) {
+      // the first level. The subgroup stage (the last column; auto: the
+      // fill over the subgroup size) takes every level at 10^9, a level of
+      // fewer than 100 or 50 paths, or the one tail.
+      constexpr uint32_t kAuto = RenderSettings::kTailAuto;
+      const uint32_t subgroup_size = test::shared_context().info.subgroup_size;
+      for (auto [depth, per_dispatch, lanes, entries, step, fill, subgroup] :
+           {std::tuple{1u, 0u, 0u, 0u, 0u, 0u, kAuto}, {2u, 0u, 0u, 0u, 0u, 0u, kAuto}, {5u, 3u, 4u, 0u, 0u, 0u, kAuto},
+            {2u, 5u, 8u, 0u, 0u, 0u, kAuto}, {1u, 0u, 2u, 64u, 0u, 0u, kAuto}, {3u, 0u, 0u, 1u, 0u, 0u, kAuto},
+            {60u, 0u, 0u, 0u, 0u, 0u, kAuto}, {1u, 0u, 0u, 0u, 1u, 0u, kAuto}, {2u, 5u, 4u, 0u, 2u, 0u, kAuto},
+            {1u, 0u, 2u, 64u, 1u, 0u, kAuto}, {2u, 0u, 0u, 1u, 3u, 0u, kAuto}, {1u, 0u, 0u, 0u, 1u, 300u, kAuto},
+            {2u, 5u, 4u, 0u, 1u, 1000000000u, kAuto}, {1u, 0u, 2u, 64u, 1u, 40u, kAuto},
+            {1u, 0u, 0u, 0u, 1u, 300u, 1000000000u}, {2u, 5u, 4u, 0u, 1u, 0u, 100u}, {2u, 0u, 2u, 64u, 1u, 300u, 50u},
+            {3u, 0u, 0u, 0u, 0u, 0u, 1000000000u}, {1u, 0u, 0u, 0u, 1u, 300u, 0u}}) {
         s.tail_depth = depth;
         s.samples_per_dispatch = per_dispatch;
         s.sample_lanes = lanes;
         s.tail_queue_entries = entries;
         s.tail_step = step;
         s.tail_fill = fill;
+        s.tail_subgroup = subgroup;
         SCOPED_TRACE(std::string(precision_name(precision)) + ", rr " + std::to_string(rr) + ", tail depth " +
                      std::to_string(depth) + ", per dispatch " + std::to_string(per_dispatch) + ", lanes " +
                      std::to_string(lanes) + ", queue " + std::to_string(entries) + ", step " +
-                     std::to_string(step) + ", fill " + std::to_string(fill));
+                     std::to_string(step) + ", fill " + std::to_string(fill) + ", subgroup " +
+                     std::to_string(subgroup));
         const RenderResult got = render(test::shared_context(), scene, s);
         EXPECT_EQ(got.tail_depth, depth);
         EXPECT_EQ(got.tail_step, step);
         EXPECT_EQ(got.tail_fill, step ? fill : 0u);
+        EXPECT_EQ(got.tail_subgroup, subgroup != kAuto ? subgroup : step ? fill / subgroup_size : 0u);
         expect_same_result(got, want);
       }
     }
@@ -241,6 +251,16 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
     const RenderResult got = render(test::shared_context(), spheres, s);
     EXPECT_EQ(got.tail_step, kTailStepDefault);
     expect_same_result(got, want);
+    // Spheres alone: the subgroup stage's lanes split the top level's
+    // leaves too, in the closest-hit and the shadow rays' walks.
+    for (uint32_t subgroup : {1000000000u, 200u}) {
+      s.tail_subgroup = subgroup;
+      SCOPED_TRACE("spheres alone, subgroup " + std::to_string(subgroup));
+      const RenderResult split = render(test::shared_context(), spheres, s);
+      EXPECT_EQ(split.tail_subgroup, subgroup);
+      expect_same_result(split, want);
+    }
+    s.tail_subgroup = RenderSettings::kTailAuto;
   }
   // The other structures' walks run in the same head and tail.
   for (Accel accel : {Accel::Bvh, Accel::Brute}) {
@@ -782,6 +802,15 @@ TEST_F(RenderTest, WalkStatsCountTheWalksAndChangeNoPixel) {
   s.accel = Accel::Octree;
   const RenderResult lit = render(test::shared_context(), scene, s);
   EXPECT_GT(lit.walk.queries, lit.rays);  // and shadow rays
+  // The subgroup stage's lanes all walk one path's rays, which the counts
+  // would take for many walks: with the counting it is off.
+  s.accel = Accel::Octree;
+  s.tail_depth = 2;
+  s.tail_subgroup = 1000000;
+  s.walk_stats = true;
+  EXPECT_EQ(render(test::shared_context(), scene, s).tail_subgroup, 0u);
+  s.walk_stats = false;
+  EXPECT_EQ(render(test::shared_context(), scene, s).tail_subgroup, 1000000u);
 }
 
 // Instancing changes what is stored, not what is seen: one mesh placed nine
