@@ -359,13 +359,15 @@ struct RenderOptions {
         ->capture_default_str();
     cmd.add_option("--tail-fill", tail_fill,
                    "Tail levels: a level that takes fewer paths than this finishes them rather than queuing "
-                   "those still going for the next: auto | off | PATHS (auto: the threads the GPU holds at once, "
-                   "where its driver says; off: every level but the last queues them); same image")
+                   "those still going for the next: auto | off | PATHS (auto: --tail-subgroup's where there is one, "
+                   "else the threads the GPU holds at once, where its driver says; off: every level but the last "
+                   "queues them); same image")
         ->capture_default_str();
     cmd.add_option("--tail-subgroup", tail_subgroup,
                    "Tail levels: a level that takes fewer paths than this gives each path a whole subgroup, whose "
-                   "lanes share the octree's leaf tests: auto | off | PATHS (auto: with --tail-fill and the "
-                   "octree, the fill over the subgroup size; off with --walk-stats); same image")
+                   "lanes share the octree's leaf tests: auto | off | PATHS (auto: with the octree on a GPU whose "
+                   "driver says how many threads it holds at once, " + std::to_string(kTailSubgroupPaths) +
+                       " paths for each subgroup it holds; off with --walk-stats); same image")
         ->capture_default_str();
     cmd.add_option("--device", device, "auto | cpu | gpu | INDEX (see `octrace devices`)")->capture_default_str();
     cmd.add_flag("--validation", validation, "Enable the Khronos validation layer (also OCTRACE_VALIDATION=1)");
@@ -1082,10 +1084,15 @@ int cmd_devices(bool as_json) {
     if (d.cpu_threads > 0)
       std::printf("   threads   %u (llvmpipe's: LP_NUM_THREADS, else the CPUs; batches take whole multiples)\n",
                   d.cpu_threads);
-    if (d.resident_threads > 0)
+    if (d.resident_threads > 0 && d.subgroup_size > 0)
+      std::printf("   resident  %llu threads at once (--tail-subgroup's auto: %llu paths, --tail-fill's for the octree; "
+                  "the BVH's fill)\n",
+                  (unsigned long long)d.resident_threads,
+                  (unsigned long long)(d.resident_threads / d.subgroup_size * kTailSubgroupPaths));
+    else if (d.resident_threads > 0)
       std::printf("   resident  %llu threads at once (--tail-fill's auto)\n", (unsigned long long)d.resident_threads);
     else
-      std::printf("   resident  threads at once unknown (--tail-fill's auto: off)\n");
+      std::printf("   resident  threads at once unknown (--tail-fill's and --tail-subgroup's auto: off)\n");
     const auto& picks = auto_picks[d.index];
     for (Precision p : kPrecisions) {
       auto unmet = unmet_requirements(d, requirements_of(p));

@@ -83,10 +83,28 @@ struct PathTracer::State {
     return ctx.info.software ? 0u : kTailDepthDefault;
   }
   static_assert(kMaxTailLevels == gpu::MAX_TAIL_LEVELS);
-  // RenderSettings::tail_fill as set (auto: the device's resident threads,
-  // 0 where unknown), before tail_step() decides whether there are levels.
+  // RenderSettings::tail_subgroup's auto where it applies (0 where not):
+  // kTailSubgroupPaths paths for each subgroup the device holds resident
+  // at once, with the octree, where the driver says how many threads that
+  // is; off with walk_stats.
+  uint32_t subgroup_auto() const {
+    if (settings.accel != Accel::Octree || settings.walk_stats || ctx.info.subgroup_size == 0) return 0u;
+    return uint32_t(std::min<uint64_t>(ctx.info.resident_threads / ctx.info.subgroup_size * kTailSubgroupPaths,
+                                       UINT32_MAX));
+  }
+  // RenderSettings::tail_subgroup as set or its auto, before tail_step()
+  // decides whether there are levels (0: none).
+  uint32_t subgroup_setting() const {
+    if (settings.walk_stats) return 0u;
+    return settings.tail_subgroup == RenderSettings::kTailAuto ? subgroup_auto() : settings.tail_subgroup;
+  }
+  // RenderSettings::tail_fill as set (auto: the subgroup stage's threshold
+  // where there is one, so that the levels pack their paths until the
+  // stage takes them; else the device's resident threads, 0 where
+  // unknown), before tail_step() decides whether there are levels.
   uint32_t fill_setting() const {
     if (settings.tail_fill != RenderSettings::kTailAuto) return settings.tail_fill;
+    if (subgroup_setting() > 0) return subgroup_setting();
     return uint32_t(std::min<uint64_t>(ctx.info.resident_threads, UINT32_MAX));
   }
   // RenderSettings::tail_step resolved (0: one tail level). Auto: levels
@@ -102,11 +120,11 @@ struct PathTracer::State {
   // RenderSettings::tail_fill resolved (0: every level queues its survivors).
   uint32_t tail_fill() const { return tail_step() == 0 ? 0u : fill_setting(); }
   // RenderSettings::tail_subgroup resolved (0: no subgroup stage).
+  // Auto: only with levels.
   uint32_t tail_subgroup() const {
-    if (tail_depth() == 0 || settings.walk_stats) return 0u;
-    if (settings.tail_subgroup != RenderSettings::kTailAuto) return settings.tail_subgroup;
-    if (settings.accel != Accel::Octree || ctx.info.subgroup_size == 0) return 0u;
-    return tail_fill() / ctx.info.subgroup_size;
+    if (tail_depth() == 0) return 0u;
+    if (settings.tail_subgroup != RenderSettings::kTailAuto) return subgroup_setting();
+    return tail_step() > 0 ? subgroup_setting() : 0u;
   }
   // Whether a dispatch runs as head and sum (and tail, with a queue): one
   // sample per invocation and each pixel's values added after. Auto on a

@@ -163,18 +163,22 @@ struct RenderSettings {
   // them instead of queuing its survivors for the next, because packed
   // into fewer warps than the GPU holds a few long paths run each bounce at
   // the pace of the slowest of 32 (optimisation log 64). 0: every level but
-  // the last queues its survivors. kTailAuto: the threads the device holds
-  // resident at once where its driver says (DeviceInfo::resident_threads),
-  // else 0. The image is the same, bit for bit.
+  // the last queues its survivors. kTailAuto: the subgroup stage's
+  // threshold where there is one (tail_subgroup, below), so that levels go
+  // on packing their paths until the stage can take them; else the
+  // threads the device holds resident at once where its driver says
+  // (DeviceInfo::resident_threads), else 0. The image is the same, bit for
+  // bit.
   uint32_t tail_fill = kTailAuto;
   // With a tail queue: a tail level that takes fewer paths than this gives
   // each its own subgroup, whose lanes share the octree walks' leaf tests
   // (shaders/path_trace.comp tail_subgroup_pass): a path's bounce then waits
   // on one round of reads a leaf, not one a reference. 0: off. kTailAuto:
-  // with tail levels, a fill and the octree, the fill over the device's
-  // subgroup size (all the subgroups the GPU holds at once), else 0; off
-  // with walk_stats, whose counts are of one walk a path. The image is the
-  // same, bit for bit.
+  // with tail levels and the octree, kTailSubgroupPaths paths for each
+  // subgroup the device holds resident at once, where its driver says how
+  // many threads that is (on an H100 4 x 270,336 / 32 = 33,792), else 0.
+  // Off with walk_stats, whose counts are of one walk a path. The image is
+  // the same, bit for bit.
   uint32_t tail_subgroup = kTailAuto;
 };
 
@@ -186,6 +190,9 @@ constexpr uint32_t kTailDepthDefault = 2;
 // runs (gpu::MAX_TAIL_LEVELS).
 constexpr uint32_t kTailStepDefault = 1;
 constexpr uint32_t kMaxTailLevels = 16;
+// RenderSettings::tail_subgroup's auto: this many paths for each subgroup
+// the device holds resident at once (optimisation log 141).
+constexpr uint32_t kTailSubgroupPaths = 4;
 
 // Checks sizes and counts, and the octree's limits (check_octree_params);
 // throws SettingError naming the setting ("size 0x10: width and height

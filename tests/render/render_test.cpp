@@ -167,6 +167,13 @@ TEST_F(RenderTest, BatchingAndSampleLanesDoNotChangeTheResult) {
 // with a fill (RenderSettings::tail_fill) that has a level of few paths
 // finish them.
 TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
+  // RenderSettings::tail_subgroup's auto with the octree (and the fill's).
+  const auto subgroup_auto = [] {
+    const DeviceInfo& d = test::shared_context().info;
+    return d.subgroup_size ? uint32_t(std::min<uint64_t>(d.resident_threads / d.subgroup_size * kTailSubgroupPaths,
+                                                         UINT32_MAX))
+                           : 0u;
+  };
   Scene scene = make_rtiow_scene({40, 0.2f, 3});
   test::place(scene, test::icosphere(2, 1, true), glm::translate(glm::mat4(1.0f), glm::vec3(2, 1, 2)));
   Material light;
@@ -188,10 +195,10 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
       // A fill of 300 paths finishes them in the level where fewer
       // than 300 are left (with 37 x 23 pixels, some levels on); 10^9 in
       // the first level. The subgroup stage (the last column; auto: the
-      // fill over the subgroup size) takes every level at 10^9, a level of
+      // device's resident subgroups times kTailSubgroupPaths where its
+      // driver says, 0 on lavapipe) takes every level at 10^9, a level of
       // fewer than 100 or 50 paths, or the one tail.
       constexpr uint32_t kAuto = RenderSettings::kTailAuto;
-      const uint32_t subgroup_size = test::shared_context().info.subgroup_size;
       for (auto [depth, per_dispatch, lanes, entries, step, fill, subgroup] :
            {std::tuple{1u, 0u, 0u, 0u, 0u, 0u, kAuto}, {2u, 0u, 0u, 0u, 0u, 0u, kAuto}, {5u, 3u, 4u, 0u, 0u, 0u, kAuto},
             {2u, 5u, 8u, 0u, 0u, 0u, kAuto}, {1u, 0u, 2u, 64u, 0u, 0u, kAuto}, {3u, 0u, 0u, 1u, 0u, 0u, kAuto},
@@ -216,13 +223,14 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
         EXPECT_EQ(got.tail_depth, depth);
         EXPECT_EQ(got.tail_step, step);
         EXPECT_EQ(got.tail_fill, step ? fill : 0u);
-        EXPECT_EQ(got.tail_subgroup, subgroup != kAuto ? subgroup : step ? fill / subgroup_size : 0u);
+        EXPECT_EQ(got.tail_subgroup, subgroup != kAuto ? subgroup : step ? subgroup_auto() : 0u);
         expect_same_result(got, want);
       }
     }
   }
   // The tail levels' auto: with triangles (this scene) levels of a step
-  // of 1 where a fill applies (the device's resident threads, or one set),
+  // of 1 where a fill applies (with the octree the subgroup stage's
+  // threshold, with the BVH the device's resident threads, or one set),
   // one tail where none does; levels of a step of 1 for spheres alone; the
   // same image either way.
   {
@@ -234,7 +242,13 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
     const RenderResult device_fill = render(test::shared_context(), scene, s);
     const uint64_t resident = test::shared_context().info.resident_threads;
     EXPECT_EQ(device_fill.tail_step, resident > 0 ? kTailStepDefault : 0u);
-    EXPECT_EQ(device_fill.tail_fill, resident > 0 ? std::min<uint64_t>(resident, UINT32_MAX) : 0u);
+    EXPECT_EQ(device_fill.tail_fill, subgroup_auto());
+    EXPECT_EQ(device_fill.tail_subgroup, subgroup_auto());
+    s.accel = Accel::Bvh;
+    const RenderResult bvh_fill = render(test::shared_context(), scene, s);
+    EXPECT_EQ(bvh_fill.tail_fill, resident > 0 ? std::min<uint64_t>(resident, UINT32_MAX) : 0u);
+    EXPECT_EQ(bvh_fill.tail_subgroup, 0u);
+    s.accel = Accel::Octree;
     s.tail_fill = 0;
     EXPECT_EQ(render(test::shared_context(), scene, s).tail_step, 0u);
     s.tail_fill = 500;
