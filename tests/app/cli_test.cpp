@@ -126,6 +126,8 @@ const BadInput BAD_INPUTS[] = {
     {"tail_step_unknown", "--tail-step many", "--tail-step: expected auto, off or a bounce count from 1 to 100000, got \"many\""},
     {"tail_fill_zero", "--tail-fill 0", "--tail-fill: expected auto, off or a path count from 1 to 1000000000, got \"0\""},
     {"tail_fill_huge", "--tail-fill 4000000000", "--tail-fill: expected auto, off or a path count from 1 to 1000000000, got \"4000000000\""},
+    {"tail_subgroup_zero", "--tail-subgroup 0", "--tail-subgroup: expected auto, off or a path count from 1 to 1000000000, got \"0\""},
+    {"tail_subgroup_unknown", "--tail-subgroup all", "--tail-subgroup: expected auto, off or a path count from 1 to 1000000000, got \"all\""},
     {"first_sample_overflow", "--first-sample 4294967295 --spp 2", "--first-sample"},
     {"sample_lanes_three", "--sample-lanes 3", "--sample-lanes: must be 0 (auto), 1, 2, 4 or 8, got 3"},
     {"sample_lanes_sixteen", "--sample-lanes 16", "--sample-lanes: must be 0 (auto), 1, 2, 4 or 8, got 16"},
