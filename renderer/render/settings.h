@@ -174,7 +174,8 @@ struct RenderSettings {
   // each its own subgroup, whose lanes share the octree walks' leaf tests
   // (shaders/path_trace.comp tail_subgroup_pass): a path's bounce then waits
   // on one round of reads a leaf, not one a reference. 0: off. kTailAuto:
-  // with tail levels and the octree, kTailSubgroupPaths paths for each
+  // with tail levels, the octree and triangles in the scene (spheres alone
+  // keep the tail of before), kTailSubgroupPaths paths for each
   // subgroup the device holds resident at once, where its driver says how
   // many threads that is (on an H100 4 x 270,336 / 32 = 33,792), else 0.
   // Off with walk_stats, whose counts are of one walk a path. The image is

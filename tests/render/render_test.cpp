@@ -264,6 +264,7 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
     s.tail_step = RenderSettings::kTailAuto;
     const RenderResult got = render(test::shared_context(), spheres, s);
     EXPECT_EQ(got.tail_step, kTailStepDefault);
+    EXPECT_EQ(got.tail_subgroup, 0u);  // spheres alone: the tail of before
     expect_same_result(got, want);
     // Spheres alone: the subgroup stage's lanes split the top level's
     // leaves too, in the closest-hit and the shadow rays' walks.
