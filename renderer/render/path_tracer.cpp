@@ -268,12 +268,6 @@ void PathTracer::State::create_pipeline() {
     throw SettingError("precision", std::string(" ") + precision_name(settings.precision) + ": the device " +
                                         s.ctx.info.name + " lacks " +
                                         (s.ctx.info.shader_float16 ? "storageBuffer16BitAccess" : "shaderFloat16"));
-  // The shader's subgroup stage needs subgroup arithmetic, which every
-  // pipeline compiled from it declares.
-  if (!s.ctx.info.subgroup_arithmetic)
-    throw std::runtime_error("the device " + s.ctx.info.name +
-                             " lacks subgroup arithmetic in compute shaders (VkPhysicalDeviceSubgroupProperties), "
-                             "which the path tracer needs");
   auto start = Clock::now();
   s.features = settings.all_effects ? s.every_feature : s.scene_features;
   // A scene split over several buffers (GpuScene::part_log2) has a pipeline

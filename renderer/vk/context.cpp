@@ -300,6 +300,8 @@ std::vector<std::string> unmet_requirements(const DeviceInfo& d, const DeviceReq
   if (!d.vulkan12) unmet.push_back("Vulkan " + d.api_version + " < 1.2");
   if (!d.compute) unmet.push_back("no compute queue");
   else if (!d.timestamps) unmet.push_back("no timestamp queries on its compute queue");
+  // The path tracer's subgroup stage (every pipeline compiled from it declares it).
+  if (d.vulkan12 && !d.subgroup_arithmetic) unmet.push_back("no subgroup arithmetic in compute shaders");
   if (req.fp16 && d.vulkan12 && !d.shader_float16) unmet.push_back("no shaderFloat16");
   if (req.fp16 && d.vulkan12 && !d.storage_16bit) unmet.push_back("no storageBuffer16BitAccess");
   if (req.present && !d.swapchain) unmet.push_back("no VK_KHR_swapchain");
