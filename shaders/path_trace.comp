@@ -495,12 +495,14 @@ void store_value(uint s, uint index, PathState p) {
 
 // Sizes level `level`'s dispatches for a path queued in `slot`: the tail
 // stage's one workgroup per 64 slots, the subgroup stage's one per
-// workgroup's subgroups among the first TAIL_SUBGROUP slots (if its
-// subgroups come out larger, its loop takes the rest).
+// workgroup's subgroups among the first TAIL_SUBGROUP slots, at most 65535
+// workgroups (every device's dispatch limit; the stage's loop takes the
+// paths past them, and those of subgroups that come out larger).
 void count_queued(uint level, uint slot) {
   if (slot % (WORKGROUP_SIZE * WORKGROUP_SIZE) == 0u) atomicAdd(tail_control[level].groups_x, 1u);
   const uint paths_per_group = max(WORKGROUP_SIZE * WORKGROUP_SIZE / gl_SubgroupSize, 1u);
-  if (slot < TAIL_SUBGROUP && slot % paths_per_group == 0u) atomicAdd(tail_control[level].subgroup_groups_x, 1u);
+  if (slot < min(TAIL_SUBGROUP, 65535u * paths_per_group) && slot % paths_per_group == 0u)
+    atomicAdd(tail_control[level].subgroup_groups_x, 1u);
 }
 
 // One invocation per sample: workgroup z is the round of lanes (sample s =
@@ -559,9 +561,9 @@ void tail_pass() {
 }
 
 // A tail level of fewer paths than TAIL_SUBGROUP (RenderSettings::
-// tail_subgroup: at most the threads the GPU holds at once over its
-// subgroup size), which tail_pass leaves alone: each path takes a whole
-// subgroup and is finished there. Every lane traces the same path with the
+// tail_subgroup: auto, 4 paths for each subgroup the GPU holds at once),
+// which tail_pass leaves alone: each path takes a whole subgroup and is
+// finished there. Every lane traces the same path with the
 // same numbers, and the octree walks (accel/octree_walk.glsl, SPLIT_LEAVES)
 // share each leaf's tests among the lanes, whose nearest hits a subgroup
 // minimum then agrees on: the order-independent tie rule (closest_hit.glsl)

@@ -32,6 +32,9 @@ PassSettings pass_settings(const Scene& scene, const RenderSettings& settings) {
   return {scene.camera, settings.bounce_limit, settings.sample_seed, settings.rr_depth};
 }
 
+// Invocations of a path-tracing workgroup (path_trace.comp's local size).
+constexpr uint32_t kWorkgroupInvocations = gpu::WORKGROUP_SIZE * gpu::WORKGROUP_SIZE;
+
 struct PathTracer::State {
   const VulkanContext& ctx;
   RenderSettings settings;
@@ -92,7 +95,7 @@ struct PathTracer::State {
   // run (optimisation log 141).
   uint32_t subgroup_auto() const {
     if (settings.accel != Accel::Octree || !scene_features.triangles || settings.walk_stats ||
-        ctx.info.subgroup_size == 0)
+        ctx.info.subgroup_size == 0 || ctx.info.subgroup_size > kWorkgroupInvocations)
       return 0u;
     return uint32_t(std::min<uint64_t>(ctx.info.resident_threads / ctx.info.subgroup_size * kTailSubgroupPaths,
                                        UINT32_MAX));
@@ -268,6 +271,11 @@ void PathTracer::State::create_pipeline() {
     throw SettingError("precision", std::string(" ") + precision_name(settings.precision) + ": the device " +
                                         s.ctx.info.name + " lacks " +
                                         (s.ctx.info.shader_float16 ? "storageBuffer16BitAccess" : "shaderFloat16"));
+  // A path's subgroup lies within a workgroup (path_trace.comp).
+  if (s.tail_subgroup() > 0 && s.ctx.info.subgroup_size > kWorkgroupInvocations)
+    throw SettingError("tail_subgroup", ": the device " + s.ctx.info.name + "'s subgroups of " +
+                                            std::to_string(s.ctx.info.subgroup_size) + " lanes exceed a workgroup's " +
+                                            std::to_string(kWorkgroupInvocations) + " invocations; use auto or off");
   auto start = Clock::now();
   s.features = settings.all_effects ? s.every_feature : s.scene_features;
   // A scene split over several buffers (GpuScene::part_log2) has a pipeline

@@ -109,6 +109,16 @@ void validate_settings(const RenderSettings& s) {
   if (!(s.octree.bvh_spatial_refs >= 1.0 && s.octree.bvh_spatial_refs <= 4.0))
     throw SettingError("octree.bvh_spatial_refs", ": must be between 1 (no spatial splits) and 4, got " +
                                                       float_string(s.octree.bvh_spatial_refs));
+  // The subgroup stage splits the octree's leaves; over another structure
+  // its lanes would only trace each path 32 times, and the walk counts
+  // would take one walk for many.
+  if (s.tail_subgroup != RenderSettings::kTailAuto && s.tail_subgroup != 0) {
+    if (s.accel != Accel::Octree)
+      throw SettingError("tail_subgroup", ": the subgroup stage splits the octree's leaves; with --accel " +
+                                              std::string(accel_name(s.accel)) + " use auto or off");
+    if (s.walk_stats)
+      throw SettingError("tail_subgroup", ": the walk counts take one walk a path; with --walk-stats use auto or off");
+  }
   check_octree_params(s.octree);
 }
 

@@ -36,7 +36,12 @@ void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, Ra
     }
     return;
   }
-  // The leaf loops' first reference and stride (OCTREE_SPLIT).
+  // The leaf loops' first reference and stride (OCTREE_SPLIT). Split, every
+  // lane makes the same trips, a lane past the leaf's end skipping the test
+  // in its last, so that the lanes leave the loop together for
+  // agree_on_hit's subgroup operations (structured control flow reconverges
+  // at its merge on the drivers measured, lavapipe's and NVIDIA's; Vulkan
+  // guarantees it only with maximal reconvergence).
   const uint leaf_lane = OCTREE_SPLIT ? gl_SubgroupInvocationID : 0u;
   const uint leaf_lanes = OCTREE_SPLIT ? gl_SubgroupSize : 1u;
   OCTREE_SLAB sr = OCTREE_SLAB_MAKE(ray);
@@ -75,7 +80,8 @@ void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, Ra
     uint leaf_first = big_first, leaf_end = big_end;
     while (true) {
       if (WALK_STATS && leaf_end > leaf_first) ++walk_leaves;
-      for (uint k = leaf_first + leaf_lane; k < leaf_end; k += leaf_lanes) OCTREE_LEAF(k);
+      for (uint first = leaf_first; first < leaf_end; first += leaf_lanes)
+        if (!OCTREE_SPLIT || first + leaf_lane < leaf_end) OCTREE_LEAF(first + leaf_lane);
       if (OCTREE_SPLIT && leaf_end > leaf_first) agree_on_hit(hit);
       if (sp == 0u) break;
       leaf_first = 0u;
@@ -87,7 +93,8 @@ void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, Ra
       uint leaf_first = 0u, leaf_end = 0u;
 #include "accel/octree_descend.glsl"
       if (WALK_STATS && leaf_end > leaf_first) ++walk_leaves;
-      for (uint k = leaf_first + leaf_lane; k < leaf_end; k += leaf_lanes) OCTREE_LEAF(k);
+      for (uint first = leaf_first; first < leaf_end; first += leaf_lanes)
+        if (!OCTREE_SPLIT || first + leaf_lane < leaf_end) OCTREE_LEAF(first + leaf_lane);
       if (OCTREE_SPLIT && leaf_end > leaf_first) agree_on_hit(hit);
     }
   }

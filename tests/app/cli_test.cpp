@@ -128,6 +128,8 @@ const BadInput BAD_INPUTS[] = {
     {"tail_fill_huge", "--tail-fill 4000000000", "--tail-fill: expected auto, off or a path count from 1 to 1000000000, got \"4000000000\""},
     {"tail_subgroup_zero", "--tail-subgroup 0", "--tail-subgroup: expected auto, off or a path count from 1 to 1000000000, got \"0\""},
     {"tail_subgroup_unknown", "--tail-subgroup all", "--tail-subgroup: expected auto, off or a path count from 1 to 1000000000, got \"all\""},
+    {"tail_subgroup_bvh", "--accel bvh --tail-subgroup 1000", "--tail-subgroup: the subgroup stage splits the octree's leaves; with --accel bvh use auto or off"},
+    {"tail_subgroup_walk_stats", "--walk-stats --tail-subgroup 1000", "--tail-subgroup: the walk counts take one walk a path; with --walk-stats use auto or off"},
     {"first_sample_overflow", "--first-sample 4294967295 --spp 2", "--first-sample"},
     {"sample_lanes_three", "--sample-lanes 3", "--sample-lanes: must be 0 (auto), 1, 2, 4 or 8, got 3"},
     {"sample_lanes_sixteen", "--sample-lanes 16", "--sample-lanes: must be 0 (auto), 1, 2, 4 or 8, got 16"},
@@ -796,7 +798,7 @@ TEST(Cli, DevicesSaysWhichVariantsEachDeviceRuns) {
   r = run_octrace("devices --json");
   ASSERT_EQ(r.code, 0) << r.output;
   for (const char* key : {"\"variants\"", "\"unmet\"", "\"auto_picks\"", "\"fp16-all\"", "\"fp16_variant\"",
-                          "\"resident_threads\""})
+                          "\"resident_threads\"", "\"subgroup_arithmetic\""})
     EXPECT_NE(r.output.find(key), std::string::npos) << key << " missing in " << r.output;
 }
 

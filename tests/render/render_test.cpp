@@ -818,14 +818,20 @@ TEST_F(RenderTest, WalkStatsCountTheWalksAndChangeNoPixel) {
   const RenderResult lit = render(test::shared_context(), scene, s);
   EXPECT_GT(lit.walk.queries, lit.rays);  // and shadow rays
   // The subgroup stage's lanes all walk one path's rays, which the counts
-  // would take for many walks: with the counting it is off.
+  // would take for many walks: with the counting its auto is off, and a
+  // threshold set is refused.
   s.accel = Accel::Octree;
   s.tail_depth = 2;
-  s.tail_subgroup = 1000000;
+  s.tail_fill = 1000;
   s.walk_stats = true;
   EXPECT_EQ(render(test::shared_context(), scene, s).tail_subgroup, 0u);
+  s.tail_subgroup = 1000000;
+  EXPECT_THROW(render(test::shared_context(), scene, s), SettingError);
   s.walk_stats = false;
   EXPECT_EQ(render(test::shared_context(), scene, s).tail_subgroup, 1000000u);
+  // So is one over another structure, whose leaves the lanes do not split.
+  s.accel = Accel::Bvh;
+  EXPECT_THROW(render(test::shared_context(), scene, s), SettingError);
 }
 
 // Instancing changes what is stored, not what is seen: one mesh placed nine
