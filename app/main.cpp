@@ -365,8 +365,9 @@ struct RenderOptions {
         ->capture_default_str();
     cmd.add_option("--tail-subgroup", tail_subgroup,
                    "Tail levels: a level that takes fewer paths than this gives each path a whole subgroup, whose "
-                   "lanes share the octree's leaf tests: auto | off | PATHS (auto: with tail levels and the octree, for "
-                   "scenes with triangles, on a GPU whose driver says how many threads it holds at once, " + std::to_string(kTailSubgroupPaths) +
+                   "lanes share the octree's leaf tests: auto | off | PATHS (auto: with tail levels and the octree, "
+                   "for scenes with triangles, on a GPU whose driver says how many threads it holds at once, " +
+                       std::to_string(kTailSubgroupPaths) +
                        " paths for each subgroup it holds; off with --walk-stats; a count needs the octree and no "
                        "--walk-stats); same image")
         ->capture_default_str();
@@ -1086,11 +1087,10 @@ int cmd_devices(bool as_json) {
     if (d.cpu_threads > 0)
       std::printf("   threads   %u (llvmpipe's: LP_NUM_THREADS, else the CPUs; batches take whole multiples)\n",
                   d.cpu_threads);
-    if (d.resident_threads > 0 && d.subgroup_size > 0)
-      std::printf("   resident  %llu threads at once (--tail-subgroup's auto: %llu paths, and --tail-fill's, for the "
+    if (const uint32_t subgroup = default_tail_subgroup(d, true); subgroup > 0)
+      std::printf("   resident  %llu threads at once (--tail-subgroup's auto: %u paths, and --tail-fill's, for the "
                   "octree over triangles; elsewhere the fill)\n",
-                  (unsigned long long)d.resident_threads,
-                  (unsigned long long)(d.resident_threads / d.subgroup_size * kTailSubgroupPaths));
+                  (unsigned long long)d.resident_threads, subgroup);
     else if (d.resident_threads > 0)
       std::printf("   resident  %llu threads at once (--tail-fill's auto)\n", (unsigned long long)d.resident_threads);
     else

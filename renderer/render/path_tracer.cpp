@@ -86,25 +86,14 @@ struct PathTracer::State {
     return ctx.info.software ? 0u : kTailDepthDefault;
   }
   static_assert(kMaxTailLevels == gpu::MAX_TAIL_LEVELS);
-  // RenderSettings::tail_subgroup's auto where it applies (0 where not):
-  // kTailSubgroupPaths paths for each subgroup the device holds resident
-  // at once, for scenes with triangles and the octree, where the driver
-  // says how many threads that is; off with walk_stats. Spheres alone
-  // keep the tail of before: the stage is not measured to gain them, and
-  // its barrier and dispatch a level cost 488 spheres 2% where it did not
-  // run (optimisation log 141).
-  uint32_t subgroup_auto() const {
-    if (settings.accel != Accel::Octree || !scene_features.triangles || settings.walk_stats ||
-        ctx.info.subgroup_size == 0 || ctx.info.subgroup_size > kWorkgroupInvocations)
-      return 0u;
-    return uint32_t(std::min<uint64_t>(ctx.info.resident_threads / ctx.info.subgroup_size * kTailSubgroupPaths,
-                                       UINT32_MAX));
-  }
-  // RenderSettings::tail_subgroup as set or its auto, before tail_step()
-  // decides whether there are levels (0: none).
+  // RenderSettings::tail_subgroup as set or its auto (default_tail_subgroup
+  // with the octree, off with walk_stats; validate_settings refuses a count
+  // with either other), before tail_step() decides whether there are levels
+  // (0: none).
   uint32_t subgroup_setting() const {
-    if (settings.walk_stats) return 0u;
-    return settings.tail_subgroup == RenderSettings::kTailAuto ? subgroup_auto() : settings.tail_subgroup;
+    if (settings.tail_subgroup != RenderSettings::kTailAuto) return settings.tail_subgroup;
+    if (settings.accel != Accel::Octree || settings.walk_stats) return 0u;
+    return default_tail_subgroup(ctx.info, scene_features.triangles);
   }
   // RenderSettings::tail_fill as set (auto: the subgroup stage's threshold
   // where there is one, so that the levels pack their paths until the
@@ -858,8 +847,12 @@ bool default_surface_cells(const DeviceInfo& device, uint64_t samples) {
 }
 
 uint32_t lane_sample_slots(const DeviceInfo& device) {
-  const uint32_t invocations = gpu::WORKGROUP_SIZE * gpu::WORKGROUP_SIZE;
-  return device.nvidia ? 2 * invocations : invocations;
+  return device.nvidia ? 2 * kWorkgroupInvocations : kWorkgroupInvocations;
+}
+
+uint32_t default_tail_subgroup(const DeviceInfo& device, bool triangles) {
+  if (!triangles || device.subgroup_size == 0 || device.subgroup_size > kWorkgroupInvocations) return 0u;
+  return uint32_t(std::min<uint64_t>(device.resident_threads / device.subgroup_size * kTailSubgroupPaths, UINT32_MAX));
 }
 
 std::string software_loop_limit_warning(const DeviceInfo& device, const Scene& scene, const RenderSettings& settings) {

@@ -174,6 +174,17 @@ inline constexpr uint64_t kSurfaceCellsMinSamples = uint64_t(600) * 1200 * 800;
 // log 114). The image is the same.
 uint32_t lane_sample_slots(const DeviceInfo& device);
 
+// RenderSettings::tail_subgroup's auto with the octree: kTailSubgroupPaths
+// paths for each subgroup `device` holds resident at once, where its driver
+// says how many threads that is (an H100: 4 x 270,336 / 32 = 33,792), for a
+// scene with triangles; 0 (no subgroup stage) elsewhere, and where a
+// subgroup would not fit a workgroup of 64. On the H100 (fill and threshold
+// 32,768) the engine's passes 0.948x, the balloon's 0.726x; spheres alone
+// keep the tail of before, not measured to gain, the stage's barrier and
+// dispatch a level costing 488 spheres 2% where it did not run
+// (optimisation log 141).
+uint32_t default_tail_subgroup(const DeviceInfo& device, bool triangles);
+
 // Called after each batch of passes: passes done, total passes.
 using ProgressFn = std::function<void(uint32_t done, uint32_t total)>;
 

@@ -167,13 +167,9 @@ TEST_F(RenderTest, BatchingAndSampleLanesDoNotChangeTheResult) {
 // with a fill (RenderSettings::tail_fill) that has a level of few paths
 // finish them.
 TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
-  // RenderSettings::tail_subgroup's auto with the octree (and the fill's).
-  const auto subgroup_auto = [] {
-    const DeviceInfo& d = test::shared_context().info;
-    return d.subgroup_size ? uint32_t(std::min<uint64_t>(d.resident_threads / d.subgroup_size * kTailSubgroupPaths,
-                                                         UINT32_MAX))
-                           : 0u;
-  };
+  // RenderSettings::tail_subgroup's auto with the octree over triangles
+  // (and the fill's), for the device the tests run on.
+  const auto subgroup_auto = [] { return default_tail_subgroup(test::shared_context().info, true); };
   Scene scene = make_rtiow_scene({40, 0.2f, 3});
   test::place(scene, test::icosphere(2, 1, true), glm::translate(glm::mat4(1.0f), glm::vec3(2, 1, 2)));
   Material light;
@@ -391,6 +387,29 @@ struct RuleDevices {
     mesa26.llvmpipe_release = 2601;
   }
 };
+
+// RenderSettings::tail_subgroup's auto (optimisation log 141): four paths
+// for each subgroup the device holds at once, for scenes with triangles,
+// where the driver says; none where a subgroup would not fit a workgroup.
+TEST(TailSubgroup, AutoIsFourPathsForEachResidentSubgroupOverTriangles) {
+  DeviceInfo h100;
+  h100.resident_threads = 270336;
+  h100.subgroup_size = 32;
+  EXPECT_EQ(default_tail_subgroup(h100, true), 33792u);
+  EXPECT_EQ(default_tail_subgroup(h100, false), 0u);  // spheres alone
+  DeviceInfo wave64 = h100;
+  wave64.subgroup_size = 64;
+  EXPECT_EQ(default_tail_subgroup(wave64, true), 16896u);
+  DeviceInfo wide = h100;
+  wide.subgroup_size = 128;
+  EXPECT_EQ(default_tail_subgroup(wide, true), 0u);
+  DeviceInfo unknown = h100;
+  unknown.resident_threads = 0;  // lavapipe, or a driver that does not say
+  EXPECT_EQ(default_tail_subgroup(unknown, true), 0u);
+  unknown = h100;
+  unknown.subgroup_size = 0;  // below Vulkan 1.2
+  EXPECT_EQ(default_tail_subgroup(unknown, true), 0u);
+}
 
 // RenderSettings::bvh_walk's auto (optimisation log 123): while-while for
 // a top level whose leaves hold 4 references or more on average, on a GPU.
