@@ -1,4 +1,5 @@
-# Session 48 run1: session 47's run5 (never run) at a pack of 006e611:
+# Session 48 run1: a probe first (the split node step: expected.md), then
+# session 47's run5 (never run) at a pack of 498abde (006e611's code):
 # the subgroup stage's auto against off on the engine and the balloon,
 # the images of both at off and auto compared, `bench` of the meshes,
 # then the hard cases in eight shards and render_test's tail-queue case
@@ -6,8 +7,13 @@
 # gtest's lines (a shard the limit cuts still shows what passed).
 # Expectations in expected.md (run1).
 source tools/gpu_run.sh
-V=(--variant "off=-- --tail-subgroup off" --variant "auto=")
+V=(--variant "auto=" --variant "split=BIN=build-gpu/octrace-split")
 AB_ROUNDS=5
+ab engine_split $S --scene .assets/2CylinderEngine.glb --accel octree
+ab balloon_split $S --scene .assets/balloon/scene.gltf --accel octree
+same_image "split engine" "$B" build-gpu/octrace-split --size 1200x800 --spp 2 --depth 50 --device gpu --scene .assets/2CylinderEngine.glb --accel octree
+same_image "split balloon" "$B" build-gpu/octrace-split --size 1200x800 --spp 2 --depth 50 --device gpu --scene .assets/balloon/scene.gltf --accel octree
+V=(--variant "off=-- --tail-subgroup off" --variant "auto=")
 ab engine_f $S --scene .assets/2CylinderEngine.glb --accel octree
 ab balloon_f $S --scene .assets/balloon/scene.gltf --accel octree
 for sc in .assets/2CylinderEngine.glb .assets/balloon/scene.gltf; do
