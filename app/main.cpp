@@ -491,7 +491,7 @@ json device_json(const DeviceInfo& d) {
             {"shader_float16", d.shader_float16}, {"storage_buffer_16bit_access", d.storage_16bit},
             {"fp16_variant", d.supports_fp16()}, {"pipeline_robustness", d.pipeline_robustness},
             {"resident_threads", d.resident_threads}, {"subgroup_size", d.subgroup_size},
-            {"subgroup_arithmetic", d.subgroup_arithmetic},
+            {"subgroup_operations", d.subgroup_operations},
             {"cpu_threads", d.cpu_threads}};
   for (Precision p : kPrecisions) {
     auto unmet = unmet_requirements(d, requirements_of(p));

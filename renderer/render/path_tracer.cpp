@@ -34,6 +34,12 @@ PassSettings pass_settings(const Scene& scene, const RenderSettings& settings) {
 
 // Invocations of a path-tracing workgroup (path_trace.comp's local size).
 constexpr uint32_t kWorkgroupInvocations = gpu::WORKGROUP_SIZE * gpu::WORKGROUP_SIZE;
+// The subgroup stage's subgroups: at least a lane for each of an octree
+// node's eight children (the split node step, accel/octree_descend.glsl),
+// and within a workgroup (a path's lanes share it: path_trace.comp).
+bool fits_tail_subgroup(uint32_t subgroup_size) {
+  return subgroup_size >= 8 && subgroup_size <= kWorkgroupInvocations;
+}
 
 struct PathTracer::State {
   const VulkanContext& ctx;
@@ -260,11 +266,11 @@ void PathTracer::State::create_pipeline() {
     throw SettingError("precision", std::string(" ") + precision_name(settings.precision) + ": the device " +
                                         s.ctx.info.name + " lacks " +
                                         (s.ctx.info.shader_float16 ? "storageBuffer16BitAccess" : "shaderFloat16"));
-  // A path's subgroup lies within a workgroup (path_trace.comp).
-  if (s.tail_subgroup() > 0 && s.ctx.info.subgroup_size > kWorkgroupInvocations)
+  if (s.tail_subgroup() > 0 && !fits_tail_subgroup(s.ctx.info.subgroup_size))
     throw SettingError("tail_subgroup", ": the device " + s.ctx.info.name + "'s subgroups of " +
-                                            std::to_string(s.ctx.info.subgroup_size) + " lanes exceed a workgroup's " +
-                                            std::to_string(kWorkgroupInvocations) + " invocations; use auto or off");
+                                            std::to_string(s.ctx.info.subgroup_size) + " lanes are not 8 to " +
+                                            std::to_string(kWorkgroupInvocations) + " (a lane for each of a node's " +
+                                            "children, within a workgroup); use auto or off");
   auto start = Clock::now();
   s.features = settings.all_effects ? s.every_feature : s.scene_features;
   // A scene split over several buffers (GpuScene::part_log2) has a pipeline
@@ -851,7 +857,7 @@ uint32_t lane_sample_slots(const DeviceInfo& device) {
 }
 
 uint32_t default_tail_subgroup(const DeviceInfo& device, bool triangles) {
-  if (!triangles || device.subgroup_size == 0 || device.subgroup_size > kWorkgroupInvocations) return 0u;
+  if (!triangles || !fits_tail_subgroup(device.subgroup_size)) return 0u;
   return uint32_t(std::min<uint64_t>(device.resident_threads / device.subgroup_size * kTailSubgroupPaths, UINT32_MAX));
 }
 

@@ -178,7 +178,8 @@ uint32_t lane_sample_slots(const DeviceInfo& device);
 // paths for each subgroup `device` holds resident at once, where its driver
 // says how many threads that is (an H100: 4 x 270,336 / 32 = 33,792), for a
 // scene with triangles; 0 (no subgroup stage) elsewhere, and where a
-// subgroup would not fit a workgroup of 64. On the H100 (fill and threshold
+// subgroup has fewer than 8 lanes (one for each child of a node) or would
+// not fit a workgroup of 64. On the H100 (fill and threshold
 // 32,768) the engine's passes 0.948x, the balloon's 0.726x; spheres alone
 // keep the tail of before, not measured to gain, the stage's barrier and
 // dispatch a level costing 488 spheres 2% where it did not run

@@ -209,8 +209,10 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index, const std::functi
       info.llvmpipe_release = mesa_release(driver.driverInfo);
     info.nvidia = driver.driverID == VK_DRIVER_ID_NVIDIA_PROPRIETARY;
     info.subgroup_size = subgroup.subgroupSize;
-    info.subgroup_arithmetic = (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0 &&
-                               (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT) != 0;
+    const VkSubgroupFeatureFlags needed =
+        VK_SUBGROUP_FEATURE_ARITHMETIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_SHUFFLE_BIT;
+    info.subgroup_operations = (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0 &&
+                               (subgroup.supportedOperations & needed) == needed;
     static const char kHex[] = "0123456789abcdef";
     for (uint8_t byte : id.deviceUUID) {
       info.uuid += kHex[byte >> 4];
@@ -301,7 +303,8 @@ std::vector<std::string> unmet_requirements(const DeviceInfo& d, const DeviceReq
   if (!d.compute) unmet.push_back("no compute queue");
   else if (!d.timestamps) unmet.push_back("no timestamp queries on its compute queue");
   // The path tracer's subgroup stage (every pipeline compiled from it declares it).
-  if (d.vulkan12 && !d.subgroup_arithmetic) unmet.push_back("no subgroup arithmetic in compute shaders");
+  if (d.vulkan12 && !d.subgroup_operations)
+    unmet.push_back("no subgroup arithmetic, ballot and shuffle in compute shaders");
   if (req.fp16 && d.vulkan12 && !d.shader_float16) unmet.push_back("no shaderFloat16");
   if (req.fp16 && d.vulkan12 && !d.storage_16bit) unmet.push_back("no storageBuffer16BitAccess");
   if (req.present && !d.swapchain) unmet.push_back("no VK_KHR_swapchain");

@@ -61,10 +61,11 @@ struct DeviceInfo {
   // Lanes of a compute subgroup (VkPhysicalDeviceSubgroupProperties; 0 below
   // Vulkan 1.2): a warp on NVIDIA, the vector width on llvmpipe.
   uint32_t subgroup_size = 0;
-  // Subgroup arithmetic (subgroupMin, ...) in compute shaders, which the
-  // path tracer's subgroup stage uses (VkPhysicalDeviceSubgroupProperties;
-  // a device without it is not selected: unmet_requirements).
-  bool subgroup_arithmetic = false;
+  // Subgroup arithmetic, ballot and shuffle (subgroupMin, subgroupBallot,
+  // subgroupShuffle) in compute shaders, which the path tracer's subgroup
+  // stage uses (VkPhysicalDeviceSubgroupProperties; a device without them
+  // is not selected: unmet_requirements).
+  bool subgroup_operations = false;
   // A CPU device's worker threads (0 on a GPU), as llvmpipe counts them:
   // LP_NUM_THREADS, else the online CPUs, at most 32. llvmpipe gives each
   // thread one contiguous block of a dispatch's workgroups, so a dispatch of

@@ -49,7 +49,8 @@ const uint NO_PRIM = 0xffffffffu;
 // instance too (a lane replaces the hit it came in with only by one before
 // it in that order, and within an instance an id names one primitive), so
 // the minimum of those is theirs. The includer enables
-// GL_KHR_shader_subgroup_arithmetic.
+// GL_KHR_shader_subgroup_arithmetic (and, for the split node step in
+// accel/octree_descend.glsl, _ballot and _shuffle).
 void agree_on_hit(inout Hit hit) {
   const float t = subgroupMin(hit.t);
   const uint prim = subgroupMin(hit.t == t ? hit.prim : NO_PRIM);

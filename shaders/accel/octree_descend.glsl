@@ -17,7 +17,7 @@
 // beyond a nearer hit found since it was pushed is skipped (the early
 // exit); the held child's entry was tested against the nearest hit of the
 // moment, so the skip could not have taken it.
-if (HOLD_NEAREST) {
+if (HOLD_NEAREST && !OCTREE_SPLIT) {
   uint cur_node = 0u;
   float cur_entry = 0.0;
   bool go = false;
@@ -100,7 +100,31 @@ if (HOLD_NEAREST) {
     // trips of its busiest invocation. On the H200 the engine 5.7% and the
     // balloon 3.1% faster, the sphere fields the same or 0.7% slower
     // (optimisation log 81), so the top level tests one child a trip.
-    if (OCTREE_CHILD_PAIRS) {
+    if (OCTREE_SPLIT) {
+      // Split (the walk's OCTREE_SPLIT: every lane walks this ray): lane j
+      // of the first eight tests the child at bit j of the visit order, and
+      // every lane pushes the children met, the highest bit first, each
+      // entry distance from its lane (a ballot, then a shuffle a child), so
+      // the stacks hold what the one-lane loop below pushes, in its order.
+      // The held form above is not taken when split (the same nodes in the
+      // same order either way).
+      bool mine = leaf_lane < 8u && ((ordered >> leaf_lane) & 1u) != 0u;
+      float t_mine = 0.0;
+      bool met = false;
+      if (mine) {
+        GpuOctreeNode c = node_at(node.first + bitCount(present & ((1u << (leaf_lane ^ sign_mask)) - 1u)));
+        met = hit_box(c.lo, c.hi, sr, hit.t, t_mine);
+      }
+      if (WALK_STATS) walk_boxes += bitCount(ordered);
+      uint met_mask = subgroupBallot(met).x & 0xffu;
+      while (met_mask != 0u) {
+        uint j = uint(findMSB(met_mask));
+        met_mask ^= 1u << j;
+        stack[sp] = uvec2(node.first + bitCount(present & ((1u << (j ^ sign_mask)) - 1u)),
+                          floatBitsToUint(subgroupShuffle(t_mine, j)));
+        ++sp;
+      }
+    } else if (OCTREE_CHILD_PAIRS) {
       while (ordered != 0u) {
         uint child = take_child(ordered, present, node.first, sign_mask);
         bool two = ordered != 0u;

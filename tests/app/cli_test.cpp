@@ -798,7 +798,7 @@ TEST(Cli, DevicesSaysWhichVariantsEachDeviceRuns) {
   r = run_octrace("devices --json");
   ASSERT_EQ(r.code, 0) << r.output;
   for (const char* key : {"\"variants\"", "\"unmet\"", "\"auto_picks\"", "\"fp16-all\"", "\"fp16_variant\"",
-                          "\"resident_threads\"", "\"subgroup_arithmetic\""})
+                          "\"resident_threads\"", "\"subgroup_operations\""})
     EXPECT_NE(r.output.find(key), std::string::npos) << key << " missing in " << r.output;
 }
 

@@ -390,7 +390,8 @@ struct RuleDevices {
 
 // RenderSettings::tail_subgroup's auto (optimisation log 141): four paths
 // for each subgroup the device holds at once, for scenes with triangles,
-// where the driver says; none where a subgroup would not fit a workgroup.
+// where the driver says; none where a subgroup would not fit a workgroup
+// or has fewer lanes than a node has children.
 TEST(TailSubgroup, AutoIsFourPathsForEachResidentSubgroupOverTriangles) {
   DeviceInfo h100;
   h100.resident_threads = 270336;
@@ -403,6 +404,12 @@ TEST(TailSubgroup, AutoIsFourPathsForEachResidentSubgroupOverTriangles) {
   DeviceInfo wide = h100;
   wide.subgroup_size = 128;
   EXPECT_EQ(default_tail_subgroup(wide, true), 0u);
+  DeviceInfo narrow = h100;
+  narrow.resident_threads = 4096;
+  narrow.subgroup_size = 8;  // a lane for each child of a node: the least
+  EXPECT_EQ(default_tail_subgroup(narrow, true), 2048u);
+  narrow.subgroup_size = 4;
+  EXPECT_EQ(default_tail_subgroup(narrow, true), 0u);
   DeviceInfo unknown = h100;
   unknown.resident_threads = 0;  // lavapipe, or a driver that does not say
   EXPECT_EQ(default_tail_subgroup(unknown, true), 0u);

@@ -28,7 +28,7 @@ DeviceInfo capable(uint32_t index, const std::string& name, const std::string& t
   d.api_version = "1.3.230";
   d.software = type == "CPU";
   d.vulkan12 = d.compute = d.timestamps = d.shader_float16 = d.storage_16bit = d.swapchain = d.presents = true;
-  d.subgroup_arithmetic = true;
+  d.subgroup_operations = true;
   return d;
 }
 
@@ -42,7 +42,7 @@ DeviceInfo without_fp16(DeviceInfo d) {
 
 DeviceInfo vulkan11(DeviceInfo d) {
   d.api_version = "1.1.0";
-  d.vulkan12 = d.shader_float16 = d.storage_16bit = d.subgroup_arithmetic = false;  // unknown below 1.2: never queried
+  d.vulkan12 = d.shader_float16 = d.storage_16bit = d.subgroup_operations = false;  // unknown below 1.2: never queried
   return d;
 }
 
@@ -75,14 +75,14 @@ TEST(DeviceRequirements, ACapableDeviceMeetsAll) {
 
 TEST(DeviceRequirements, EveryUnmetRequirementIsListedNotOnlyTheFirst) {
   DeviceInfo d = without_fp16(lavapipe(0));
-  d.timestamps = d.swapchain = d.presents = d.subgroup_arithmetic = false;
+  d.timestamps = d.swapchain = d.presents = d.subgroup_operations = false;
   EXPECT_EQ(unmet_requirements(d, {true, true}),
-            (Reasons{"no timestamp queries on its compute queue", "no subgroup arithmetic in compute shaders",
+            (Reasons{"no timestamp queries on its compute queue", "no subgroup arithmetic, ballot and shuffle in compute shaders",
                      "no shaderFloat16", "no storageBuffer16BitAccess", "no VK_KHR_swapchain",
                      "no queue family with compute that can present to the window"}));
   // What a run does not ask for is not held against the device.
   EXPECT_EQ(unmet_requirements(d, {false, false}),
-            (Reasons{"no timestamp queries on its compute queue", "no subgroup arithmetic in compute shaders"}));
+            (Reasons{"no timestamp queries on its compute queue", "no subgroup arithmetic, ballot and shuffle in compute shaders"}));
 }
 
 TEST(DeviceRequirements, BelowVulkan12TheVersionIsTheReasonForTheUnqueriedFeatures) {
