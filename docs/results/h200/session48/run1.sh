@@ -1,4 +1,5 @@
-# Session 48 run1: a probe first (the split node step: expected.md), then
+# Session 48 run1: a probe first (the split node step: expected.md), the
+# stage over spheres alone (set: its auto is off there), then
 # session 47's run5 (never run) at a pack of 498abde (006e611's code):
 # the subgroup stage's auto against off on the engine and the balloon,
 # the images of both at off and auto compared, `bench` of the meshes,
@@ -13,6 +14,11 @@ ab engine_split $S --scene .assets/2CylinderEngine.glb --accel octree
 ab balloon_split $S --scene .assets/balloon/scene.gltf --accel octree
 same_image "split engine" "$B" build-gpu/octrace-split --size 1200x800 --spp 2 --depth 50 --device gpu --scene .assets/2CylinderEngine.glb --accel octree
 same_image "split balloon" "$B" build-gpu/octrace-split --size 1200x800 --spp 2 --depth 50 --device gpu --scene .assets/balloon/scene.gltf --accel octree
+V=(--variant "auto=" --variant "s32k=-- --tail-subgroup 32768 --tail-fill 32768"
+   --variant "s32k_split=BIN=build-gpu/octrace-split -- --tail-subgroup 32768 --tail-fill 32768")
+ab peer_stage --scene tools/scenes/peer_field.json --size 1920x1080 --spp 64 --depth 50 --rr-depth 1 --device gpu --accel octree
+ab s488_stage $S --spheres 488 --radius 0.1 --accel octree
+ab s8000_stage $S --spheres 8000 --radius 0.1 --accel octree
 V=(--variant "off=-- --tail-subgroup off" --variant "auto=")
 ab engine_f $S --scene .assets/2CylinderEngine.glb --accel octree
 ab balloon_f $S --scene .assets/balloon/scene.gltf --accel octree
