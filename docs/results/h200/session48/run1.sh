@@ -1,6 +1,7 @@
 # Session 48 run1: a probe first (the split node step: expected.md), the
 # stage over spheres alone (set: its auto is off there), then
-# session 47's run5 (never run) at a pack of 498abde (006e611's code):
+# session 47's run5 (never run), at a pack of the split node step's
+# commit (octrace-nosplit: without it, unsplit_node_step.patch):
 # the subgroup stage's auto against off on the engine and the balloon,
 # the images of both at off and auto compared, `bench` of the meshes,
 # then the hard cases in eight shards and render_test's tail-queue case
@@ -8,14 +9,14 @@
 # gtest's lines (a shard the limit cuts still shows what passed).
 # Expectations in expected.md (run1).
 source tools/gpu_run.sh
-V=(--variant "auto=" --variant "split=BIN=build-gpu/octrace-split")
+V=(--variant "auto=BIN=build-gpu/octrace-nosplit" --variant "split=")
 AB_ROUNDS=5
 ab engine_split $S --scene .assets/2CylinderEngine.glb --accel octree
 ab balloon_split $S --scene .assets/balloon/scene.gltf --accel octree
-same_image "split engine" "$B" build-gpu/octrace-split --size 1200x800 --spp 2 --depth 50 --device gpu --scene .assets/2CylinderEngine.glb --accel octree
-same_image "split balloon" "$B" build-gpu/octrace-split --size 1200x800 --spp 2 --depth 50 --device gpu --scene .assets/balloon/scene.gltf --accel octree
-V=(--variant "auto=" --variant "s32k=-- --tail-subgroup 32768 --tail-fill 32768"
-   --variant "s32k_split=BIN=build-gpu/octrace-split -- --tail-subgroup 32768 --tail-fill 32768")
+same_image "split engine" build-gpu/octrace-nosplit "$B" --size 1200x800 --spp 2 --depth 50 --device gpu --scene .assets/2CylinderEngine.glb --accel octree
+same_image "split balloon" build-gpu/octrace-nosplit "$B" --size 1200x800 --spp 2 --depth 50 --device gpu --scene .assets/balloon/scene.gltf --accel octree
+V=(--variant "auto=" --variant "s32k=BIN=build-gpu/octrace-nosplit -- --tail-subgroup 32768 --tail-fill 32768"
+   --variant "s32k_split=-- --tail-subgroup 32768 --tail-fill 32768")
 ab peer_stage --scene tools/scenes/peer_field.json --size 1920x1080 --spp 64 --depth 50 --rr-depth 1 --device gpu --accel octree
 ab s488_stage $S --spheres 488 --radius 0.1 --accel octree
 ab s8000_stage $S --spheres 8000 --radius 0.1 --accel octree
