@@ -9,7 +9,8 @@
 # gtest's lines (a shard the limit cuts still shows what passed).
 # Expectations in expected.md (run1).
 source tools/gpu_run.sh
-V=(--variant "auto=BIN=build-gpu/octrace-nosplit" --variant "split=")
+V=(--variant "auto=BIN=build-gpu/octrace-nosplit" --variant "split=" --variant "split_f16k=-- --tail-subgroup 16384 --tail-fill 16384"
+   --variant "split_f65k=-- --tail-subgroup 65536 --tail-fill 65536")
 AB_ROUNDS=5
 ab engine_split $S --scene .assets/2CylinderEngine.glb --accel octree
 ab balloon_split $S --scene .assets/balloon/scene.gltf --accel octree
