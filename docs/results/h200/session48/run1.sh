@@ -1,4 +1,5 @@
-# Session 48 run1: a probe first (the split node step: expected.md), the
+# Session 48 run1: probes first (the split node step, a path a cluster
+# of 8/16/32 lanes: expected.md), the
 # stage over spheres alone (set: its auto is off there), then
 # session 47's run5 (never run), at a pack of the split node step's
 # commit (octrace-nosplit: without it, unsplit_node_step.patch):
@@ -10,12 +11,18 @@
 # Expectations in expected.md (run1).
 source tools/gpu_run.sh
 V=(--variant "auto=BIN=build-gpu/octrace-nosplit" --variant "split=" --variant "split_f16k=-- --tail-subgroup 16384 --tail-fill 16384"
-   --variant "split_f65k=-- --tail-subgroup 65536 --tail-fill 65536")
+   --variant "split_f65k=-- --tail-subgroup 65536 --tail-fill 65536" --variant "c32=BIN=build-gpu/octrace-c32"
+   --variant "c16=BIN=build-gpu/octrace-c16" --variant "c8=BIN=build-gpu/octrace-c8"
+   --variant "c8_f131k=BIN=build-gpu/octrace-c8 -- --tail-subgroup 131072 --tail-fill 131072")
+AB_TIMEOUT=200
 AB_ROUNDS=5
 ab engine_split $S --scene .assets/2CylinderEngine.glb --accel octree
 ab balloon_split $S --scene .assets/balloon/scene.gltf --accel octree
 same_image "split engine" build-gpu/octrace-nosplit "$B" --size 1200x800 --spp 2 --depth 50 --device gpu --scene .assets/2CylinderEngine.glb --accel octree
 same_image "split balloon" build-gpu/octrace-nosplit "$B" --size 1200x800 --spp 2 --depth 50 --device gpu --scene .assets/balloon/scene.gltf --accel octree
+same_image "c8 engine" build-gpu/octrace-c8 "$B" --size 1200x800 --spp 2 --depth 50 --device gpu --scene .assets/2CylinderEngine.glb --accel octree
+same_image "c8 balloon" build-gpu/octrace-c8 "$B" --size 1200x800 --spp 2 --depth 50 --device gpu --scene .assets/balloon/scene.gltf --accel octree
+AB_TIMEOUT=90
 V=(--variant "auto=" --variant "s32k=BIN=build-gpu/octrace-nosplit -- --tail-subgroup 32768 --tail-fill 32768"
    --variant "s32k_split=-- --tail-subgroup 32768 --tail-fill 32768")
 ab peer_stage --scene tools/scenes/peer_field.json --size 1920x1080 --spp 64 --depth 50 --rr-depth 1 --device gpu --accel octree
