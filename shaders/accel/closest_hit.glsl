@@ -51,17 +51,8 @@ const uint NO_PRIM = 0xffffffffu;
 // the minimum of those is theirs. The includer enables
 // GL_KHR_shader_subgroup_arithmetic (and, for the split node step in
 // accel/octree_descend.glsl, _ballot and _shuffle).
-// The distance's minimum is taken over integers that order as the floats
-// do (a negative's magnitude bits flipped, so that the any-hit walks'
-// -1, a blocker found, stays the least): NVIDIA's warps reduce a 32-bit
-// integer in one instruction, a float in five rounds of shuffles.
-int ordered_bits(float t) {
-  int k = floatBitsToInt(t);
-  return k ^ ((k >> 31) & 0x7fffffff);
-}
-float from_ordered_bits(int k) { return intBitsToFloat(k ^ ((k >> 31) & 0x7fffffff)); }
 void agree_on_hit(inout Hit hit) {
-  const float t = from_ordered_bits(subgroupMin(ordered_bits(hit.t)));
+  const float t = subgroupMin(hit.t);
   const uint prim = subgroupMin(hit.t == t ? hit.prim : NO_PRIM);
   const bool holds = hit.t == t && hit.prim == prim;
   hit.kind = subgroupMin(holds ? hit.kind : 0xffffffffu);
