@@ -365,11 +365,13 @@ struct RenderOptions {
         ->capture_default_str();
     cmd.add_option("--tail-subgroup", tail_subgroup,
                    "Tail levels: a level that takes fewer paths than this gives each path a whole subgroup, whose "
-                   "lanes share the octree's leaf tests: auto | off | PATHS (auto: with tail levels and the octree, "
+                   "lanes share the octree's leaf and child box tests: auto | off | PATHS (auto: with tail levels and the "
+                   "octree, "
                    "for scenes with triangles, on a GPU whose driver says how many threads it holds at once, " +
                        std::to_string(kTailSubgroupPaths) +
-                       " paths for each subgroup it holds; off with --walk-stats; a count needs the octree and no "
-                       "--walk-stats); same image")
+                       " paths for each subgroup it holds, where a subgroup has 8 to 64 lanes; off with "
+                       "--walk-stats; a count needs the octree, no --walk-stats and subgroups of 8 to 64 lanes); "
+                       "same image")
         ->capture_default_str();
     cmd.add_option("--device", device, "auto | cpu | gpu | INDEX (see `octrace devices`)")->capture_default_str();
     cmd.add_flag("--validation", validation, "Enable the Khronos validation layer (also OCTRACE_VALIDATION=1)");
@@ -491,7 +493,7 @@ json device_json(const DeviceInfo& d) {
             {"shader_float16", d.shader_float16}, {"storage_buffer_16bit_access", d.storage_16bit},
             {"fp16_variant", d.supports_fp16()}, {"pipeline_robustness", d.pipeline_robustness},
             {"resident_threads", d.resident_threads}, {"subgroup_size", d.subgroup_size},
-            {"subgroup_operations", d.subgroup_operations},
+            {"subgroup_operations", missing_subgroup_operations(d).empty()},
             {"cpu_threads", d.cpu_threads}};
   for (Precision p : kPrecisions) {
     auto unmet = unmet_requirements(d, requirements_of(p));

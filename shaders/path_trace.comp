@@ -75,7 +75,8 @@ layout(constant_id = SPEC_TRIANGLE_LIGHTS) const bool TRIANGLE_LIGHTS = true;
 // Which part of a dispatch of samples this pipeline runs (STAGE_*, below).
 layout(constant_id = SPEC_STAGE) const uint STAGE = STAGE_WHOLE;
 // The subgroup stage (tail_subgroup_pass): every lane of a subgroup traces
-// the same path, and the octree walks split each leaf's tests among them.
+// the same path, and the octree walks split each leaf's tests and each
+// node step's child box tests among them.
 #define SPLIT_LEAVES (STAGE == STAGE_TAIL_SUBGROUP)
 
 #include "shared/rng.h"
@@ -569,10 +570,13 @@ void tail_pass() {
 // same numbers, and the octree walks (accel/octree_walk.glsl, SPLIT_LEAVES)
 // share each leaf's tests among the lanes, whose nearest hits a subgroup
 // minimum then agrees on: the order-independent tie rule (closest_hit.glsl)
-// makes that the hit one lane alone would find, so the image is the same.
+// makes that the hit one lane alone would find, so the image is the same;
+// and each node step's child box tests, a child a lane, whose results a
+// ballot and shuffles give every lane (accel/octree_descend.glsl).
 // With fewer paths than the GPU holds, a path's bounces run one after the
 // other at the pace of its walks' memory reads (optimisation log 140): a
-// leaf's tests then take one round of reads instead of one per reference.
+// leaf's tests then take one round of reads instead of one per reference,
+// a node's children one instead of one a child (log 142).
 // The loop takes whatever paths the dispatch's subgroups did not cover.
 void tail_subgroup_pass() {
   const uint level = pass.tail_level;

@@ -34,9 +34,6 @@ PassSettings pass_settings(const Scene& scene, const RenderSettings& settings) {
 
 // Invocations of a path-tracing workgroup (path_trace.comp's local size).
 constexpr uint32_t kWorkgroupInvocations = gpu::WORKGROUP_SIZE * gpu::WORKGROUP_SIZE;
-// The subgroup stage's subgroups: at least a lane for each of an octree
-// node's eight children (the split node step, accel/octree_descend.glsl),
-// and within a workgroup (a path's lanes share it: path_trace.comp).
 bool fits_tail_subgroup(uint32_t subgroup_size) {
   return subgroup_size >= 8 && subgroup_size <= kWorkgroupInvocations;
 }

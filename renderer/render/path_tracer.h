@@ -186,6 +186,13 @@ uint32_t lane_sample_slots(const DeviceInfo& device);
 // (optimisation log 141).
 uint32_t default_tail_subgroup(const DeviceInfo& device, bool triangles);
 
+// Whether subgroups of `subgroup_size` lanes can run the subgroup stage: at
+// least a lane for each of an octree node's eight children (the split node
+// step, accel/octree_descend.glsl), and within a workgroup of 64 (a path's
+// lanes share it: path_trace.comp). Elsewhere its auto is 0 and a
+// threshold set is refused (SettingError).
+bool fits_tail_subgroup(uint32_t subgroup_size);
+
 // Called after each batch of passes: passes done, total passes.
 using ProgressFn = std::function<void(uint32_t done, uint32_t total)>;
 

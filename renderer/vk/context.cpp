@@ -209,10 +209,8 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index, const std::functi
       info.llvmpipe_release = mesa_release(driver.driverInfo);
     info.nvidia = driver.driverID == VK_DRIVER_ID_NVIDIA_PROPRIETARY;
     info.subgroup_size = subgroup.subgroupSize;
-    const VkSubgroupFeatureFlags needed =
-        VK_SUBGROUP_FEATURE_ARITHMETIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_SHUFFLE_BIT;
-    info.subgroup_operations = (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0 &&
-                               (subgroup.supportedOperations & needed) == needed;
+    info.subgroup_stages = subgroup.supportedStages;
+    info.subgroup_features = subgroup.supportedOperations;
     static const char kHex[] = "0123456789abcdef";
     for (uint8_t byte : id.deviceUUID) {
       info.uuid += kHex[byte >> 4];
@@ -297,14 +295,28 @@ void throw_vk_error(VkResult result, const char* what) {
   }
 }
 
+std::string missing_subgroup_operations(const DeviceInfo& d) {
+  if ((d.subgroup_stages & VK_SHADER_STAGE_COMPUTE_BIT) == 0) return "compute shaders";
+  std::vector<std::string> missing;
+  for (auto [bit, name] : {std::pair{VK_SUBGROUP_FEATURE_ARITHMETIC_BIT, "arithmetic"},
+                           std::pair{VK_SUBGROUP_FEATURE_BALLOT_BIT, "ballot"},
+                           std::pair{VK_SUBGROUP_FEATURE_SHUFFLE_BIT, "shuffle"}})
+    if ((d.subgroup_features & bit) == 0) missing.push_back(name);
+  std::string words;
+  for (size_t i = 0; i < missing.size(); ++i)
+    words += (i == 0 ? "" : i + 1 == missing.size() ? " and " : ", ") + missing[i];
+  return words;
+}
+
 std::vector<std::string> unmet_requirements(const DeviceInfo& d, const DeviceRequirements& req) {
   std::vector<std::string> unmet;
   if (!d.vulkan12) unmet.push_back("Vulkan " + d.api_version + " < 1.2");
   if (!d.compute) unmet.push_back("no compute queue");
   else if (!d.timestamps) unmet.push_back("no timestamp queries on its compute queue");
   // The path tracer's subgroup stage (every pipeline compiled from it declares it).
-  if (d.vulkan12 && !d.subgroup_operations)
-    unmet.push_back("no subgroup arithmetic, ballot and shuffle in compute shaders");
+  if (const std::string missing = missing_subgroup_operations(d); d.vulkan12 && !missing.empty())
+    unmet.push_back(missing == "compute shaders" ? "no subgroup operations in compute shaders"
+                                                 : "no subgroup " + missing + " in compute shaders");
   if (req.fp16 && d.vulkan12 && !d.shader_float16) unmet.push_back("no shaderFloat16");
   if (req.fp16 && d.vulkan12 && !d.storage_16bit) unmet.push_back("no storageBuffer16BitAccess");
   if (req.present && !d.swapchain) unmet.push_back("no VK_KHR_swapchain");

@@ -61,11 +61,14 @@ struct DeviceInfo {
   // Lanes of a compute subgroup (VkPhysicalDeviceSubgroupProperties; 0 below
   // Vulkan 1.2): a warp on NVIDIA, the vector width on llvmpipe.
   uint32_t subgroup_size = 0;
-  // Subgroup arithmetic, ballot and shuffle (subgroupMin, subgroupBallot,
-  // subgroupShuffle) in compute shaders, which the path tracer's subgroup
-  // stage uses (VkPhysicalDeviceSubgroupProperties; a device without them
-  // is not selected: unmet_requirements).
-  bool subgroup_operations = false;
+  // The stages and operations subgroups support
+  // (VkPhysicalDeviceSubgroupProperties: VkShaderStageFlags and
+  // VkSubgroupFeatureFlags; 0 below Vulkan 1.2). The path tracer's subgroup
+  // stage needs arithmetic, ballot and shuffle in compute shaders
+  // (missing_subgroup_operations; a device without them is not selected:
+  // unmet_requirements).
+  uint32_t subgroup_stages = 0;
+  uint32_t subgroup_features = 0;
   // A CPU device's worker threads (0 on a GPU), as llvmpipe counts them:
   // LP_NUM_THREADS, else the online CPUs, at most 32. llvmpipe gives each
   // thread one contiguous block of a dispatch's workgroups, so a dispatch of
@@ -92,6 +95,11 @@ struct DeviceRequirements {
 // fits. Below Vulkan 1.2 the 16-bit features are unknown, so the version is
 // then the only reason given for them.
 std::vector<std::string> unmet_requirements(const DeviceInfo& d, const DeviceRequirements& req);
+
+// What `d` lacks of the subgroup operations every path-tracing pipeline
+// declares, in words ("shuffle", "ballot and shuffle", "compute shaders":
+// none in that stage), or "" where it has them all.
+std::string missing_subgroup_operations(const DeviceInfo& d);
 
 // The device that `selection` (auto | cpu | gpu | INDEX) picks: an index
 // picks that device; auto, cpu and gpu the first that fits among their

@@ -34,7 +34,8 @@ struct Hit {
 const uint NO_PRIM = 0xffffffffu;
 
 // Whether every lane of a subgroup walks the same ray and the octree walks
-// split each leaf's tests among them (path_trace.comp's subgroup stage);
+// split each leaf's tests and each node step's child box tests among them
+// (path_trace.comp's subgroup stage);
 // the includer may define it, as a constant expression, before this file.
 #ifndef SPLIT_LEAVES
 #define SPLIT_LEAVES false

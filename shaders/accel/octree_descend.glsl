@@ -2,12 +2,13 @@
 // both of its forms; no include guard): it visits nodes until the invocation
 // holds a leaf, whose references it leaves in [leaf_first, leaf_end), or its
 // stack is empty (the range is then empty). It uses the walk's stack, sp,
-// ray, sr, inv_dir, sign_mask, t_entry and hit, and the includer's
-// OCTREE_CHILD_PAIRS.
+// ray, sr, inv_dir, sign_mask, t_entry, hit and leaf_lane, and the
+// includer's OCTREE_CHILD_PAIRS and OCTREE_SPLIT.
 //
 // Two forms of the loop, the same nodes in the same order (HOLD_NEAREST,
 // accel/octree.glsl; the host picks per device, RenderSettings::
-// nearest_child). Pushed: every child the ray meets is pushed, farthest
+// nearest_child; a split walk, OCTREE_SPLIT, always takes the pushed
+// form). Pushed: every child the ray meets is pushed, farthest
 // first, and the loop pops the nearest straight back. Held: the nearest is
 // kept in registers and visited next, the others pushed; a pop comes only
 // where a node's children all miss. On lavapipe, which runs a loop until
@@ -93,13 +94,6 @@ if (HOLD_NEAREST && !OCTREE_SPLIT) {
     }
     uint present = node.count_or_mask & 0xffu;  // children's octants; child index = rank in it
     uint ordered = octree_children_order(node, top_entry, ray.origin, inv_dir, sign_mask, hit.t);
-    // OCTREE_CHILD_PAIRS (the meshes' walk): two children a trip, in the
-    // order one at a time takes them, the second's load issued beside the
-    // first's (a lone last child loads its node twice and drops the second
-    // result), so the same pushes in the same order: a warp runs half the
-    // trips of its busiest invocation. On the H200 the engine 5.7% and the
-    // balloon 3.1% faster, the sphere fields the same or 0.7% slower
-    // (optimisation log 81), so the top level tests one child a trip.
     if (OCTREE_SPLIT) {
       // Split (the walk's OCTREE_SPLIT: every lane walks this ray): lane j
       // of the first eight tests the child at bit j of the visit order, and
@@ -107,7 +101,10 @@ if (HOLD_NEAREST && !OCTREE_SPLIT) {
       // entry distance from its lane (a ballot, then a shuffle a child), so
       // the stacks hold what the one-lane loop below pushes, in its order.
       // The held form above is not taken when split (the same nodes in the
-      // same order either way).
+      // same order either way). The ballot after the lanes' own tests needs
+      // them reconverged, as agree_on_hit does (accel/octree_walk.glsl).
+      // On the H100 the engine 0.990x, the balloon 0.948x (optimisation
+      // log 142).
       bool mine = leaf_lane < 8u && ((ordered >> leaf_lane) & 1u) != 0u;
       float t_mine = 0.0;
       bool met = false;
@@ -125,6 +122,13 @@ if (HOLD_NEAREST && !OCTREE_SPLIT) {
         ++sp;
       }
     } else if (OCTREE_CHILD_PAIRS) {
+      // The meshes' walk: two children a trip, in the order one at a time
+      // takes them, the second's load issued beside the first's (a lone
+      // last child loads its node twice and drops the second result), so
+      // the same pushes in the same order: a warp runs half the trips of
+      // its busiest invocation. On the H200 the engine 5.7% and the balloon
+      // 3.1% faster, the sphere fields the same or 0.7% slower
+      // (optimisation log 81), so the top level tests one child a trip.
       while (ordered != 0u) {
         uint child = take_child(ordered, present, node.first, sign_mask);
         bool two = ordered != 0u;

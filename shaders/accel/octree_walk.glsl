@@ -9,7 +9,8 @@
 // makes it: accel/octree.glsl), and OCTREE_SPLIT (a constant expression:
 // whether the subgroup's lanes, all walking this ray, split each leaf's
 // references, lane l testing l, l + the subgroup's size, ..., and then agree
-// on the nearest hit: accel/closest_hit.glsl agree_on_hit), then undefines
+// on the nearest hit: accel/closest_hit.glsl agree_on_hit; and each node
+// step's child box tests, a child a lane: accel/octree_descend.glsl), then undefines
 // them. The walk is the same
 // at both levels; only the leaf and the slab test's form differ.
 // With ACCEL == ACCEL_BVH the arrays hold a BVH, which accel/bvh_walk.glsl
@@ -41,7 +42,8 @@ void OCTREE_WALK_NAME(uint root_index, uint big_first, uint big_end, Ray ray, Ra
   // in its last, so that the lanes leave the loop together for
   // agree_on_hit's subgroup operations (structured control flow reconverges
   // at its merge on the drivers measured, lavapipe's and NVIDIA's; Vulkan
-  // guarantees it only with maximal reconvergence).
+  // guarantees it only with maximal reconvergence; the split node step's
+  // ballot after its lanes' own box tests relies on the same).
   const uint leaf_lane = OCTREE_SPLIT ? gl_SubgroupInvocationID : 0u;
   const uint leaf_lanes = OCTREE_SPLIT ? gl_SubgroupSize : 1u;
   OCTREE_SLAB sr = OCTREE_SLAB_MAKE(ray);

@@ -825,4 +825,29 @@ TEST(Cli, DevicesCountLlvmpipesThreads) {
   EXPECT_NE(r.output.find("   threads   3 "), std::string::npos) << r.output;
 }
 
+// The subgroup stage needs a lane for each of a node's eight children:
+// lavapipe with 128-bit vectors (LP_NATIVE_VECTOR_WIDTH=128) has subgroups
+// of 4, where a threshold set is refused in one line, exit 2, no image
+// (the auto's bound: render_test's TailSubgroup unit test).
+TEST(Cli, TailSubgroupNeedsEightLanes) {
+  const std::string env = "LP_NATIVE_VECTOR_WIDTH=128";
+  RunResult d = run_octrace("devices --json", env);
+  ASSERT_EQ(d.code, 0) << d.output;
+  const auto first = d.output.find('['), last = d.output.rfind(']');
+  ASSERT_TRUE(first != std::string::npos && last != std::string::npos && first < last) << d.output;
+  uint32_t lanes = 0;
+  for (const auto& dev : nlohmann::json::parse(d.output.substr(first, last - first + 1)))
+    if (dev.at("software").get<bool>()) lanes = dev.at("subgroup_size").get<uint32_t>();
+  if (lanes != 4) GTEST_SKIP() << "this lavapipe's subgroups under " << env << ": " << lanes << " lanes, not 4";
+  const std::string out = tmp("narrow_subgroup.png");
+  fs::remove(out);
+  RunResult r = run_octrace("render --device cpu --size 8x8 --spp 1 --quiet --spheres 5 --tail-depth 2 "
+                            "--tail-subgroup 100 --out " + out, env);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("--tail-subgroup: the device llvmpipe"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("subgroups of 4 lanes are not 8 to 64"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 }  // namespace

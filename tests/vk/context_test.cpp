@@ -28,7 +28,9 @@ DeviceInfo capable(uint32_t index, const std::string& name, const std::string& t
   d.api_version = "1.3.230";
   d.software = type == "CPU";
   d.vulkan12 = d.compute = d.timestamps = d.shader_float16 = d.storage_16bit = d.swapchain = d.presents = true;
-  d.subgroup_operations = true;
+  d.subgroup_stages = VK_SHADER_STAGE_COMPUTE_BIT;
+  d.subgroup_features = VK_SUBGROUP_FEATURE_ARITHMETIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT |
+                        VK_SUBGROUP_FEATURE_SHUFFLE_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT;
   return d;
 }
 
@@ -42,7 +44,8 @@ DeviceInfo without_fp16(DeviceInfo d) {
 
 DeviceInfo vulkan11(DeviceInfo d) {
   d.api_version = "1.1.0";
-  d.vulkan12 = d.shader_float16 = d.storage_16bit = d.subgroup_operations = false;  // unknown below 1.2: never queried
+  d.vulkan12 = d.shader_float16 = d.storage_16bit = false;  // unknown below 1.2: never queried
+  d.subgroup_stages = d.subgroup_features = 0;
   return d;
 }
 
@@ -75,7 +78,8 @@ TEST(DeviceRequirements, ACapableDeviceMeetsAll) {
 
 TEST(DeviceRequirements, EveryUnmetRequirementIsListedNotOnlyTheFirst) {
   DeviceInfo d = without_fp16(lavapipe(0));
-  d.timestamps = d.swapchain = d.presents = d.subgroup_operations = false;
+  d.timestamps = d.swapchain = d.presents = false;
+  d.subgroup_features = 0;
   EXPECT_EQ(unmet_requirements(d, {true, true}),
             (Reasons{"no timestamp queries on its compute queue", "no subgroup arithmetic, ballot and shuffle in compute shaders",
                      "no shaderFloat16", "no storageBuffer16BitAccess", "no VK_KHR_swapchain",
@@ -83,6 +87,23 @@ TEST(DeviceRequirements, EveryUnmetRequirementIsListedNotOnlyTheFirst) {
   // What a run does not ask for is not held against the device.
   EXPECT_EQ(unmet_requirements(d, {false, false}),
             (Reasons{"no timestamp queries on its compute queue", "no subgroup arithmetic, ballot and shuffle in compute shaders"}));
+}
+
+// The subgroup operations every path-tracing pipeline declares, each one
+// missing named (a device may have arithmetic and ballot without shuffle).
+TEST(DeviceRequirements, MissingSubgroupOperationsAreNamed) {
+  DeviceInfo d = lavapipe(0);
+  EXPECT_EQ(missing_subgroup_operations(d), "");
+  d.subgroup_features &= ~uint32_t(VK_SUBGROUP_FEATURE_SHUFFLE_BIT);
+  EXPECT_EQ(missing_subgroup_operations(d), "shuffle");
+  EXPECT_EQ(unmet_requirements(d, {false, false}), Reasons{"no subgroup shuffle in compute shaders"});
+  d.subgroup_features &= ~uint32_t(VK_SUBGROUP_FEATURE_BALLOT_BIT);
+  EXPECT_EQ(missing_subgroup_operations(d), "ballot and shuffle");
+  d.subgroup_features = VK_SUBGROUP_FEATURE_BALLOT_BIT;
+  EXPECT_EQ(missing_subgroup_operations(d), "arithmetic and shuffle");
+  d = lavapipe(0);
+  d.subgroup_stages = VK_SHADER_STAGE_FRAGMENT_BIT;  // subgroups, but not in compute shaders
+  EXPECT_EQ(unmet_requirements(d, {false, false}), Reasons{"no subgroup operations in compute shaders"});
 }
 
 TEST(DeviceRequirements, BelowVulkan12TheVersionIsTheReasonForTheUnqueriedFeatures) {
