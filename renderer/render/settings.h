@@ -172,12 +172,14 @@ struct RenderSettings {
   uint32_t tail_fill = kTailAuto;
   // With a tail queue: a tail level that takes fewer paths than this gives
   // each its own subgroup, whose lanes share the octree walks' leaf tests
-  // (shaders/path_trace.comp tail_subgroup_pass): a path's bounce then waits
-  // on one round of reads a leaf, not one a reference. 0: off. kTailAuto:
-  // with tail levels, the octree and triangles in the scene (spheres alone
-  // keep the tail of before), kTailSubgroupPaths paths for each
-  // subgroup the device holds resident at once, where its driver says how
-  // many threads that is (on an H100 4 x 270,336 / 32 = 33,792), else 0.
+  // and a node's child box tests (shaders/path_trace.comp
+  // tail_subgroup_pass): a path's bounce then waits on one round of reads
+  // a leaf, not one a reference, and one a node, not one a child. 0: off.
+  // kTailAuto: with tail levels, the octree and triangles in the scene
+  // (spheres alone keep the tail of before), kTailSubgroupPaths paths for
+  // each subgroup the device holds resident at once, where its driver says
+  // how many threads that is (on an H100 4 x 270,336 / 32 = 33,792) and
+  // its subgroups have 8 to 64 lanes (fits_tail_subgroup), else 0.
   // Off with walk_stats, whose counts are of one walk a path. The image is
   // the same, bit for bit.
   uint32_t tail_subgroup = kTailAuto;
