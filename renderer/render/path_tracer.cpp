@@ -34,8 +34,10 @@ PassSettings pass_settings(const Scene& scene, const RenderSettings& settings) {
 
 // Invocations of a path-tracing workgroup (path_trace.comp's local size).
 constexpr uint32_t kWorkgroupInvocations = gpu::WORKGROUP_SIZE * gpu::WORKGROUP_SIZE;
+// The subgroup stage's fewest lanes: one for each of a node's children.
+constexpr uint32_t kTailSubgroupMinLanes = 8;
 bool fits_tail_subgroup(uint32_t subgroup_size) {
-  return subgroup_size >= 8 && subgroup_size <= kWorkgroupInvocations;
+  return subgroup_size >= kTailSubgroupMinLanes && subgroup_size <= kWorkgroupInvocations;
 }
 
 struct PathTracer::State {
@@ -265,7 +267,8 @@ void PathTracer::State::create_pipeline() {
                                         (s.ctx.info.shader_float16 ? "storageBuffer16BitAccess" : "shaderFloat16"));
   if (s.tail_subgroup() > 0 && !fits_tail_subgroup(s.ctx.info.subgroup_size))
     throw SettingError("tail_subgroup", ": the device " + s.ctx.info.name + "'s subgroups of " +
-                                            std::to_string(s.ctx.info.subgroup_size) + " lanes are not 8 to " +
+                                            std::to_string(s.ctx.info.subgroup_size) + " lanes are not " +
+                                            std::to_string(kTailSubgroupMinLanes) + " to " +
                                             std::to_string(kWorkgroupInvocations) + " (a lane for each of a node's " +
                                             "children, within a workgroup); use auto or off");
   auto start = Clock::now();

@@ -296,7 +296,7 @@ void throw_vk_error(VkResult result, const char* what) {
 }
 
 std::string missing_subgroup_operations(const DeviceInfo& d) {
-  if ((d.subgroup_stages & VK_SHADER_STAGE_COMPUTE_BIT) == 0) return "compute shaders";
+  if ((d.subgroup_stages & VK_SHADER_STAGE_COMPUTE_BIT) == 0) return "operations";
   std::vector<std::string> missing;
   for (auto [bit, name] : {std::pair{VK_SUBGROUP_FEATURE_ARITHMETIC_BIT, "arithmetic"},
                            std::pair{VK_SUBGROUP_FEATURE_BALLOT_BIT, "ballot"},
@@ -315,8 +315,7 @@ std::vector<std::string> unmet_requirements(const DeviceInfo& d, const DeviceReq
   else if (!d.timestamps) unmet.push_back("no timestamp queries on its compute queue");
   // The path tracer's subgroup stage (every pipeline compiled from it declares it).
   if (const std::string missing = missing_subgroup_operations(d); d.vulkan12 && !missing.empty())
-    unmet.push_back(missing == "compute shaders" ? "no subgroup operations in compute shaders"
-                                                 : "no subgroup " + missing + " in compute shaders");
+    unmet.push_back("no subgroup " + missing + " in compute shaders");
   if (req.fp16 && d.vulkan12 && !d.shader_float16) unmet.push_back("no shaderFloat16");
   if (req.fp16 && d.vulkan12 && !d.storage_16bit) unmet.push_back("no storageBuffer16BitAccess");
   if (req.present && !d.swapchain) unmet.push_back("no VK_KHR_swapchain");

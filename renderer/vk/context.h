@@ -97,8 +97,8 @@ struct DeviceRequirements {
 std::vector<std::string> unmet_requirements(const DeviceInfo& d, const DeviceRequirements& req);
 
 // What `d` lacks of the subgroup operations every path-tracing pipeline
-// declares, in words ("shuffle", "ballot and shuffle", "compute shaders":
-// none in that stage), or "" where it has them all.
+// declares, in words ("shuffle", "ballot and shuffle"; "operations" where
+// its subgroups have none in compute shaders), or "" where it has them all.
 std::string missing_subgroup_operations(const DeviceInfo& d);
 
 // The device that `selection` (auto | cpu | gpu | INDEX) picks: an index

@@ -164,13 +164,19 @@ uint octree_children_order(GpuOctreeNode node, float entry, vec3 origin, vec3 in
   return ordered;
 }
 
-// The next child of a node's visit order (octree_children_order's `ordered`):
-// its highest bit j, taken out of `ordered`, is the child in octant j XOR
-// sign_mask, whose index is `first` plus its rank among the `present` octants.
+// The child at bit j of a node's visit order (octree_children_order's
+// `ordered`): the child in octant j XOR sign_mask, whose index is `first`
+// plus its rank among the `present` octants.
+uint visit_child(uint j, uint present, uint first, uint sign_mask) {
+  return first + bitCount(present & ((1u << (j ^ sign_mask)) - 1u));
+}
+
+// The next child of a node's visit order: its highest bit, taken out of
+// `ordered`.
 uint take_child(inout uint ordered, uint present, uint first, uint sign_mask) {
   uint j = uint(findMSB(ordered));
   ordered ^= 1u << j;
-  return first + bitCount(present & ((1u << (j ^ sign_mask)) - 1u));
+  return visit_child(j, present, first, sign_mask);
 }
 
 // The BVH walks' stacks (accel/bvh_walk.glsl, binary and four-wide): a

@@ -109,7 +109,7 @@ if (HOLD_NEAREST && !OCTREE_SPLIT) {
       float t_mine = 0.0;
       bool met = false;
       if (mine) {
-        GpuOctreeNode c = node_at(node.first + bitCount(present & ((1u << (leaf_lane ^ sign_mask)) - 1u)));
+        GpuOctreeNode c = node_at(visit_child(leaf_lane, present, node.first, sign_mask));
         met = hit_box(c.lo, c.hi, sr, hit.t, t_mine);
       }
       if (WALK_STATS) walk_boxes += bitCount(ordered);
@@ -117,8 +117,7 @@ if (HOLD_NEAREST && !OCTREE_SPLIT) {
       while (met_mask != 0u) {
         uint j = uint(findMSB(met_mask));
         met_mask ^= 1u << j;
-        stack[sp] = uvec2(node.first + bitCount(present & ((1u << (j ^ sign_mask)) - 1u)),
-                          floatBitsToUint(subgroupShuffle(t_mine, j)));
+        stack[sp] = uvec2(visit_child(j, present, node.first, sign_mask), floatBitsToUint(subgroupShuffle(t_mine, j)));
         ++sp;
       }
     } else if (OCTREE_CHILD_PAIRS) {
