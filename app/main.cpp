@@ -238,6 +238,7 @@ struct RenderOptions {
   std::string effects = "auto";
   std::string nee = "on";
   std::string octant_culling = "auto";
+  std::string camera_tiles = "auto";
   std::string bvh_walk = "auto";
   std::string tail_depth = "auto";
   std::string tail_step = "auto";
@@ -338,6 +339,12 @@ struct RenderOptions {
                    "Octree walk: skip children in octants the ray cannot reach: auto | on | off (auto: on, but "
                    "off for scenes without triangles on lavapipe from Mesa 25); same image, other speed")
         ->capture_default_str();
+    cmd.add_option("--camera-tiles", camera_tiles,
+                   "Camera rays tested against the spheres their 8x8-pixel tile can see, listed on the device "
+                   "for each batch's camera, instead of walking the tree: auto | on | off (auto: on for scenes "
+                   "of spheres alone whose trees left no hidden part out, up to 2^27 tiles x spheres); same "
+                   "image, other speed")
+        ->capture_default_str();
     cmd.add_option("--bvh-walk", bvh_walk,
                    "BVH (--accel bvh): the top level's binary walk: auto | one-loop | while-while (auto: "
                    "while-while on a GPU where its leaves hold 4 or more references on average, as in dense "
@@ -419,6 +426,9 @@ struct RenderOptions {
     s.octree.surface_cells = parse_surface_cells(surface_cells);
     if (nee != "on" && nee != "off") throw SettingError("nee", ": expected on or off, got \"" + nee + "\"");
     s.nee = nee == "on";
+    if (camera_tiles != "auto" && camera_tiles != "on" && camera_tiles != "off")
+      throw SettingError("camera_tiles", ": expected auto, on or off, got \"" + camera_tiles + "\"");
+    s.camera_tiles = camera_tiles == "auto" ? CameraTiles::Auto : camera_tiles == "on" ? CameraTiles::On : CameraTiles::Off;
     if (octant_culling != "auto" && octant_culling != "on" && octant_culling != "off")
       throw SettingError("octant_culling", ": expected auto, on or off, got \"" + octant_culling + "\"");
     s.octant_culling = octant_culling == "auto" ? OctantCulling::Auto
@@ -463,6 +473,7 @@ std::string message_for_cli(const SettingError& e) {
       {"effects", "--effects"},
       {"nee", "--nee"},
       {"octant_culling", "--octant-culling"},
+      {"camera_tiles", "--camera-tiles"},
       {"bvh_walk", "--bvh-walk"},
       {"tail_depth", "--tail-depth"},
       {"tail_step", "--tail-step"},
@@ -869,6 +880,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
               {"samples_per_dispatch", settings.samples_per_dispatch},
               {"sample_lanes", settings.sample_lanes},
               {"octant_culling", result.octant_culling ? "on" : "off"},
+              {"camera_tiles", result.camera_tiles ? "on" : "off"},
               {"tail_depth", result.tail_depth},
               {"tail_step", result.tail_step},
               {"tail_fill", result.tail_fill},

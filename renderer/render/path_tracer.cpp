@@ -154,7 +154,38 @@ struct PathTracer::State {
     if (settings.accel != Accel::Brute && scene.tree != Accel::Brute && (o.spheres_clipped > 0 || o.spheres_hidden > 0))
       culled_for = sc.camera;
   }
+  uint64_t sphere_count = 0;  // the scene's
+  // The camera's tiles (RenderSettings::camera_tiles): why the scene on the
+  // device cannot have them, or nothing where it can.
+  std::string camera_tiles_unfit() const {
+    if (settings.accel == Accel::Brute) return "brute force walks no tree";
+    if (scene_features.triangles) return "the lists hold spheres, and the scene has triangles";
+    if (sphere_count == 0) return "the scene has no sphere";
+    if (camera_tile_count() > uint64_t(65535) * gpu::WORKGROUP_SIZE * gpu::WORKGROUP_SIZE)
+      return std::to_string(settings.width) + "x" + std::to_string(settings.height) +
+             " has more tiles than one dispatch of the stage covers";
+    if (camera_tile_bytes() > ctx.limits.maxStorageBufferRange)
+      return "their lists for " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + " need " +
+             mib_string(camera_tile_bytes()) + ", the device allows " +
+             mib_string(ctx.limits.maxStorageBufferRange) + " per buffer";
+    return "";
+  }
+  uint64_t camera_tile_count() const {
+    const uint64_t across = (uint64_t(settings.width) + gpu::CAMERA_TILE_PIXELS - 1) / gpu::CAMERA_TILE_PIXELS;
+    return across * ((uint64_t(settings.height) + gpu::CAMERA_TILE_PIXELS - 1) / gpu::CAMERA_TILE_PIXELS);
+  }
+  uint64_t camera_tile_bytes() const { return camera_tile_count() * (1 + gpu::CAMERA_TILE_REFS) * sizeof(uint32_t); }
+  // RenderSettings::camera_tiles resolved (create_pipeline refuses On
+  // where they cannot be).
+  bool camera_tiles() const {
+    if (settings.camera_tiles == CameraTiles::Off || !camera_tiles_unfit().empty()) return false;
+    return settings.camera_tiles == CameraTiles::On || camera_tile_count() * sphere_count <= kCameraTileTests;
+  }
   Buffer accum_sum, accum_comp, accum_sq, stats;
+  // The camera's tiles (shared.h BINDING_CAMERA_TILES) and the stage that
+  // writes them; a placeholder and no pipeline without.
+  Buffer camera_tile_lists;
+  ComputePipeline camera_tiles_pipeline;
   // With the tail queue: each sample's value per [sample of the dispatch]
   // [pixel], the queue and its TailControl (shared.h); 16-byte placeholders
   // without.
@@ -170,6 +201,7 @@ struct PathTracer::State {
   explicit State(const VulkanContext& c) : ctx(c) {}
   uint64_t pixels() const { return uint64_t(settings.width) * uint64_t(settings.height); }
   void create_accumulation();
+  void create_camera_tiles();
   void bind_accumulation();
   void create_pipeline();
   void create_stage(ComputePipeline& p, uint32_t stage, const uint32_t* spirv, size_t spirv_bytes);
@@ -241,9 +273,16 @@ uint32_t tail_queue_entries(uint64_t paths, bool gpu, uint64_t bytes, uint64_t l
   return uint32_t(std::min<uint64_t>({std::max(wanted, group), 65535 * group, limit / (halves * entry)}));
 }
 
+// The camera's tiles' buffer for the image's size, or a placeholder.
+void PathTracer::State::create_camera_tiles() {
+  State& s = *this;
+  create_buffer(s.camera_tile_lists, s.ctx, s.camera_tiles() ? s.camera_tile_bytes() : 0, false, "camera's tiles");
+}
+
 void PathTracer::State::bind_accumulation() {
   State& s = *this;
-  for (ComputePipeline* p : {&s.pipeline, &s.tail_pipeline, &s.tail_subgroup_pipeline, &s.accumulate_pipeline}) {
+  for (ComputePipeline* p : {&s.pipeline, &s.tail_pipeline, &s.tail_subgroup_pipeline, &s.accumulate_pipeline,
+                             &s.camera_tiles_pipeline}) {
     if (p->pipeline == VK_NULL_HANDLE) continue;
     bind_buffers(*p, {{gpu::BINDING_ACCUM_SUM, &s.accum_sum},
                       {gpu::BINDING_ACCUM_COMP, &s.accum_comp},
@@ -251,7 +290,8 @@ void PathTracer::State::bind_accumulation() {
                       {gpu::BINDING_STATS, &s.stats},
                       {gpu::BINDING_TAIL_VALUES, &s.tail_values},
                       {gpu::BINDING_TAIL_QUEUE, &s.tail_queue},
-                      {gpu::BINDING_TAIL_CONTROL, &s.tail_control}});
+                      {gpu::BINDING_TAIL_CONTROL, &s.tail_control},
+                      {gpu::BINDING_CAMERA_TILES, &s.camera_tile_lists}});
   }
 }
 
@@ -271,6 +311,8 @@ void PathTracer::State::create_pipeline() {
                                             std::to_string(kTailSubgroupMinLanes) + " to " +
                                             std::to_string(kWorkgroupInvocations) + " (a lane for each of a node's " +
                                             "children, within a workgroup); use auto or off");
+  if (settings.camera_tiles == CameraTiles::On && !s.camera_tiles_unfit().empty())
+    throw SettingError("camera_tiles", ": " + s.camera_tiles_unfit() + "; use auto or off");
   auto start = Clock::now();
   s.features = settings.all_effects ? s.every_feature : s.scene_features;
   // A scene split over several buffers (GpuScene::part_log2) has a pipeline
@@ -292,6 +334,9 @@ void PathTracer::State::create_pipeline() {
   else destroy_compute_pipeline(s.tail_pipeline);
   if (s.tail_subgroup() > 0) create_stage(s.tail_subgroup_pipeline, gpu::STAGE_TAIL_SUBGROUP, spirv, spirv_bytes);
   else destroy_compute_pipeline(s.tail_subgroup_pipeline);
+  if (s.camera_tiles()) create_stage(s.camera_tiles_pipeline, gpu::STAGE_CAMERA_TILES, spirv, spirv_bytes);
+  else destroy_compute_pipeline(s.camera_tiles_pipeline);
+  s.create_camera_tiles();
   if (s.staged())
     create_compute_pipeline(s.accumulate_pipeline, s.ctx, accumulate_spv, sizeof(accumulate_spv), gpu::BINDING_COUNT,
                             sizeof(gpu::PassParams));
@@ -353,7 +398,8 @@ void PathTracer::State::create_stage(ComputePipeline& p, uint32_t stage, const u
                            {gpu::SPEC_TRIANGLE_LIGHTS, f.triangle_lights},
                            {gpu::SPEC_PART_LOG2, g.part_log2},
                            {gpu::SPEC_STAGE, stage},
-                           {gpu::SPEC_TAIL_SUBGROUP, s.tail_subgroup()}},
+                           {gpu::SPEC_TAIL_SUBGROUP, s.tail_subgroup()},
+                           {gpu::SPEC_CAMERA_TILES, s.camera_tiles()}},
                           // Brute force reaches llvmpipe's loop limit first; the
                           // optimizer would change where it cuts (vk/specialize.h).
                           settings.accel != Accel::Brute);
@@ -387,6 +433,7 @@ PathTracer::PathTracer(const VulkanContext& ctx, const Scene& scene, const Rende
   State& s = *state_;
   s.settings = settings;
   s.scene_features = scene_features(scene);
+  s.sphere_count = scene.spheres.size();
   if (s.settings.octree.leaf_size == 0)
     s.settings.octree.leaf_size = default_octree_leaf(ctx.info, s.scene_features.triangles);
   if (s.settings.octree.max_refs == 0) {
@@ -427,6 +474,7 @@ uint32_t PathTracer::tail_depth() const { return state_->tail_depth(); }
 uint32_t PathTracer::tail_step() const { return state_->tail_step(); }
 uint32_t PathTracer::tail_fill() const { return state_->tail_fill(); }
 uint32_t PathTracer::tail_subgroup() const { return state_->tail_subgroup(); }
+bool PathTracer::camera_tiles() const { return state_->camera_tiles(); }
 const Buffer& PathTracer::accum_sum() const { return state_->accum_sum; }
 const Buffer& PathTracer::accum_comp() const { return state_->accum_comp; }
 const RenderSettings& PathTracer::settings() const { return state_->settings; }
@@ -450,6 +498,7 @@ void PathTracer::resize(int width, int height) {
   s.settings = next;
   try {
     s.create_accumulation();
+    s.create_camera_tiles();
   } catch (...) {
     s.settings = previous;
     throw;
@@ -596,6 +645,18 @@ void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, ui
   pc.sample_seed = pass.sample_seed;
   pc.rr_depth = pass.rr_depth ? pass.rr_depth : UINT32_MAX;
   const uint32_t groups_x = (width + gpu::WORKGROUP_SIZE - 1) / gpu::WORKGROUP_SIZE;
+  // The camera's tiles for this camera, one invocation a tile, after the
+  // passes before them (this batch's or the last) have read the last ones.
+  if (s.camera_tiles_pipeline.pipeline != VK_NULL_HANDLE) {
+    compute_barrier(cmd);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.camera_tiles_pipeline.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.camera_tiles_pipeline.layout, 0, 1,
+                            &s.camera_tiles_pipeline.set, 0, nullptr);
+    vkCmdPushConstants(cmd, s.camera_tiles_pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
+    const uint64_t invocations = gpu::WORKGROUP_SIZE * gpu::WORKGROUP_SIZE;
+    vkCmdDispatch(cmd, uint32_t((s.camera_tile_count() + invocations - 1) / invocations), 1, 1);
+    compute_barrier(cmd);
+  }
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.pipeline);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.layout, 0, 1, &s.pipeline.set, 0,
                           nullptr);
@@ -819,6 +880,7 @@ void PathTracer::finish_result(RenderResult& r, Clock::time_point start) {
   r.buffer_part_bytes = buffer_part_bytes();
   r.features = s.features;
   r.octant_culling = s.octant_culling();
+  r.camera_tiles = s.camera_tiles();
   r.bvh_top_while = s.bvh_top_while();
   r.tail_depth = s.tail_depth();
   r.tail_step = s.tail_step();

@@ -82,6 +82,7 @@ struct RenderResult {
   uint32_t buffer_parts = 0;
   uint64_t buffer_part_bytes = 0;
   bool octant_culling = true;  // RenderSettings::octant_culling in force
+  bool camera_tiles = false;   // RenderSettings::camera_tiles in force
   bool bvh_top_while = false;  // RenderSettings::bvh_walk in force: while-while (a BVH's top level)
   uint32_t tail_depth = 0;   // the tail queue's bounce in force (RenderSettings::tail_depth; 0: off)
   uint32_t tail_step = 0;    // bounces per tail level in force (RenderSettings::tail_step; 0: one level)
@@ -280,6 +281,8 @@ class PathTracer {
   uint32_t tail_fill() const;
   // RenderSettings::tail_subgroup resolved (0: no subgroup stage).
   uint32_t tail_subgroup() const;
+  // RenderSettings::camera_tiles resolved for the scene, device and size.
+  bool camera_tiles() const;
 
  private:
   // What a result has besides the images (read_result).

@@ -60,6 +60,8 @@ enum class NearestChild { Auto, Pushed, Held };
 enum class OctantCulling { Auto, On, Off };
 // The form of the top level's binary BVH walk (RenderSettings::bvh_walk).
 enum class BvhWalk { Auto, OneLoop, WhileWhile };
+// Whether camera rays take their hits from the camera's tiles (RenderSettings::camera_tiles).
+enum class CameraTiles { Auto, On, Off };
 
 struct RenderSettings {
   Accel accel = Accel::Octree;
@@ -183,7 +185,20 @@ struct RenderSettings {
   // Off with walk_stats, whose counts are of one walk a path. The image is
   // the same, bit for bit.
   uint32_t tail_subgroup = kTailAuto;
+  // Camera rays tested against their 8x8-pixel tile's list of the spheres
+  // they can meet, made on the device for each batch's camera before its
+  // passes, instead of walking the tree (shaders/path_trace.comp
+  // camera_tiles_pass); a tile that more than 32 spheres reach walks. For
+  // scenes of spheres alone whose trees left no hidden part out, with the
+  // octree or the BVH. On: wherever that holds (SettingError elsewhere).
+  // Auto: where it holds and the lists' tests, tiles x spheres, are at most
+  // kCameraTileTests. The image is the same, bit for bit.
+  CameraTiles camera_tiles = CameraTiles::Auto;
 };
+
+// RenderSettings::camera_tiles' auto: at most this many sphere tests to
+// make a batch's tile lists (one invocation a tile tests every sphere).
+constexpr uint64_t kCameraTileTests = uint64_t(1) << 27;
 
 // The bounce at which RenderSettings::tail_depth's auto queues paths on a
 // GPU (optimisation log 49: of 2, 3 and 4 on the H200, 2 was the fastest on

@@ -133,7 +133,18 @@ OCT_CONST(uint, MAX_TAIL_LEVELS, 16u);
 OCT_CONST(uint, BINDING_TAIL_VALUES, 27u);
 OCT_CONST(uint, BINDING_TAIL_QUEUE, 28u);
 OCT_CONST(uint, BINDING_TAIL_CONTROL, 29u);
-OCT_CONST(uint, BINDING_COUNT, 30u);
+// The camera's tiles (RenderSettings::camera_tiles; path_trace.comp
+// STAGE_CAMERA_TILES): for each tile of CAMERA_TILE_PIXELS x
+// CAMERA_TILE_PIXELS pixels (tile = (y / 8) * tiles across + x / 8) its
+// count of candidates, or CAMERA_TILE_OVERFLOW where more than
+// CAMERA_TILE_REFS are; after the counts, CAMERA_TILE_REFS top-level ids
+// per tile: every sphere a camera ray through the tile could meet. A
+// 16-byte placeholder when off.
+OCT_CONST(uint, BINDING_CAMERA_TILES, 30u);
+OCT_CONST(uint, BINDING_COUNT, 31u);
+OCT_CONST(uint, CAMERA_TILE_PIXELS, 8u);
+OCT_CONST(uint, CAMERA_TILE_REFS, 32u);
+OCT_CONST(uint, CAMERA_TILE_OVERFLOW, 0xffffffffu);
 
 // A scene larger than one storage buffer (the device's maxStorageBufferRange,
 // 128 MiB on lavapipe) is read through buffer device addresses
@@ -261,6 +272,12 @@ OCT_CONST(uint, STAGE_TAIL, 2u);
 // whose lanes share each octree leaf's tests (path_trace.comp).
 OCT_CONST(uint, STAGE_TAIL_SUBGROUP, 3u);
 OCT_CONST(uint, SPEC_TAIL_SUBGROUP, 37u);
+// Writes the camera's tiles (BINDING_CAMERA_TILES) for the pass's camera:
+// one invocation a tile, run before the passes that read them.
+OCT_CONST(uint, STAGE_CAMERA_TILES, 4u);
+// Whether the whole paths and the head take a camera ray's hit from its
+// tile's list (RenderSettings::camera_tiles) instead of the walk.
+OCT_CONST(uint, SPEC_CAMERA_TILES, 38u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 255u);
 

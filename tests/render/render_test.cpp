@@ -681,6 +681,111 @@ TEST_F(RenderTest, HiddenPartsSpareTestsAndChangeNoPixel) {
   tracer.run_passes(pass_settings(moved, s), 0, 1);
 }
 
+// The camera's tiles (RenderSettings::camera_tiles): camera rays tested
+// against their tile's list of spheres render every bit as the walks do,
+// with either structure, in fp32 and fp16, through a lens and a pinhole,
+// where the trees left hidden parts out and where tiles overflow their
+// lists (the dense field) and walk; the camera rays of tiles that do not
+// expand no node.
+TEST_F(RenderTest, CameraTilesChangeNoPixel) {
+  VulkanContext& ctx = test::shared_context();
+  Scene pinhole = make_rtiow_scene({488, 0.2f, 2});
+  pinhole.camera.aperture = 0.0f;
+  // A lens 2 wide: at the field's depths a ray leaves its pinhole ray's
+  // side of a tile by several pixels.
+  Scene wide = make_rtiow_scene({200, 0.2f, 1});
+  wide.camera.aperture = 2.0f;
+  const std::pair<const char*, Scene> scenes[] = {{"a lens", make_rtiow_scene({200, 0.2f, 1})},
+                                                  {"a wide lens", wide},
+                                                  {"a pinhole", pinhole},
+                                                  {"dense", make_rtiow_scene({3000, 1.0f, 4})}};
+  RenderSettings s;
+  s.width = 64;
+  s.height = 40;
+  s.spp = 2;
+  s.bounce_limit = 8;
+  for (const auto& [name, scene] : scenes) {
+    for (Accel accel : {Accel::Octree, Accel::Bvh}) {
+      for (Precision precision : {Precision::FP32, Precision::FP16}) {
+        SCOPED_TRACE(std::string(name) + ", " + accel_name(accel) + ", " + precision_name(precision));
+        s.accel = accel;
+        s.precision = precision;
+        s.camera_tiles = CameraTiles::Off;
+        const RenderResult off = render(ctx, scene, s);
+        s.camera_tiles = CameraTiles::On;
+        const RenderResult on = render(ctx, scene, s);
+        EXPECT_FALSE(off.camera_tiles);
+        EXPECT_TRUE(on.camera_tiles);
+        expect_same_result(on, off);
+      }
+    }
+  }
+  // Camera rays alone, counted: every tile of the field of 200 takes its
+  // list; most of the wide lens's and the pinhole's do, and those near the
+  // horizon walk (at this size more spheres reach them than a list holds),
+  // as every tile of the dense field does; the same pixels.
+  s.accel = Accel::Octree;
+  s.precision = Precision::FP32;
+  s.bounce_limit = 1;
+  s.spp = 1;
+  s.walk_stats = true;
+  for (const auto& [name, scene] : scenes) {
+    SCOPED_TRACE(name);
+    s.camera_tiles = CameraTiles::Off;
+    const RenderResult off = render(ctx, scene, s);
+    s.camera_tiles = CameraTiles::On;
+    const RenderResult on = render(ctx, scene, s);
+    expect_same_result(on, off);
+    EXPECT_EQ(on.walk.queries, off.walk.queries);
+    EXPECT_GT(off.walk.nodes, 0u);
+    if (std::string(name) == "a lens") {
+      EXPECT_EQ(on.walk.nodes, 0u);
+    } else if (std::string(name) != "dense") {
+      EXPECT_GT(on.walk.nodes, 0u);
+      EXPECT_LT(2 * on.walk.nodes, off.walk.nodes) << on.walk.nodes << " nodes against " << off.walk.nodes;
+    } else {
+      EXPECT_EQ(on.walk.nodes, off.walk.nodes);
+    }
+  }
+}
+
+// RenderSettings::camera_tiles' auto: on for spheres alone with a tree,
+// while tiles x spheres is at most kCameraTileTests; on where it holds
+// past that; refused where it cannot.
+TEST_F(RenderTest, CameraTilesAutoForSpheresWithATreeWithinTheirTests) {
+  VulkanContext& ctx = test::shared_context();
+  const Scene spheres = make_rtiow_scene({40, 0.2f, 3});
+  RenderSettings s;
+  s.width = 48;
+  s.height = 32;
+  EXPECT_TRUE(PathTracer(ctx, spheres, s).camera_tiles());
+  s.accel = Accel::Bvh;
+  EXPECT_TRUE(PathTracer(ctx, spheres, s).camera_tiles());
+  s.accel = Accel::Brute;
+  EXPECT_FALSE(PathTracer(ctx, spheres, s).camera_tiles());
+  s.camera_tiles = CameraTiles::On;
+  EXPECT_THROW(PathTracer(ctx, spheres, s), SettingError);
+  s.accel = Accel::Octree;
+  Scene mesh = spheres;
+  test::place(mesh, test::icosphere(1, 0));
+  EXPECT_THROW(PathTracer(ctx, mesh, s), SettingError);
+  s.camera_tiles = CameraTiles::Auto;
+  EXPECT_FALSE(PathTracer(ctx, mesh, s).camera_tiles());
+  // 1920x1080 has 240 x 135 tiles: past kCameraTileTests from 4,143 spheres.
+  s.width = 1920;
+  s.height = 1080;
+  const uint64_t tiles = 240 * 135;
+  const Scene at = make_rtiow_scene({kCameraTileTests / tiles - 4, 0.05f, 1});
+  ASSERT_EQ(at.spheres.size() * tiles, kCameraTileTests / tiles * tiles);
+  EXPECT_TRUE(PathTracer(ctx, at, s).camera_tiles());
+  const Scene past = make_rtiow_scene({kCameraTileTests / tiles - 3, 0.05f, 1});
+  EXPECT_FALSE(PathTracer(ctx, past, s).camera_tiles());
+  s.camera_tiles = CameraTiles::Off;
+  EXPECT_FALSE(PathTracer(ctx, at, s).camera_tiles());
+  s.camera_tiles = CameraTiles::On;
+  EXPECT_TRUE(PathTracer(ctx, past, s).camera_tiles());
+}
+
 // A tracer resized and switched to another accel (the octree built on the
 // way), precision and effects renders what a tracer made with those settings
 // renders.
