@@ -161,9 +161,6 @@ struct PathTracer::State {
     if (settings.accel == Accel::Brute) return "brute force walks no tree";
     if (scene_features.triangles) return "the lists hold spheres, and the scene has triangles";
     if (sphere_count == 0) return "the scene has no sphere";
-    if (camera_tile_count() > uint64_t(65535) * gpu::WORKGROUP_SIZE * gpu::WORKGROUP_SIZE)
-      return std::to_string(settings.width) + "x" + std::to_string(settings.height) +
-             " has more tiles than one dispatch of the stage covers";
     if (camera_tile_bytes() > ctx.limits.maxStorageBufferRange)
       return "their lists for " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + " need " +
              mib_string(camera_tile_bytes()) + ", the device allows " +
@@ -179,7 +176,7 @@ struct PathTracer::State {
   // where they cannot be).
   bool camera_tiles() const {
     if (settings.camera_tiles == CameraTiles::Off || !camera_tiles_unfit().empty()) return false;
-    return settings.camera_tiles == CameraTiles::On || camera_tile_count() * sphere_count <= kCameraTileTests;
+    return settings.camera_tiles == CameraTiles::On || default_camera_tiles(ctx.info, sphere_count);
   }
   Buffer accum_sum, accum_comp, accum_sq, stats;
   // The camera's tiles (shared.h BINDING_CAMERA_TILES) and the stage that
@@ -653,8 +650,9 @@ void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, ui
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.camera_tiles_pipeline.layout, 0, 1,
                             &s.camera_tiles_pipeline.set, 0, nullptr);
     vkCmdPushConstants(cmd, s.camera_tiles_pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
-    const uint64_t invocations = gpu::WORKGROUP_SIZE * gpu::WORKGROUP_SIZE;
-    vkCmdDispatch(cmd, uint32_t((s.camera_tile_count() + invocations - 1) / invocations), 1, 1);
+    // A subgroup a tile; past 65535 workgroups the stage's loop takes the rest.
+    const uint64_t per_group = std::max<uint64_t>(kWorkgroupInvocations / std::max(s.ctx.info.subgroup_size, 1u), 1);
+    vkCmdDispatch(cmd, uint32_t(std::min<uint64_t>((s.camera_tile_count() + per_group - 1) / per_group, 65535)), 1, 1);
     compute_barrier(cmd);
   }
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.pipeline);
@@ -887,6 +885,10 @@ void PathTracer::finish_result(RenderResult& r, Clock::time_point start) {
   r.tail_fill = s.tail_fill();
   r.tail_subgroup = s.tail_subgroup();
   r.pipeline_statistics = s.pipeline.statistics;
+}
+
+bool default_camera_tiles(const DeviceInfo& device, uint64_t spheres) {
+  return spheres <= (device.software ? kCameraTileSpheresCpu : kCameraTileSpheresGpu);
 }
 
 bool default_octant_culling(const DeviceInfo& device, bool triangles) {

@@ -187,6 +187,18 @@ uint32_t lane_sample_slots(const DeviceInfo& device);
 // (optimisation log 141).
 uint32_t default_tail_subgroup(const DeviceInfo& device, bool triangles);
 
+// RenderSettings::camera_tiles' auto for a scene of spheres alone with a
+// tree: whether its `spheres` are few enough on `device`. The lists cost
+// each batch a test of every sphere for each tile of 64 pixels, where a
+// camera ray saves a walk. On lavapipe (Mesa 22.3.6, 400x225, 10 spp) the
+// default scene's passes took 0.87x the time with them, 2,000 spheres
+// 0.97x, 4,000 1.07x: at most kCameraTileSpheresCpu. On the H100 the
+// peer's scene 0.83x (BVH) and 0.77x (octree), 488 spheres 0.94x and
+// 0.86x (optimisation log 143): at most kCameraTileSpheresGpu.
+bool default_camera_tiles(const DeviceInfo& device, uint64_t spheres);
+inline constexpr uint64_t kCameraTileSpheresCpu = 1024;
+inline constexpr uint64_t kCameraTileSpheresGpu = 16384;
+
 // Whether subgroups of `subgroup_size` lanes can run the subgroup stage: at
 // least a lane for each of an octree node's eight children (the split node
 // step, accel/octree_descend.glsl), and within a workgroup of 64 (a path's

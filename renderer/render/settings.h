@@ -189,16 +189,13 @@ struct RenderSettings {
   // they can meet, made on the device for each batch's camera before its
   // passes, instead of walking the tree (shaders/path_trace.comp
   // camera_tiles_pass); a tile that more than 32 spheres reach walks. For
-  // scenes of spheres alone whose trees left no hidden part out, with the
-  // octree or the BVH. On: wherever that holds (SettingError elsewhere).
-  // Auto: where it holds and the lists' tests, tiles x spheres, are at most
-  // kCameraTileTests. The image is the same, bit for bit.
+  // scenes of spheres alone, with the octree or the BVH. On: wherever that
+  // holds (SettingError elsewhere). Auto: where it holds and the scene has
+  // at most default_camera_tiles' spheres for the device (the lists cost
+  // each batch a test of every sphere for each tile). The image is the
+  // same, bit for bit.
   CameraTiles camera_tiles = CameraTiles::Auto;
 };
-
-// RenderSettings::camera_tiles' auto: at most this many sphere tests to
-// make a batch's tile lists (one invocation a tile tests every sphere).
-constexpr uint64_t kCameraTileTests = uint64_t(1) << 27;
 
 // The bounce at which RenderSettings::tail_depth's auto queues paths on a
 // GPU (optimisation log 49: of 2, 3 and 4 on the H200, 2 was the fastest on

@@ -749,10 +749,10 @@ TEST_F(RenderTest, CameraTilesChangeNoPixel) {
   }
 }
 
-// RenderSettings::camera_tiles' auto: on for spheres alone with a tree,
-// while tiles x spheres is at most kCameraTileTests; on where it holds
-// past that; refused where it cannot.
-TEST_F(RenderTest, CameraTilesAutoForSpheresWithATreeWithinTheirTests) {
+// RenderSettings::camera_tiles' auto: on for spheres alone with a tree, up
+// to the device's bound on their count (optimisation log 143); on where
+// that holds past the bound; refused where it cannot.
+TEST_F(RenderTest, CameraTilesAutoForFewSpheresWithATree) {
   VulkanContext& ctx = test::shared_context();
   const Scene spheres = make_rtiow_scene({40, 0.2f, 3});
   RenderSettings s;
@@ -771,19 +771,26 @@ TEST_F(RenderTest, CameraTilesAutoForSpheresWithATreeWithinTheirTests) {
   EXPECT_THROW(PathTracer(ctx, mesh, s), SettingError);
   s.camera_tiles = CameraTiles::Auto;
   EXPECT_FALSE(PathTracer(ctx, mesh, s).camera_tiles());
-  // 1920x1080 has 240 x 135 tiles: past kCameraTileTests from 4,143 spheres.
-  s.width = 1920;
-  s.height = 1080;
-  const uint64_t tiles = 240 * 135;
-  const Scene at = make_rtiow_scene({kCameraTileTests / tiles - 4, 0.05f, 1});
-  ASSERT_EQ(at.spheres.size() * tiles, kCameraTileTests / tiles * tiles);
+  // The bound: the rtiow field has 4 spheres besides its small ones.
+  const uint64_t bound = ctx.info.software ? kCameraTileSpheresCpu : kCameraTileSpheresGpu;
+  const Scene at = make_rtiow_scene({bound - 4, 0.05f, 1});
+  const Scene past = make_rtiow_scene({bound - 3, 0.05f, 1});
   EXPECT_TRUE(PathTracer(ctx, at, s).camera_tiles());
-  const Scene past = make_rtiow_scene({kCameraTileTests / tiles - 3, 0.05f, 1});
   EXPECT_FALSE(PathTracer(ctx, past, s).camera_tiles());
   s.camera_tiles = CameraTiles::Off;
   EXPECT_FALSE(PathTracer(ctx, at, s).camera_tiles());
   s.camera_tiles = CameraTiles::On;
   EXPECT_TRUE(PathTracer(ctx, past, s).camera_tiles());
+}
+
+TEST(CameraTiles, AutoUpToOneThousandSpheresOnACpuAndSixteenThousandOnAGpu) {
+  DeviceInfo gpu, cpu;
+  gpu.software = false;
+  cpu.software = true;
+  for (uint64_t n : {1ull, 492ull, 1024ull, 1025ull, 8004ull, 16384ull, 16385ull, 1000004ull}) {
+    EXPECT_EQ(default_camera_tiles(cpu, n), n <= 1024) << n;
+    EXPECT_EQ(default_camera_tiles(gpu, n), n <= 16384) << n;
+  }
 }
 
 // A tracer resized and switched to another accel (the octree built on the
