@@ -342,8 +342,8 @@ struct RenderOptions {
     cmd.add_option("--camera-tiles", camera_tiles,
                    "Camera rays tested against the spheres their 8x8-pixel tile can see, listed on the device "
                    "for each batch's camera, instead of walking the tree: auto | on | off (auto: on for scenes "
-                   "of spheres alone with the octree or the BVH, up to 1,024 spheres on a CPU device and "
-                   "16,384 on a GPU); same image, other speed")
+                   "of spheres alone with the octree or the BVH, up to 1,024 spheres on a CPU device, on a GPU "
+                   "8,192 with the octree and 4,096 with the BVH); same image, other speed")
         ->capture_default_str();
     cmd.add_option("--bvh-walk", bvh_walk,
                    "BVH (--accel bvh): the top level's binary walk: auto | one-loop | while-while (auto: "

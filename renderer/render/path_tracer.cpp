@@ -176,7 +176,7 @@ struct PathTracer::State {
   // where they cannot be).
   bool camera_tiles() const {
     if (settings.camera_tiles == CameraTiles::Off || !camera_tiles_unfit().empty()) return false;
-    return settings.camera_tiles == CameraTiles::On || default_camera_tiles(ctx.info, sphere_count);
+    return settings.camera_tiles == CameraTiles::On || default_camera_tiles(ctx.info, settings.accel, sphere_count);
   }
   Buffer accum_sum, accum_comp, accum_sq, stats;
   // The camera's tiles (shared.h BINDING_CAMERA_TILES) and the stage that
@@ -887,8 +887,9 @@ void PathTracer::finish_result(RenderResult& r, Clock::time_point start) {
   r.pipeline_statistics = s.pipeline.statistics;
 }
 
-bool default_camera_tiles(const DeviceInfo& device, uint64_t spheres) {
-  return spheres <= (device.software ? kCameraTileSpheresCpu : kCameraTileSpheresGpu);
+bool default_camera_tiles(const DeviceInfo& device, Accel accel, uint64_t spheres) {
+  if (device.software) return spheres <= kCameraTileSpheresCpu;
+  return spheres <= (accel == Accel::Bvh ? kCameraTileSpheresGpuBvh : kCameraTileSpheresGpuOctree);
 }
 
 bool default_octant_culling(const DeviceInfo& device, bool triangles) {

@@ -187,17 +187,22 @@ uint32_t lane_sample_slots(const DeviceInfo& device);
 // (optimisation log 141).
 uint32_t default_tail_subgroup(const DeviceInfo& device, bool triangles);
 
-// RenderSettings::camera_tiles' auto for a scene of spheres alone with a
-// tree: whether its `spheres` are few enough on `device`. The lists cost
-// each batch a test of every sphere for each tile of 64 pixels, where a
-// camera ray saves a walk. On lavapipe (Mesa 22.3.6, 400x225, 10 spp) the
-// default scene's passes took 0.87x the time with them, 2,000 spheres
-// 0.97x, 4,000 1.07x: at most kCameraTileSpheresCpu. On the H100 the
-// peer's scene 0.83x (BVH) and 0.77x (octree), 488 spheres 0.94x and
-// 0.86x (optimisation log 143): at most kCameraTileSpheresGpu.
-bool default_camera_tiles(const DeviceInfo& device, uint64_t spheres);
+// RenderSettings::camera_tiles' auto for a scene of spheres alone with
+// `accel`'s tree: whether its `spheres` are few enough on `device`. The
+// lists cost each batch a test of every sphere for each tile of 64 pixels
+// (a subgroup a tile), where a camera ray saves a walk; the more spheres,
+// the more tiles overflow their lists and walk all the same. On lavapipe
+// (Mesa 22.3.6, the octree, 400x225, 10 spp) the default scene's passes
+// took 0.87x the time with them, 2,000 spheres 0.97x, 4,000 1.07x: at most
+// kCameraTileSpheresCpu. On the H100 (1200x800, 10 spp, r = 0.1) with
+// the BVH 2,000 spheres 0.93x, 8,000 1.009x, 16,000 1.10x: at most
+// kCameraTileSpheresGpuBvh; with the octree 8,000 0.96x, 16,000 1.04x: at
+// most kCameraTileSpheresGpuOctree; the peer's scene 0.83x (BVH) and 0.77x
+// (octree), 488 spheres 0.94x and 0.86x (optimisation log 143).
+bool default_camera_tiles(const DeviceInfo& device, Accel accel, uint64_t spheres);
 inline constexpr uint64_t kCameraTileSpheresCpu = 1024;
-inline constexpr uint64_t kCameraTileSpheresGpu = 16384;
+inline constexpr uint64_t kCameraTileSpheresGpuBvh = 4096;
+inline constexpr uint64_t kCameraTileSpheresGpuOctree = 8192;
 
 // Whether subgroups of `subgroup_size` lanes can run the subgroup stage: at
 // least a lane for each of an octree node's eight children (the split node

@@ -772,7 +772,7 @@ TEST_F(RenderTest, CameraTilesAutoForFewSpheresWithATree) {
   s.camera_tiles = CameraTiles::Auto;
   EXPECT_FALSE(PathTracer(ctx, mesh, s).camera_tiles());
   // The bound: the rtiow field has 4 spheres besides its small ones.
-  const uint64_t bound = ctx.info.software ? kCameraTileSpheresCpu : kCameraTileSpheresGpu;
+  const uint64_t bound = ctx.info.software ? kCameraTileSpheresCpu : kCameraTileSpheresGpuOctree;
   const Scene at = make_rtiow_scene({bound - 4, 0.05f, 1});
   const Scene past = make_rtiow_scene({bound - 3, 0.05f, 1});
   EXPECT_TRUE(PathTracer(ctx, at, s).camera_tiles());
@@ -783,13 +783,15 @@ TEST_F(RenderTest, CameraTilesAutoForFewSpheresWithATree) {
   EXPECT_TRUE(PathTracer(ctx, past, s).camera_tiles());
 }
 
-TEST(CameraTiles, AutoUpToOneThousandSpheresOnACpuAndSixteenThousandOnAGpu) {
+TEST(CameraTiles, AutoUpToAThousandSpheresOnACpuAndFourOrEightThousandOnAGpu) {
   DeviceInfo gpu, cpu;
   gpu.software = false;
   cpu.software = true;
-  for (uint64_t n : {1ull, 492ull, 1024ull, 1025ull, 8004ull, 16384ull, 16385ull, 1000004ull}) {
-    EXPECT_EQ(default_camera_tiles(cpu, n), n <= 1024) << n;
-    EXPECT_EQ(default_camera_tiles(gpu, n), n <= 16384) << n;
+  for (uint64_t n : {1ull, 492ull, 1024ull, 1025ull, 4096ull, 4097ull, 8004ull, 8192ull, 8193ull, 1000004ull}) {
+    for (Accel accel : {Accel::Octree, Accel::Bvh}) {
+      EXPECT_EQ(default_camera_tiles(cpu, accel, n), n <= 1024) << n;
+      EXPECT_EQ(default_camera_tiles(gpu, accel, n), n <= (accel == Accel::Bvh ? 4096u : 8192u)) << n;
+    }
   }
 }
 
