@@ -897,7 +897,9 @@ TEST_F(RenderTest, RaysCountEverySegment) {
 // depth 1 tests every sphere once per query, one query per camera ray; the
 // BVH tests the root's box and two children's boxes per internal node; the
 // octree tests the rtiow ground (its big list) as a leaf of every query; shadow
-// rays are queries too; without the setting nothing is counted.
+// rays are queries too; without the setting nothing is counted. Every
+// query walks: the camera's tiles, which spare camera rays the walk, are off
+// (CameraTilesChangeNoPixel counts them).
 TEST_F(RenderTest, WalkStatsCountTheWalksAndChangeNoPixel) {
   Scene scene = make_rtiow_scene({40, 0.2f, 3});
   RenderSettings s;
@@ -907,6 +909,7 @@ TEST_F(RenderTest, WalkStatsCountTheWalksAndChangeNoPixel) {
   s.bounce_limit = 1;
   s.accel = Accel::Brute;
   s.walk_stats = true;
+  s.camera_tiles = CameraTiles::Off;
   const uint64_t camera_rays = 24 * 16 * 2;
   RenderResult r = render(test::shared_context(), scene, s);
   ASSERT_TRUE(r.walk.counted);
