@@ -92,27 +92,18 @@ layout(constant_id = SPEC_STAGE) const uint STAGE = STAGE_WHOLE;
 // BINDING_CAMERA_TILES): camera rays all leave the eye, so the spheres a
 // camera ray through a tile of 8 x 8 pixels can meet are those that reach
 // into the tile's pyramid from the eye, a few in a sparse field where the
-// walk would take a dozen node steps to find them. STAGE_CAMERA_TILES lists
-// them for each tile before the passes (camera_tiles_pass); the whole paths
-// and the head then test a camera ray against its tile's list, or walk the
-// tree where more spheres reach the tile than a list holds. The list holds
-// every sphere the ray could meet and the tie rule (closest_hit.glsl) does
-// not depend on the order of the tests: the same hit as the walk's, bit for
-// bit (render_test). For scenes of spheres alone whose trees left nothing
-// out (render/path_tracer.cpp camera_tiles()).
+// walk would take a dozen node steps to find them. camera_tiles.comp lists
+// them for each tile before the passes; the whole paths and the head then
+// test a camera ray against its tile's list, or walk the tree where more
+// spheres reach the tile than a list holds. The list holds every sphere
+// the ray could meet and the tie rule (closest_hit.glsl) does not depend on
+// the order of the tests: the same hit as the walk's, bit for bit
+// (render_test). For scenes of spheres alone with a tree
+// (render/path_tracer.cpp camera_tiles()).
 layout(constant_id = SPEC_CAMERA_TILES) const bool CAMERA_TILES = false;
 #define CAMERA_LISTS (CAMERA_TILES && (STAGE == STAGE_WHOLE || STAGE == STAGE_HEAD))
-layout(std430, binding = BINDING_CAMERA_TILES) buffer CameraTileBuf { uint camera_tiles[]; };
+#include "shared/camera_tiles.glsl"
 
-// Tiles across the image, and in all (the lists follow the counts).
-uint camera_tiles_across() { return (pass.width + CAMERA_TILE_PIXELS - 1u) / CAMERA_TILE_PIXELS; }
-uint camera_tile_total() {
-  return camera_tiles_across() * ((pass.height + CAMERA_TILE_PIXELS - 1u) / CAMERA_TILE_PIXELS);
-}
-
-uint camera_tile_of(uvec2 pixel) {
-  return (pixel.y / CAMERA_TILE_PIXELS) * camera_tiles_across() + pixel.x / CAMERA_TILE_PIXELS;
-}
 // The tile of the pixel whose camera ray this invocation traces (whole_pass
 // and head_pass set it).
 uint camera_tile = 0u;
@@ -134,80 +125,6 @@ bool camera_list_hit(Ray ray, out Hit hit) {
   const uint list = camera_tile_total() + camera_tile * CAMERA_TILE_REFS;
   for (uint k = 0u; k < count; ++k) test_sphere(ray, camera_tiles[list + k], NO_PRIM, false, hit);
   return true;
-}
-
-// STAGE_CAMERA_TILES: a subgroup a tile lists the spheres that reach into
-// the tile's pyramid, for the pass's camera (PassParams), its lanes testing
-// a sphere each and a ballot placing those kept (the list's order does not
-// change the hit). The pyramid has its apex at the eye and its four sides
-// through the tile's edges on the focus plane, a pixel outside the pixels'
-// own (a camera ray's target is its pixel plus a jitter in [0, 1)): a
-// sphere wholly outside one side cannot be met. With a lens (HAS_DEFOCUS)
-// a ray leaves from a point of the lens disc of radius R instead of the
-// eye: at depth z along the view it lies within R |1 - z / f| of the
-// pinhole ray to the same target (f: the focus plane's depth), so a sphere
-// is kept within that much more of each side over its depths. A slack of
-// 1e-5 of the sphere's distance, and of what the floats' rounding of the
-// targets can move a direction, keeps a sphere that a rounded ray meets at
-// a grazing angle; a NaN keeps it too. A tile stops listing at its 33rd
-// sphere: its camera rays walk.
-void camera_tiles_pass() {
-  const uint tiles = camera_tile_total();
-  const uint across = camera_tiles_across();
-  const vec3 eye = pass.cam_origin;
-  const vec3 du = pass.pixel_du, dv = pass.pixel_dv;
-  vec3 ahead = normalize(cross(du, dv));
-  float focus = dot(pass.pixel00 - eye, ahead);
-  if (focus < 0.0) {
-    ahead = -ahead;
-    focus = -focus;
-  }
-  const float lens = HAS_DEFOCUS ? pass.lens_radius : 0.0;
-  for (uint tile = gl_WorkGroupID.x * gl_NumSubgroups + gl_SubgroupID; tile < tiles;
-       tile += gl_NumWorkGroups.x * gl_NumSubgroups) {
-    const uvec2 first = uvec2(tile % across, tile / across) * CAMERA_TILE_PIXELS;
-    const vec2 lo = vec2(first) - 1.0;
-    const vec2 hi = vec2(min(first + CAMERA_TILE_PIXELS, uvec2(pass.width, pass.height))) + 1.0;
-    const vec3 c00 = pass.pixel00 + lo.x * du + lo.y * dv - eye;
-    const vec3 c11 = pass.pixel00 + hi.x * du + hi.y * dv - eye;
-    const vec3 mid = 0.5 * (c00 + c11);
-    // Each side holds the eye and an edge of the tile: the normal of an
-    // edge along dv through the corner c00, and so on, turned into the
-    // pyramid.
-    vec3 side[4] = vec3[4](cross(dv, c00), cross(dv, c11), cross(du, c00), cross(du, c11));
-    for (uint k = 0u; k < 4u; ++k) {
-      side[k] = normalize(side[k]);
-      if (dot(side[k], mid) < 0.0) side[k] = -side[k];
-    }
-    const float slack =
-        1e-5 + 1e-6 * (length(pass.pixel00) + length(eye) + hi.x * length(du) + hi.y * length(dv)) / focus;
-    const uint list = tiles + tile * CAMERA_TILE_REFS;
-    uint count = 0u;
-    for (uint base = 0u; base < scene.sphere_count; base += gl_SubgroupSize) {
-      const uint i = base + gl_SubgroupInvocationID;
-      bool reaches = false;
-      if (i < scene.sphere_count) {
-        const GpuSphere s = sphere_at(i);
-        const vec3 rel = s.center - eye;
-        const float r = abs(s.radius);
-        const float z = dot(rel, ahead);
-        const float near = max(z - r, 0.0), far = max(z + r, 0.0);
-        const float spread = HAS_DEFOCUS ? lens * max(abs(1.0 - near / focus), abs(1.0 - far / focus)) : 0.0;
-        const float reach = -(r + spread + length(rel) * slack);
-        reaches = !(dot(side[0], rel) < reach || dot(side[1], rel) < reach || dot(side[2], rel) < reach ||
-                    dot(side[3], rel) < reach);
-      }
-      const uvec4 kept = subgroupBallot(reaches);
-      const uint n = subgroupBallotBitCount(kept);
-      if (count + n > CAMERA_TILE_REFS) {
-        count = CAMERA_TILE_OVERFLOW;
-        break;
-      }
-      if (reaches) camera_tiles[list + count + subgroupBallotExclusiveBitCount(kept)] = i;
-      count += n;
-    }
-    if (subgroupElect()) camera_tiles[tile] = count;
-  }
 }
 
 // Next-event estimation at a lambertian or pbr vertex (shading/lights.glsl).
@@ -723,6 +640,5 @@ void main() {
   if (STAGE == STAGE_HEAD) head_pass();
   else if (STAGE == STAGE_TAIL) tail_pass();
   else if (STAGE == STAGE_TAIL_SUBGROUP) tail_subgroup_pass();
-  else if (STAGE == STAGE_CAMERA_TILES) camera_tiles_pass();
   else whole_pass();
 }

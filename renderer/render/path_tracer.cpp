@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "accumulate.h"
+#include "camera_tiles.h"
+#include "camera_tiles_split.h"
 #include "core/clock.h"
 #include "core/errors.h"
 #include "core/text.h"
@@ -331,9 +333,17 @@ void PathTracer::State::create_pipeline() {
   else destroy_compute_pipeline(s.tail_pipeline);
   if (s.tail_subgroup() > 0) create_stage(s.tail_subgroup_pipeline, gpu::STAGE_TAIL_SUBGROUP, spirv, spirv_bytes);
   else destroy_compute_pipeline(s.tail_subgroup_pipeline);
-  if (s.camera_tiles()) create_stage(s.camera_tiles_pipeline, gpu::STAGE_CAMERA_TILES, spirv, spirv_bytes);
-  else destroy_compute_pipeline(s.camera_tiles_pipeline);
   s.create_camera_tiles();
+  if (s.camera_tiles()) {
+    create_compute_pipeline(s.camera_tiles_pipeline, s.ctx, split ? camera_tiles_split_spv : camera_tiles_spv,
+                            split ? sizeof(camera_tiles_split_spv) : sizeof(camera_tiles_spv), gpu::BINDING_COUNT,
+                            sizeof(gpu::PassParams), {{gpu::SPEC_PART_LOG2, g.part_log2}});
+    bind_buffers(s.camera_tiles_pipeline, {{gpu::BINDING_SCENE, &g.params},
+                                           {gpu::BINDING_SPHERES, &g.spheres},
+                                           {gpu::BINDING_BUFFER_PARTS, &g.part_table}});
+  } else {
+    destroy_compute_pipeline(s.camera_tiles_pipeline);
+  }
   if (s.staged())
     create_compute_pipeline(s.accumulate_pipeline, s.ctx, accumulate_spv, sizeof(accumulate_spv), gpu::BINDING_COUNT,
                             sizeof(gpu::PassParams));

@@ -133,8 +133,8 @@ OCT_CONST(uint, MAX_TAIL_LEVELS, 16u);
 OCT_CONST(uint, BINDING_TAIL_VALUES, 27u);
 OCT_CONST(uint, BINDING_TAIL_QUEUE, 28u);
 OCT_CONST(uint, BINDING_TAIL_CONTROL, 29u);
-// The camera's tiles (RenderSettings::camera_tiles; path_trace.comp
-// STAGE_CAMERA_TILES): for each tile of CAMERA_TILE_PIXELS x
+// The camera's tiles (RenderSettings::camera_tiles; camera_tiles.comp
+// writes them, path_trace.comp reads them): for each tile of CAMERA_TILE_PIXELS x
 // CAMERA_TILE_PIXELS pixels (tile = (y / 8) * tiles across + x / 8) its
 // count of candidates, or CAMERA_TILE_OVERFLOW where more than
 // CAMERA_TILE_REFS are; after the counts, CAMERA_TILE_REFS top-level ids
@@ -272,9 +272,6 @@ OCT_CONST(uint, STAGE_TAIL, 2u);
 // whose lanes share each octree leaf's tests (path_trace.comp).
 OCT_CONST(uint, STAGE_TAIL_SUBGROUP, 3u);
 OCT_CONST(uint, SPEC_TAIL_SUBGROUP, 37u);
-// Writes the camera's tiles (BINDING_CAMERA_TILES) for the pass's camera:
-// one invocation a tile, run before the passes that read them.
-OCT_CONST(uint, STAGE_CAMERA_TILES, 4u);
 // Whether the whole paths and the head take a camera ray's hit from its
 // tile's list (RenderSettings::camera_tiles) instead of the walk.
 OCT_CONST(uint, SPEC_CAMERA_TILES, 38u);
