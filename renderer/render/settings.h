@@ -187,9 +187,9 @@ struct RenderSettings {
   uint32_t tail_subgroup = kTailAuto;
   // Camera rays tested against their 8x8-pixel tile's list of the spheres
   // they can meet, made on the device for each batch's camera before its
-  // passes, instead of walking the tree (shaders/path_trace.comp
-  // camera_tiles_pass); a tile that more than 32 spheres reach walks. For
-  // scenes of spheres alone, with the octree or the BVH. On: wherever that
+  // passes (shaders/camera_tiles.comp), instead of walking the tree; a tile
+  // that more than 32 spheres reach walks. For scenes of spheres alone,
+  // with the octree or the BVH. On: wherever that
   // holds (SettingError elsewhere). Auto: where it holds and the scene has
   // at most default_camera_tiles' spheres for the device (the lists cost
   // each batch a test of every sphere for each tile). The image is the
