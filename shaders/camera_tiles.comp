@@ -44,6 +44,9 @@ void main() {
     focus = -focus;
   }
   const float lens = pass.lens_radius;  // 0 for a pinhole
+  // The subgroup's lanes in the workgroup (a subgroup wider than the
+  // workgroup's 64 invocations has only 64).
+  const uint lanes = min(gl_SubgroupSize, WORKGROUP_SIZE * WORKGROUP_SIZE);
   for (uint tile = gl_WorkGroupID.x * gl_NumSubgroups + gl_SubgroupID; tile < tiles;
        tile += gl_NumWorkGroups.x * gl_NumSubgroups) {
     const uvec2 first = uvec2(tile % across, tile / across) * CAMERA_TILE_PIXELS;
@@ -64,20 +67,20 @@ void main() {
         1e-5 + 1e-6 * (length(pass.pixel00) + length(eye) + hi.x * length(du) + hi.y * length(dv)) / focus;
     const uint list = tiles + tile * CAMERA_TILE_REFS;
     uint count = 0u;
-    for (uint base = 0u; base < scene.sphere_count; base += gl_SubgroupSize) {
+    // Every lane takes each step (a lane past the last sphere tests the
+    // last again and keeps nothing), so that the ballot sees the whole
+    // subgroup without relying on the lanes reconverging after a branch.
+    for (uint base = 0u; base < scene.sphere_count; base += lanes) {
       const uint i = base + gl_SubgroupInvocationID;
-      bool reaches = false;
-      if (i < scene.sphere_count) {
-        const GpuSphere s = sphere_at(i);
-        const vec3 rel = s.center - eye;
-        const float r = abs(s.radius);
-        const float z = dot(rel, ahead);
-        const float near = max(z - r, 0.0), far = max(z + r, 0.0);
-        const float spread = lens * max(abs(1.0 - near / focus), abs(1.0 - far / focus));
-        const float reach = -(r + spread + length(rel) * slack);
-        reaches = !(dot(side[0], rel) < reach || dot(side[1], rel) < reach || dot(side[2], rel) < reach ||
-                    dot(side[3], rel) < reach);
-      }
+      const GpuSphere s = sphere_at(min(i, scene.sphere_count - 1u));
+      const vec3 rel = s.center - eye;
+      const float r = abs(s.radius);
+      const float z = dot(rel, ahead);
+      const float near = max(z - r, 0.0), far = max(z + r, 0.0);
+      const float spread = lens * max(abs(1.0 - near / focus), abs(1.0 - far / focus));
+      const float reach = -(r + spread + length(rel) * slack);
+      const bool reaches = i < scene.sphere_count && !(dot(side[0], rel) < reach || dot(side[1], rel) < reach ||
+                                                       dot(side[2], rel) < reach || dot(side[3], rel) < reach);
       const uvec4 kept = subgroupBallot(reaches);
       const uint n = subgroupBallotBitCount(kept);
       if (count + n > CAMERA_TILE_REFS) {

@@ -163,10 +163,10 @@ struct PathTracer::State {
     if (settings.accel == Accel::Brute) return "brute force walks no tree";
     if (scene_features.triangles) return "the lists hold spheres, and the scene has triangles";
     if (sphere_count == 0) return "the scene has no sphere";
-    if (camera_tile_bytes() > ctx.limits.maxStorageBufferRange)
-      return "their lists for " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + " need " +
-             mib_string(camera_tile_bytes()) + ", the device allows " +
-             mib_string(ctx.limits.maxStorageBufferRange) + " per buffer";
+    // No bound on the size: the lists take 132 bytes for 64 pixels, the
+    // accumulation buffers 16 a pixel each, which create_accumulation
+    // refuses first where they do not fit. So the answer does not change
+    // with resize(), which keeps the pipelines.
     return "";
   }
   uint64_t camera_tile_count() const {
@@ -652,7 +652,7 @@ void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, ui
   pc.sample_seed = pass.sample_seed;
   pc.rr_depth = pass.rr_depth ? pass.rr_depth : UINT32_MAX;
   const uint32_t groups_x = (width + gpu::WORKGROUP_SIZE - 1) / gpu::WORKGROUP_SIZE;
-  // The camera's tiles for this camera, one invocation a tile, after the
+  // The camera's tiles for this camera, a subgroup a tile, after the
   // passes before them (this batch's or the last) have read the last ones.
   if (s.camera_tiles_pipeline.pipeline != VK_NULL_HANDLE) {
     compute_barrier(cmd);

@@ -137,9 +137,11 @@ OCT_CONST(uint, BINDING_TAIL_CONTROL, 29u);
 // writes them, path_trace.comp reads them): for each tile of CAMERA_TILE_PIXELS x
 // CAMERA_TILE_PIXELS pixels (tile = (y / 8) * tiles across + x / 8) its
 // count of candidates, or CAMERA_TILE_OVERFLOW where more than
-// CAMERA_TILE_REFS are; after the counts, CAMERA_TILE_REFS top-level ids
-// per tile: every sphere a camera ray through the tile could meet. A
-// 16-byte placeholder when off.
+// CAMERA_TILE_REFS are; after the counts, CAMERA_TILE_REFS sphere indices
+// per tile (places in the sphere buffer, which is in the tree's order
+// under SPEC_SPHERES_IN_TREE_ORDER; the scenes with tiles have spheres
+// alone, so these are their top-level ids): every sphere a camera ray
+// through the tile could meet. A 16-byte placeholder when off.
 OCT_CONST(uint, BINDING_CAMERA_TILES, 30u);
 OCT_CONST(uint, BINDING_COUNT, 31u);
 OCT_CONST(uint, CAMERA_TILE_PIXELS, 8u);

@@ -684,13 +684,16 @@ TEST_F(RenderTest, HiddenPartsSpareTestsAndChangeNoPixel) {
 // The camera's tiles (RenderSettings::camera_tiles): camera rays tested
 // against their tile's list of spheres render every bit as the walks do,
 // with either structure, in fp32 and fp16, through a lens and a pinhole,
-// where the trees left hidden parts out and where tiles overflow their
-// lists (the dense field) and walk; the camera rays of tiles that do not
-// expand no node.
+// over trees that left hidden parts out (the peer's field, the dense
+// field), where tiles overflow their lists (the dense field)
+// and walk, on an image whose last row and column of tiles are partial,
+// in whole paths and with the tail queue; the camera rays of tiles that
+// do not overflow expand no node.
 TEST_F(RenderTest, CameraTilesChangeNoPixel) {
   VulkanContext& ctx = test::shared_context();
-  Scene pinhole = make_rtiow_scene({488, 0.2f, 2});
-  pinhole.camera.aperture = 0.0f;
+  // The peer's field (tools/peer): a pinhole, and small spheres that
+  // overlap the big ones, whose trees leave those parts out.
+  const Scene pinhole = load_scene_json(OCTRACE_SOURCE_DIR "/tools/scenes/peer_field.json");
   // A lens 2 wide: at the field's depths a ray leaves its pinhole ray's
   // side of a tile by several pixels.
   Scene wide = make_rtiow_scene({200, 0.2f, 1});
@@ -700,8 +703,8 @@ TEST_F(RenderTest, CameraTilesChangeNoPixel) {
                                                   {"a pinhole", pinhole},
                                                   {"dense", make_rtiow_scene({3000, 1.0f, 4})}};
   RenderSettings s;
-  s.width = 64;
-  s.height = 40;
+  s.width = 62;
+  s.height = 37;
   s.spp = 2;
   s.bounce_limit = 8;
   for (const auto& [name, scene] : scenes) {
@@ -716,10 +719,29 @@ TEST_F(RenderTest, CameraTilesChangeNoPixel) {
         const RenderResult on = render(ctx, scene, s);
         EXPECT_FALSE(off.camera_tiles);
         EXPECT_TRUE(on.camera_tiles);
+        if (std::string(name) == "a pinhole" || std::string(name) == "dense")
+          EXPECT_GT(on.octree.spheres_clipped + on.octree.spheres_hidden, 0u);
         expect_same_result(on, off);
       }
     }
   }
+  // With the tail queue (the head takes the camera rays), and in whole
+  // paths (the tail queue off): on lavapipe its auto is off, on a GPU on.
+  s.precision = Precision::FP32;
+  for (uint32_t tail : {2u, 0u}) {
+    for (Accel accel : {Accel::Octree, Accel::Bvh}) {
+      SCOPED_TRACE(std::string("tail depth ") + std::to_string(tail) + ", " + accel_name(accel));
+      s.accel = accel;
+      s.tail_depth = tail;
+      s.camera_tiles = CameraTiles::Off;
+      const RenderResult off = render(ctx, pinhole, s);
+      s.camera_tiles = CameraTiles::On;
+      const RenderResult on = render(ctx, pinhole, s);
+      EXPECT_EQ(on.tail_depth, tail);
+      expect_same_result(on, off);
+    }
+  }
+  s.tail_depth = RenderSettings::kTailAuto;
   // Camera rays alone, counted: every tile of the field of 200 takes its
   // list; most of the wide lens's and the pinhole's do, and those near the
   // horizon walk (at this size more spheres reach them than a list holds),
