@@ -702,6 +702,13 @@ TEST_F(RenderTest, CameraTilesChangeNoPixel) {
                                                   {"a wide lens", wide},
                                                   {"a pinhole", pinhole},
                                                   {"dense", make_rtiow_scene({3000, 1.0f, 4})}};
+  // A render with the tiles off and the same with them on.
+  const auto off_and_on = [&ctx](const Scene& scene, RenderSettings settings) {
+    settings.camera_tiles = CameraTiles::Off;
+    RenderResult off = render(ctx, scene, settings);
+    settings.camera_tiles = CameraTiles::On;
+    return std::pair{std::move(off), render(ctx, scene, settings)};
+  };
   RenderSettings s;
   s.width = 62;
   s.height = 37;
@@ -713,14 +720,12 @@ TEST_F(RenderTest, CameraTilesChangeNoPixel) {
         SCOPED_TRACE(std::string(name) + ", " + accel_name(accel) + ", " + precision_name(precision));
         s.accel = accel;
         s.precision = precision;
-        s.camera_tiles = CameraTiles::Off;
-        const RenderResult off = render(ctx, scene, s);
-        s.camera_tiles = CameraTiles::On;
-        const RenderResult on = render(ctx, scene, s);
+        const auto [off, on] = off_and_on(scene, s);
         EXPECT_FALSE(off.camera_tiles);
         EXPECT_TRUE(on.camera_tiles);
-        if (std::string(name) == "a pinhole" || std::string(name) == "dense")
+        if (std::string(name) == "a pinhole" || std::string(name) == "dense") {
           EXPECT_GT(on.octree.spheres_clipped + on.octree.spheres_hidden, 0u);
+        }
         expect_same_result(on, off);
       }
     }
@@ -733,10 +738,7 @@ TEST_F(RenderTest, CameraTilesChangeNoPixel) {
       SCOPED_TRACE(std::string("tail depth ") + std::to_string(tail) + ", " + accel_name(accel));
       s.accel = accel;
       s.tail_depth = tail;
-      s.camera_tiles = CameraTiles::Off;
-      const RenderResult off = render(ctx, pinhole, s);
-      s.camera_tiles = CameraTiles::On;
-      const RenderResult on = render(ctx, pinhole, s);
+      const auto [off, on] = off_and_on(pinhole, s);
       EXPECT_EQ(on.tail_depth, tail);
       expect_same_result(on, off);
     }
@@ -753,10 +755,7 @@ TEST_F(RenderTest, CameraTilesChangeNoPixel) {
   s.walk_stats = true;
   for (const auto& [name, scene] : scenes) {
     SCOPED_TRACE(name);
-    s.camera_tiles = CameraTiles::Off;
-    const RenderResult off = render(ctx, scene, s);
-    s.camera_tiles = CameraTiles::On;
-    const RenderResult on = render(ctx, scene, s);
+    const auto [off, on] = off_and_on(scene, s);
     expect_same_result(on, off);
     EXPECT_EQ(on.walk.queries, off.walk.queries);
     EXPECT_GT(off.walk.nodes, 0u);
