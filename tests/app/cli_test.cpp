@@ -116,6 +116,8 @@ const BadInput BAD_INPUTS[] = {
     {"precision_unknown", "--precision fp8", "--precision: expected fp32, fp16 or fp16-all"},
     {"effects_unknown", "--effects some", "--effects: expected auto or all"},
     {"octant_culling_unknown", "--octant-culling maybe", "--octant-culling: expected auto, on or off, got \"maybe\""},
+    {"camera_tiles_unknown", "--camera-tiles maybe", "--camera-tiles: expected auto, on or off, got \"maybe\""},
+    {"camera_tiles_brute", "--accel brute --camera-tiles on", "--camera-tiles: brute force walks no tree; use auto or off"},
     {"bvh_walk_unknown", "--accel bvh --bvh-walk twice",
      "--bvh-walk: expected auto, one-loop or while-while, got \"twice\""},
     {"hidden_parts_unknown", "--hidden-parts some", "--hidden-parts: expected auto, cull or keep, got \"some\""},
