@@ -48,8 +48,11 @@ cleanup() { git -C "$root" worktree remove --force "$tree" 2>/dev/null || true; 
 trap cleanup EXIT
 git -C "$root" worktree add --quiet --detach "$tree" "$rev"
 mkdir -p "$stage/app" "$stage/tests"
+# The tests read the repository's files from /work/main, which
+# tools/gpu_run.sh links to the checkout on the GPU machine (the worktree
+# here is gone by then).
 cmake -S "$tree" -B "$tree/build-pack" -G Ninja -DCMAKE_BUILD_TYPE=Release -DOCTRACE_WINDOW=OFF -DOCTRACE_MPI=OFF \
-  -DOCTRACE_TESTS=ON > "$work/configure.log"
+  -DOCTRACE_TESTS=ON -DOCTRACE_TEST_SOURCE_DIR=/work/main > "$work/configure.log"
 tests=(hardcases_test accel_test render_test)
 ninja -C "$tree/build-pack" app/octrace "${tests[@]/#/tests/}" > "$work/build.log" || { tail -20 "$work/build.log" >&2; exit 1; }
 cp "$tree/build-pack/app/octrace" "$stage/app/"
