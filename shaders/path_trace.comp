@@ -113,15 +113,8 @@ uint camera_tile = 0u;
 bool camera_list_hit(Ray ray, out Hit hit) {
   const uint count = camera_tiles[camera_tile];
   if (count == CAMERA_TILE_OVERFLOW) return false;
-  hit.t = INF;
-  hit.prim = NO_PRIM;
-  hit.kind = PRIM_SPHERE;
-  hit.inst = 0u;
-  if (WALK_STATS) {
-    ++walk_queries;
-    walk_query_slots += walk_slots();
-    ++walk_leaves;
-  }
+  start_query(INF, hit);
+  if (WALK_STATS) ++walk_leaves;
   const uint list = camera_tile_total() + camera_tile * CAMERA_TILE_REFS;
   for (uint k = 0u; k < count; ++k) test_sphere(ray, camera_tiles[list + k], NO_PRIM, false, hit);
   return true;

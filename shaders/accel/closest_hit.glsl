@@ -306,9 +306,10 @@ void test_primitive_at(Ray ray, SlabRay sr, uint k, uint from_prim, bool into_fr
 // same hits, without the walk's set-up and its box tests.
 layout(constant_id = SPEC_ONE_INSTANCE) const bool ONE_INSTANCE = false;
 
-// The nearest hit before t_max (INF: anywhere). Alpha cut-outs and
-// back-face culling apply as to any ray (and to shadow rays: occluded).
-bool closest_hit_within(Ray ray, uint from_prim, bool into_from, float t_max, out Hit hit) {
+// A query's start: no hit before t_max yet, and the query counted
+// (WALK_STATS). Every query of the scene starts so: closest_hit_within,
+// occluded, and path_trace.comp's camera lists.
+void start_query(float t_max, out Hit hit) {
   hit.t = t_max;
   hit.prim = NO_PRIM;
   hit.kind = PRIM_SPHERE;
@@ -317,6 +318,12 @@ bool closest_hit_within(Ray ray, uint from_prim, bool into_from, float t_max, ou
     ++walk_queries;
     walk_query_slots += walk_slots();
   }
+}
+
+// The nearest hit before t_max (INF: anywhere). Alpha cut-outs and
+// back-face culling apply as to any ray (and to shadow rays: occluded).
+bool closest_hit_within(Ray ray, uint from_prim, bool into_from, float t_max, out Hit hit) {
+  start_query(t_max, hit);
   if (ONE_INSTANCE) {
     test_instance(ray, 0u, from_prim, hit);
     return hit.prim != NO_PRIM;
@@ -384,15 +391,8 @@ void test_primitive_any_at(Ray ray, SlabRay sr, uint k, uint from_prim, bool int
 
 bool occluded(Ray ray, uint from_prim, bool into_from, float t_max, uint skip) {
   Hit hit;
-  hit.t = t_max;
-  hit.prim = NO_PRIM;
-  hit.kind = PRIM_SPHERE;
-  hit.inst = 0u;
+  start_query(t_max, hit);
   shadow_skip = skip;
-  if (WALK_STATS) {
-    ++walk_queries;
-    walk_query_slots += walk_slots();
-  }
   // Only a sphere is ever skipped (a sphere light's own), and there is none.
   if (ONE_INSTANCE) {
     test_instance(ray, 0u, from_prim, hit);
