@@ -426,14 +426,8 @@ struct RenderOptions {
     s.octree.surface_cells = parse_surface_cells(surface_cells);
     if (nee != "on" && nee != "off") throw SettingError("nee", ": expected on or off, got \"" + nee + "\"");
     s.nee = nee == "on";
-    if (camera_tiles != "auto" && camera_tiles != "on" && camera_tiles != "off")
-      throw SettingError("camera_tiles", ": expected auto, on or off, got \"" + camera_tiles + "\"");
-    s.camera_tiles = camera_tiles == "auto" ? CameraTiles::Auto : camera_tiles == "on" ? CameraTiles::On : CameraTiles::Off;
-    if (octant_culling != "auto" && octant_culling != "on" && octant_culling != "off")
-      throw SettingError("octant_culling", ": expected auto, on or off, got \"" + octant_culling + "\"");
-    s.octant_culling = octant_culling == "auto" ? OctantCulling::Auto
-                       : octant_culling == "on" ? OctantCulling::On
-                                                : OctantCulling::Off;
+    s.camera_tiles = parse_auto_on_off<CameraTiles>(camera_tiles, "camera_tiles");
+    s.octant_culling = parse_auto_on_off<OctantCulling>(octant_culling, "octant_culling");
     if (bvh_walk != "auto" && bvh_walk != "one-loop" && bvh_walk != "while-while")
       throw SettingError("bvh_walk", ": expected auto, one-loop or while-while, got \"" + bvh_walk + "\"");
     s.bvh_walk = bvh_walk == "auto" ? BvhWalk::Auto : bvh_walk == "one-loop" ? BvhWalk::OneLoop : BvhWalk::WhileWhile;

@@ -63,9 +63,7 @@ const char* surface_cells_name(SurfaceCells c) {
 }
 
 SurfaceCells parse_surface_cells(const std::string& name) {
-  for (SurfaceCells c : {SurfaceCells::Auto, SurfaceCells::On, SurfaceCells::Off})
-    if (name == surface_cells_name(c)) return c;
-  throw SettingError("octree.surface_cells", ": expected auto, on or off, got \"" + name + "\"");
+  return parse_auto_on_off<SurfaceCells>(name, "octree.surface_cells");
 }
 
 bool bakes_every_instance(Instancing instancing, uint64_t stored, uint64_t placed) {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "accel/octree.h"
+#include "core/errors.h"
 
 namespace octrace {
 
@@ -29,6 +30,16 @@ const char* hidden_parts_name(HiddenParts h);
 // SettingError("octree.surface_cells").
 const char* surface_cells_name(SurfaceCells c);
 SurfaceCells parse_surface_cells(const std::string& name);
+
+// An auto | on | off setting's value as the enum E of its choices (E::Auto,
+// E::On, E::Off); SettingError naming `setting` for anything else.
+template <typename E>
+E parse_auto_on_off(const std::string& value, const char* setting) {
+  if (value == "auto") return E::Auto;
+  if (value == "on") return E::On;
+  if (value == "off") return E::Off;
+  throw SettingError(setting, ": expected auto, on or off, got \"" + value + "\"");
+}
 
 // The extra triangles (placed - stored) up to which Instancing::Auto bakes
 // every instance: at most some 180 MB more on the device (a triangle, its
