@@ -643,6 +643,8 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
   const bool under_mpi = mpi::active();
   if (under_mpi) {
     if (settings.walk_stats) throw InputError("--walk-stats counts the walks of one process: run it without MPI");
+    if (settings.dispatch_times)
+      throw InputError("--dispatch-times times the dispatches of one process: run it without MPI");
     if (outputs.empty() && state.empty() && !scene_opts.dump_scene.empty())
       throw InputError("--dump-scene: under MPI give --out or --state too (there is nothing to render)");
     if (mpi::rank() != 0) {
@@ -965,6 +967,12 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
                    {"query_slots", w.query_slots}, {"node_slots", w.node_slots},
                    {"primitive_slots", w.primitive_slots}};
     }
+    if (settings.dispatch_times) {
+      json list = json::array();
+      for (const DispatchTime& d : result.dispatches)
+        list.push_back({{"stage", d.stage}, {"level", d.level}, {"runs", d.runs}, {"ms", d.ms}});
+      j["dispatches"] = list;
+    }
     std::cout << j.dump(2) << "\n";
   } else if (!quiet) {
     std::printf("device    %s (%s)\n", ctx.info.name.c_str(), ctx.info.type.c_str());
@@ -1032,6 +1040,11 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       std::printf("lanes     busy in their subgroup: %.0f%% where queries start, %.0f%% at node expansions, %.0f%% at "
                   "primitive tests\n",
                   busy(w.queries, w.query_slots), busy(w.nodes, w.node_slots), busy(w.primitives, w.primitive_slots));
+    }
+    for (const DispatchTime& d : result.dispatches) {
+      const std::string level = d.stage == "tail" || d.stage == "tail_subgroup" ? " " + std::to_string(d.level) : "";
+      std::printf("dispatch  %-16s %9.3f ms in %llu runs (%.1f%% of the passes)\n", (d.stage + level).c_str(), d.ms,
+                  (unsigned long long)d.runs, t.render_device_ms > 0 ? 100.0 * d.ms / t.render_device_ms : 0.0);
     }
     if (result.nonfinite_samples)
       std::printf("warning   %llu NaN/Inf samples were rejected\n", (unsigned long long)result.nonfinite_samples);
@@ -1216,6 +1229,10 @@ int main(int argc, char** argv) {
                        "Count what the walks do: queries, nodes expanded, leaves, box and primitive tests, and "
                        "how many of a subgroup's lanes were busy at those steps (the summary's \"walk\" and "
                        "\"lanes\" lines, or \"walk\" in --json); the same image, slower passes");
+  render_cmd->add_flag("--dispatch-times", render_opts.settings.dispatch_times,
+                       "Time every dispatch of the passes on the device (the camera's tiles, the whole paths or "
+                       "the head, each tail level and its subgroup stage, the sum), each from the end of the one "
+                       "before: the summary's \"dispatch\" lines, or \"dispatches\" in --json; the same image");
   double batch_ms = 0;
   render_cmd->add_option("--batch-ms", batch_ms,
                          "Under MPI: each rank asks rank 0 for the samples that take about MS milliseconds at its "

@@ -74,6 +74,7 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
   RenderResult r;  // device 0's set-up timings, octree and features; the merged state
   std::vector<uint64_t> nonfinite(devices, 0);
   std::vector<WalkStats> walks(devices);
+  std::vector<std::vector<DispatchTime>> dispatches(devices);
   std::atomic<uint32_t> next{0};  // the next sample offset to hand out
   std::atomic<uint32_t> done{0};
   std::atomic<bool> failed{false};
@@ -133,6 +134,7 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
       parts[d] = tracer.read_accumulation();
       nonfinite[d] = tracer.nonfinite_samples();
       walks[d] = tracer.walk_stats();
+      dispatches[d] = tracer.dispatch_times();
       if (d == 0) {
         r.timings = tracer.setup_timings();
         r.octree = tracer.octree_stats();
@@ -164,6 +166,7 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
   r.nonfinite_samples = 0;
   for (uint64_t k : nonfinite) r.nonfinite_samples += k;
   for (const WalkStats& w : walks) r.walk += w;
+  for (const std::vector<DispatchTime>& d : dispatches) add_dispatch_times(r.dispatches, d);
   const Clock::time_point last = *std::max_element(ends.begin(), ends.end());
   r.timings.render_wall_ms = std::chrono::duration<double, std::milli>(last - start).count();
   r.timings.render_device_ms = 0;

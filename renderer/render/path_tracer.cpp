@@ -196,6 +196,18 @@ struct PathTracer::State {
   // (path_trace.comp STAGE_*), and the sum (accumulate.comp).
   ComputePipeline pipeline, tail_pipeline, tail_subgroup_pipeline, accumulate_pipeline;
   GpuTimer timer;
+  // RenderSettings::dispatch_times: a timestamp after each dispatch of a
+  // batch (0 at its start; the pool grows to the batch's most), what each
+  // dispatch was, and the sums since the last reset.
+  GpuTimer dispatch_timer;
+  mutable std::vector<std::pair<const char*, uint32_t>> dispatch_marks;
+  std::vector<DispatchTime> dispatch_sums;
+  // After a dispatch: its timestamp, with its stage and tail level.
+  void mark_dispatch(VkCommandBuffer cmd, const char* stage, uint32_t level = 0) const {
+    if (!settings.dispatch_times) return;
+    dispatch_marks.emplace_back(stage, level);
+    timer_mark(dispatch_timer, cmd, uint32_t(dispatch_marks.size()));
+  }
 
   explicit State(const VulkanContext& c) : ctx(c) {}
   uint64_t pixels() const { return uint64_t(settings.width) * uint64_t(settings.height); }
@@ -488,6 +500,7 @@ const RenderSettings& PathTracer::settings() const { return state_->settings; }
 
 void PathTracer::reset() {
   State& s = *state_;
+  s.dispatch_sums.clear();
   submit_and_wait(s.ctx, [&](VkCommandBuffer cmd) {
     for (Buffer* b : {&s.accum_sum, &s.accum_comp, &s.accum_sq, &s.stats})
       vkCmdFillBuffer(cmd, b->buffer, 0, VK_WHOLE_SIZE, 0);
@@ -609,6 +622,7 @@ void PathTracer::State::record_staged_passes(VkCommandBuffer cmd, gpu::PassParam
     bind(s.pipeline);
     vkCmdDispatch(cmd, groups_x, (height + tile_height - 1) / tile_height,
                   (pc.sample_count + pc.sample_lanes - 1) / pc.sample_lanes);
+    s.mark_dispatch(cmd, "head");
     for (uint32_t level = 0; queue && level < levels; ++level) {
       compute_barrier(cmd);
       pc.tail_level = level;
@@ -619,6 +633,7 @@ void PathTracer::State::record_staged_passes(VkCommandBuffer cmd, gpu::PassParam
       // count) are the VkDispatchIndirectCommand.
       vkCmdDispatchIndirect(cmd, s.tail_control.buffer,
                             level * sizeof(gpu::TailControl) + offsetof(gpu::TailControl, groups_x));
+      s.mark_dispatch(cmd, "tail", level);
       // A level of fewer paths than tail_subgroup: the subgroup stage (the
       // tail stage's invocations left them alone). The two write other
       // parts of the same buffers, which a barrier orders all the same.
@@ -627,11 +642,13 @@ void PathTracer::State::record_staged_passes(VkCommandBuffer cmd, gpu::PassParam
         bind(s.tail_subgroup_pipeline);
         vkCmdDispatchIndirect(cmd, s.tail_control.buffer,
                               level * sizeof(gpu::TailControl) + offsetof(gpu::TailControl, subgroup_groups_x));
+        s.mark_dispatch(cmd, "tail_subgroup", level);
       }
     }
     compute_barrier(cmd);
     bind(s.accumulate_pipeline);
     vkCmdDispatch(cmd, groups_x, (height + gpu::WORKGROUP_SIZE - 1) / gpu::WORKGROUP_SIZE, 1);
+    s.mark_dispatch(cmd, "sum");
   }
 }
 
@@ -663,6 +680,7 @@ void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, ui
     // A subgroup a tile; past 65535 workgroups the stage's loop takes the rest.
     const uint64_t per_group = std::max<uint64_t>(kWorkgroupInvocations / std::max(s.ctx.info.subgroup_size, 1u), 1);
     vkCmdDispatch(cmd, uint32_t(std::min<uint64_t>((s.camera_tile_count() + per_group - 1) / per_group, 65535)), 1, 1);
+    s.mark_dispatch(cmd, "camera_tiles");
     compute_barrier(cmd);
   }
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.pipeline);
@@ -693,6 +711,7 @@ void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, ui
     const uint32_t tile_height = gpu::WORKGROUP_SIZE / pc.sample_lanes;
     vkCmdPushConstants(cmd, s.pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
     vkCmdDispatch(cmd, groups_x, (height + tile_height - 1) / tile_height, 1);
+    s.mark_dispatch(cmd, "whole");
   }
 }
 
@@ -721,14 +740,45 @@ uint32_t PathTracer::State::batch_granule() const {
 
 double PathTracer::run_passes(const PassSettings& pass, uint32_t first_sample, uint32_t count) {
   State& s = *state_;
+  if (s.settings.dispatch_times) {
+    // At most: the camera's tiles, and for each dispatch of samples (one
+    // sample each at the least) the head and the sum, and each tail level
+    // with its subgroup stage.
+    const uint64_t most = 2 + uint64_t(count) * (2 + 2 * gpu::MAX_TAIL_LEVELS);
+    if (most > s.dispatch_timer.count) create_timer(s.dispatch_timer, s.ctx, uint32_t(std::min<uint64_t>(most, 1u << 20)));
+    s.dispatch_marks.clear();
+  }
   submit_and_wait(s.ctx, [&](VkCommandBuffer cmd) {
     // Earlier submissions (reset, previous batches) wrote the accumulation.
     compute_barrier(cmd);
     timer_begin(s.timer, cmd);
+    if (s.settings.dispatch_times) timer_begin(s.dispatch_timer, cmd);
     record_passes(cmd, pass, first_sample, count);
     timer_end(s.timer, cmd);
   });
+  if (s.settings.dispatch_times) {
+    const std::vector<double> ms = timer_intervals_ms(s.dispatch_timer, uint32_t(s.dispatch_marks.size() + 1));
+    std::vector<DispatchTime> batch;
+    for (size_t i = 0; i < ms.size(); ++i)
+      add_dispatch_times(batch, {{s.dispatch_marks[i].first, s.dispatch_marks[i].second, 1, ms[i]}});
+    add_dispatch_times(s.dispatch_sums, batch);
+  }
   return timer_ms(s.timer);
+}
+
+const std::vector<DispatchTime>& PathTracer::dispatch_times() const { return state_->dispatch_sums; }
+
+void add_dispatch_times(std::vector<DispatchTime>& into, const std::vector<DispatchTime>& from) {
+  for (const DispatchTime& d : from) {
+    auto same = std::find_if(into.begin(), into.end(),
+                             [&](const DispatchTime& e) { return e.stage == d.stage && e.level == d.level; });
+    if (same == into.end()) {
+      into.push_back(d);
+    } else {
+      same->runs += d.runs;
+      same->ms += d.ms;
+    }
+  }
 }
 
 Accumulation PathTracer::read_accumulation() {
@@ -881,6 +931,7 @@ void PathTracer::finish_result(RenderResult& r, Clock::time_point start) {
   State& s = *state_;
   r.nonfinite_samples = nonfinite_samples();
   r.walk = walk_stats();
+  r.dispatches = s.dispatch_sums;
   s.timings.readback_ms = ms_since(start);
   r.timings = s.timings;
   r.octree = s.scene.octree;

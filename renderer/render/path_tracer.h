@@ -64,6 +64,19 @@ struct WalkStats {
   WalkStats& operator+=(const WalkStats& o);
 };
 
+// One kind of dispatch of the passes (RenderSettings::dispatch_times): its
+// stage, its tail level, how often it ran and its device time in all, from
+// the end of the dispatch before it.
+struct DispatchTime {
+  std::string stage;   // camera_tiles, whole, head, tail, tail_subgroup or sum
+  uint32_t level = 0;  // the tail level (tail, tail_subgroup); 0 for the others
+  uint64_t runs = 0;
+  double ms = 0;
+};
+// Adds `from`'s runs and times to those of the same stage and level in
+// `into`, in the order they first ran.
+void add_dispatch_times(std::vector<DispatchTime>& into, const std::vector<DispatchTime>& from);
+
 struct RenderResult {
   Image mean;              // linear mean radiance per pixel
   Image variance_of_mean;  // per pixel and channel: sample variance / count
@@ -72,6 +85,7 @@ struct RenderResult {
   uint64_t nonfinite_samples = 0; // NaN/Inf samples rejected (0 for a clean render)
   uint64_t rays = 0;              // ray segments traced (camera rays and bounces)
   WalkStats walk;                 // with RenderSettings::walk_stats
+  std::vector<DispatchTime> dispatches;  // with RenderSettings::dispatch_times (summed over devices)
   RenderTimings timings;
   OctreeStats octree;             // of the octree or the BVH; zeros for Accel::Brute
   SceneFeatures features;         // what the pipeline was specialised to
@@ -275,6 +289,9 @@ class PathTracer {
   // What the walks counted since the last reset (zeros and counted = false
   // without RenderSettings::walk_stats).
   WalkStats walk_stats();
+  // The dispatches' device times since the last reset (empty without
+  // RenderSettings::dispatch_times).
+  const std::vector<DispatchTime>& dispatch_times() const;
   // The raw accumulation buffers, and a state to continue from (a
   // checkpoint; InputError if its size is not the tracer's).
   Accumulation read_accumulation();

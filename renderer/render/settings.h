@@ -149,6 +149,12 @@ struct RenderSettings {
   // same; the counting (atomics) costs time, so timings with it on are not
   // the renderer's. Off, it compiles out of the pipeline.
   bool walk_stats = false;
+  // Time every dispatch of the passes on the device (RenderResult::
+  // dispatches): a timestamp after each (the camera's tiles, the whole
+  // paths or the head, each tail level and its subgroup stage, the sum),
+  // so that each dispatch's time runs from the end of the one before. The
+  // same image; the passes' own times stay those of the whole batch.
+  bool dispatch_times = false;
   // The tail queue (shaders/path_trace.comp): a dispatch traces every path
   // up to this bounce, and the paths still going on there are finished in a
   // dispatch of their own, one per invocation, so that a few long paths do

@@ -733,23 +733,36 @@ TEST(Cli, StatesOfDisjointSampleRangesMergeIntoTheWholeRender) {
 // which the loader allows; lavapipe here) render the samples of one device,
 // summed in another order: equal to float rounding, the same bound as the
 // merge above (1e-5 relative), with the same sample count everywhere, and
-// the summary names each device and what it did (the samples add up).
+// the summary names each device and what it did (the samples add up), and
+// the devices' dispatches are those of one (--dispatch-times).
 TEST(Cli, TwoDevicesRenderTheSamplesOfOne) {
   const std::string args = "render --size 40x24 --spheres 60 --spp 12 ";
   const std::string one = tmp("one_device.pfm"), two = tmp("two_devices.pfm");
   ASSERT_EQ(run_octrace(args + "--quiet --device 0 --out " + one).code, 0);
-  RunResult r = run_octrace(args + "--json --pipeline-stats --walk-stats --device 0,0 --out " + two);
+  RunResult r =
+      run_octrace(args + "--json --pipeline-stats --walk-stats --dispatch-times --device 0,0 --out " + two);
   ASSERT_EQ(r.code, 0) << r.output;
   // stdout is the JSON alone (no per-device summary lines before it).
   EXPECT_EQ(r.output.find("device 0 "), std::string::npos) << r.output;
   const nlohmann::json j = json_of(r.output);
   ASSERT_EQ(j.at("devices").size(), 2u);
   // The devices' walk counts add up to one device's (the same samples, walked the same way).
-  RunResult one_json = run_octrace(args + "--json --walk-stats --device 0 --out " + tmp("one_device_again.pfm"));
+  RunResult one_json =
+      run_octrace(args + "--json --walk-stats --dispatch-times --device 0 --out " + tmp("one_device_again.pfm"));
   ASSERT_EQ(one_json.code, 0) << one_json.output;
   const nlohmann::json k = json_of(one_json.output);
   EXPECT_EQ(j.at("walk"), k.at("walk"));
   EXPECT_GT(k["walk"]["queries"].get<uint64_t>(), 0u);
+  // The same stages, in the same order, on one device and on two.
+  const auto stages = [](const nlohmann::json& d) {
+    std::vector<std::string> names;
+    for (const auto& e : d.at("dispatches")) names.push_back(e.at("stage").get<std::string>());
+    return names;
+  };
+  EXPECT_FALSE(stages(k).empty());
+  EXPECT_EQ(stages(j), stages(k));
+  // Staged (head, tail, sum) or the whole paths, their last dispatch.
+  EXPECT_TRUE(stages(k).back() == "sum" || stages(k).back() == "whole") << stages(k).back();
   EXPECT_EQ(j["devices"][0]["samples"].get<uint32_t>() + j["devices"][1]["samples"].get<uint32_t>(), 12u);
   EXPECT_EQ(j["samples"].get<uint32_t>(), 12u);
   octrace::Image a = octrace::read_image(one), b = octrace::read_image(two);

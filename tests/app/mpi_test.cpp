@@ -233,6 +233,13 @@ TEST(Mpi, ARankThatFailsFailsTheJobWithoutOutput) {
       << w.output;
   EXPECT_EQ(std::count(w.output.begin(), w.output.end(), '\n'), 1) << w.output;
   EXPECT_FALSE(fs::exists(out));
+  // --dispatch-times times one process's dispatches.
+  const RunResult d = mpirun(2, good + "--dispatch-times --out " + out);
+  EXPECT_EQ(d.code, 2) << d.output;
+  EXPECT_NE(d.output.find("--dispatch-times times the dispatches of one process: run it without MPI"),
+            std::string::npos)
+      << d.output;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 // SIGTERM to mpirun while the ranks render: mpirun passes it on, the ranks

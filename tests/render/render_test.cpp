@@ -816,6 +816,72 @@ TEST(CameraTiles, AutoUpToAThousandSpheresOnACpuAndFourOrEightThousandOnAGpu) {
   }
 }
 
+// RenderSettings::dispatch_times: every dispatch of a batch named, by
+// stage and tail level, in the order they ran, as often as they ran, their
+// times within the batch's; the same image; a reset starts the sums again.
+TEST_F(RenderTest, DispatchTimesNameEveryDispatch) {
+  VulkanContext& ctx = test::shared_context();
+  const Scene scene = make_rtiow_scene({40, 0.2f, 3});
+  RenderSettings s;
+  s.width = 37;
+  s.height = 23;
+  s.spp = 6;
+  s.bounce_limit = 8;
+  s.samples_per_dispatch = 3;
+  s.sample_lanes = 1;
+  s.camera_tiles = CameraTiles::On;
+  s.dispatch_times = true;
+  // The head to bounce 2, then levels of 1, 2 and the last 3 bounces, each
+  // with its subgroup stage where the device can run it.
+  s.tail_depth = 2;
+  s.tail_step = 1;
+  const bool stage = fits_tail_subgroup(ctx.info.subgroup_size);
+  s.tail_subgroup = stage ? 100u : 0u;
+  std::vector<std::pair<std::string, uint32_t>> staged = {{"camera_tiles", 0}, {"head", 0}};
+  for (uint32_t level = 0; level < 3; ++level) {
+    staged.emplace_back("tail", level);
+    if (stage) staged.emplace_back("tail_subgroup", level);
+  }
+  staged.emplace_back("sum", 0);
+  for (uint32_t tail : {2u, 0u}) {
+    SCOPED_TRACE("tail depth " + std::to_string(tail));
+    s.tail_depth = tail;
+    const std::vector<std::pair<std::string, uint32_t>> want =
+        tail ? staged : std::vector<std::pair<std::string, uint32_t>>{{"camera_tiles", 0}, {"whole", 0}};
+    PathTracer tracer(ctx, scene, s);
+    EXPECT_TRUE(tracer.dispatch_times().empty());
+    // Two batches: the tiles once each, the others once a dispatch of samples.
+    double passes_ms = 0;
+    for (uint32_t first : {0u, 4u}) {
+      const double ms = tracer.run_passes(pass_settings(scene, s), first, first ? 2 : 4);
+      ASSERT_GE(ms, 0.0);
+      passes_ms += ms;
+    }
+    const std::vector<DispatchTime>& got = tracer.dispatch_times();
+    ASSERT_EQ(got.size(), want.size());
+    double sum_ms = 0;
+    for (size_t i = 0; i < want.size(); ++i) {
+      SCOPED_TRACE(want[i].first + " " + std::to_string(want[i].second));
+      EXPECT_EQ(got[i].stage, want[i].first);
+      EXPECT_EQ(got[i].level, want[i].second);
+      EXPECT_EQ(got[i].runs, want[i].first == "camera_tiles" ? 2u : 3u);
+      EXPECT_GE(got[i].ms, 0.0);
+      sum_ms += got[i].ms;
+    }
+    EXPECT_GT(sum_ms, 0.0);
+    EXPECT_LE(sum_ms, passes_ms * (1.0 + 1e-6) + 1e-6);
+    tracer.reset();
+    EXPECT_TRUE(tracer.dispatch_times().empty());
+    const RenderResult timed = render(ctx, scene, s);
+    EXPECT_FALSE(timed.dispatches.empty());
+    RenderSettings untimed = s;
+    untimed.dispatch_times = false;
+    const RenderResult plain = render(ctx, scene, untimed);
+    EXPECT_TRUE(plain.dispatches.empty());
+    expect_same_result(timed, plain);
+  }
+}
+
 // A tracer resized and switched to another accel (the octree built on the
 // way), precision and effects renders what a tracer made with those settings
 // renders.
