@@ -970,7 +970,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
     if (settings.dispatch_times) {
       json list = json::array();
       for (const DispatchTime& d : result.dispatches)
-        list.push_back({{"stage", d.stage}, {"level", d.level}, {"runs", d.runs}, {"ms", d.ms}});
+        list.push_back({{"stage", d.stage}, {"level", d.level}, {"runs", d.runs}, {"ms", d.ms}, {"paths", d.paths}});
       j["dispatches"] = list;
     }
     std::cout << j.dump(2) << "\n";
@@ -1043,8 +1043,10 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
     }
     for (const DispatchTime& d : result.dispatches) {
       const std::string level = d.stage == "tail" || d.stage == "tail_subgroup" ? " " + std::to_string(d.level) : "";
-      std::printf("dispatch  %-16s %9.3f ms in %llu runs (%.1f%% of the passes)\n", (d.stage + level).c_str(), d.ms,
-                  (unsigned long long)d.runs, t.render_device_ms > 0 ? 100.0 * d.ms / t.render_device_ms : 0.0);
+      const std::string paths = level.empty() ? "" : ", " + std::to_string(d.paths) + " paths";
+      std::printf("dispatch  %-16s %9.3f ms in %llu runs (%.1f%% of the passes)%s\n", (d.stage + level).c_str(), d.ms,
+                  (unsigned long long)d.runs, t.render_device_ms > 0 ? 100.0 * d.ms / t.render_device_ms : 0.0,
+                  paths.c_str());
     }
     if (result.nonfinite_samples)
       std::printf("warning   %llu NaN/Inf samples were rejected\n", (unsigned long long)result.nonfinite_samples);

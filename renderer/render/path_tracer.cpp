@@ -198,14 +198,22 @@ struct PathTracer::State {
   GpuTimer timer;
   // RenderSettings::dispatch_times: a timestamp after each dispatch of a
   // batch (0 at its start; the pool grows to the batch's most), what each
-  // dispatch was, and the sums since the last reset.
+  // dispatch was, and the sums since the last reset; and a copy of each
+  // dispatch of samples' TailControl array (the paths its levels took).
+  struct DispatchMark {
+    const char* stage;
+    uint32_t level;
+    uint32_t samples;  // tail levels: which dispatch of samples of the batch
+  };
   GpuTimer dispatch_timer;
-  mutable std::vector<std::pair<const char*, uint32_t>> dispatch_marks;
+  Buffer dispatch_controls;
+  mutable std::vector<DispatchMark> dispatch_marks;
+  mutable uint32_t dispatch_samples = 0;  // dispatches of samples recorded in the batch
   std::vector<DispatchTime> dispatch_sums;
   // After a dispatch: its timestamp, with its stage and tail level.
   void mark_dispatch(VkCommandBuffer cmd, const char* stage, uint32_t level = 0) const {
     if (!settings.dispatch_times) return;
-    dispatch_marks.emplace_back(stage, level);
+    dispatch_marks.push_back({stage, level, dispatch_samples});
     timer_mark(dispatch_timer, cmd, uint32_t(dispatch_marks.size()));
   }
 
@@ -646,6 +654,14 @@ void PathTracer::State::record_staged_passes(VkCommandBuffer cmd, gpu::PassParam
       }
     }
     compute_barrier(cmd);
+    if (s.settings.dispatch_times && queue) {
+      // The paths each level took (dispatch_times), before the next
+      // dispatch of samples clears them.
+      const VkBufferCopy copy{0, s.dispatch_samples * gpu::MAX_TAIL_LEVELS * sizeof(gpu::TailControl),
+                              levels * sizeof(gpu::TailControl)};
+      vkCmdCopyBuffer(cmd, s.tail_control.buffer, s.dispatch_controls.buffer, 1, &copy);
+    }
+    ++s.dispatch_samples;
     bind(s.accumulate_pipeline);
     vkCmdDispatch(cmd, groups_x, (height + gpu::WORKGROUP_SIZE - 1) / gpu::WORKGROUP_SIZE, 1);
     s.mark_dispatch(cmd, "sum");
@@ -746,7 +762,11 @@ double PathTracer::run_passes(const PassSettings& pass, uint32_t first_sample, u
     // with its subgroup stage.
     const uint64_t most = 2 + uint64_t(count) * (2 + 2 * gpu::MAX_TAIL_LEVELS);
     if (most > s.dispatch_timer.count) create_timer(s.dispatch_timer, s.ctx, uint32_t(std::min<uint64_t>(most, 1u << 20)));
+    const uint64_t controls = uint64_t(count) * gpu::MAX_TAIL_LEVELS * sizeof(gpu::TailControl);
+    if (s.tail_depth() > 0 && controls > s.dispatch_controls.size)
+      create_buffer(s.dispatch_controls, s.ctx, controls, false, "tail levels' path counts");
     s.dispatch_marks.clear();
+    s.dispatch_samples = 0;
   }
   submit_and_wait(s.ctx, [&](VkCommandBuffer cmd) {
     // Earlier submissions (reset, previous batches) wrote the accumulation.
@@ -758,9 +778,26 @@ double PathTracer::run_passes(const PassSettings& pass, uint32_t first_sample, u
   });
   if (s.settings.dispatch_times) {
     const std::vector<double> ms = timer_intervals_ms(s.dispatch_timer, uint32_t(s.dispatch_marks.size() + 1));
+    std::vector<gpu::TailControl> controls;
+    if (s.tail_depth() > 0) {
+      controls.resize(size_t(s.dispatch_samples) * gpu::MAX_TAIL_LEVELS);
+      download_buffer(s.ctx, s.dispatch_controls, controls.data(), controls.size() * sizeof(gpu::TailControl));
+    }
     std::vector<DispatchTime> batch;
-    for (size_t i = 0; i < ms.size(); ++i)
-      add_dispatch_times(batch, {{s.dispatch_marks[i].first, s.dispatch_marks[i].second, 1, ms[i]}});
+    for (size_t i = 0; i < ms.size(); ++i) {
+      const State::DispatchMark& m = s.dispatch_marks[i];
+      DispatchTime d{m.stage, m.level, 1, ms[i], 0};
+      // A level's paths run in the tail stage, or in the subgroup stage
+      // where they are fewer than its threshold (path_trace.comp).
+      const bool tail = d.stage == "tail", subgroup = d.stage == "tail_subgroup";
+      if (tail || subgroup) {
+        const uint64_t taken =
+            std::min(controls.at(size_t(m.samples) * gpu::MAX_TAIL_LEVELS + m.level).count, s.tail_capacity);
+        const bool in_subgroups = taken < s.tail_subgroup();
+        d.paths = subgroup == in_subgroups ? taken : 0;
+      }
+      add_dispatch_times(batch, {d});
+    }
     add_dispatch_times(s.dispatch_sums, batch);
   }
   return timer_ms(s.timer);
@@ -777,6 +814,7 @@ void add_dispatch_times(std::vector<DispatchTime>& into, const std::vector<Dispa
     } else {
       same->runs += d.runs;
       same->ms += d.ms;
+      same->paths += d.paths;
     }
   }
 }

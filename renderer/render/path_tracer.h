@@ -65,13 +65,14 @@ struct WalkStats {
 };
 
 // One kind of dispatch of the passes (RenderSettings::dispatch_times): its
-// stage, its tail level, how often it ran and its device time in all, from
-// the end of the dispatch before it.
+// stage, its tail level, how often it ran, its device time in all, from
+// the end of the dispatch before it, and the paths a tail level took.
 struct DispatchTime {
   std::string stage;   // camera_tiles, whole, head, tail, tail_subgroup or sum
   uint32_t level = 0;  // the tail level (tail, tail_subgroup); 0 for the others
   uint64_t runs = 0;
   double ms = 0;
+  uint64_t paths = 0;  // tail, tail_subgroup: the paths it traced (0 where the other stage took the level)
 };
 // Adds `from`'s runs and times to those of the same stage and level in
 // `into`, in the order they first ran.

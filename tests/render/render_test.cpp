@@ -870,6 +870,20 @@ TEST_F(RenderTest, DispatchTimesNameEveryDispatch) {
     }
     EXPECT_GT(sum_ms, 0.0);
     EXPECT_LE(sum_ms, passes_ms * (1.0 + 1e-6) + 1e-6);
+    // The paths each tail level took, in whichever of its two stages ran
+    // it: some at the first level, never more at a later one (a level
+    // queues at most the paths it took), none outside the tail.
+    uint64_t before = UINT64_MAX;
+    for (uint32_t level = 0; level < 3 && tail; ++level) {
+      uint64_t paths = 0;
+      for (const DispatchTime& d : got)
+        if (d.level == level && (d.stage == "tail" || d.stage == "tail_subgroup")) paths += d.paths;
+      if (level == 0) EXPECT_GT(paths, 0u);
+      EXPECT_LE(paths, before) << "level " << level;
+      before = paths;
+    }
+    for (const DispatchTime& d : got)
+      if (d.stage != "tail" && d.stage != "tail_subgroup") EXPECT_EQ(d.paths, 0u) << d.stage;
     tracer.reset();
     EXPECT_TRUE(tracer.dispatch_times().empty());
     const RenderResult timed = render(ctx, scene, s);
