@@ -42,6 +42,12 @@ with tempfile.TemporaryDirectory() as tmp:
                                        "--variant", "a=", "--rounds", "0"], "--rounds: must be a whole number >= 1")
     bad_input("ab_render, out folder", [f"{tools}/ab_render.py", "--octrace", octrace, "--render", "--spp 1",
                                         "--variant", "a=", "--out", f"{tmp}/none/ab.md"], "does not exist")
+    bad_input("dispatch_table, no binary", [f"{tools}/dispatch_table.py", "--octrace", f"{tmp}/no_octrace", "--render",
+                                            "--spp 1", "--out", out_md], f"{tmp}/no_octrace: no such file", out_md)
+    bad_input("dispatch_table, no rounds", [f"{tools}/dispatch_table.py", "--octrace", octrace, "--render", "--spp 1",
+                                            "--rounds", "0"], "--rounds: must be a whole number >= 1")
+    bad_input("dispatch_table, a render flag", [f"{tools}/dispatch_table.py", "--octrace", octrace, "--render",
+                                                "--spp 0", "--out", out_md], "--spp", out_md)
     bad_input("time_render, runs", [f"{tools}/time_render.py", "--octrace", octrace, "--runs", "-3"],
               "must be a whole number >= 1")
     bad_input("walk_stats, no accel", [f"{tools}/walk_stats.py", "--octrace", octrace, "--scene", "a=--spp 1",

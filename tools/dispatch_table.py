@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""Where a render's passes spend their device time, dispatch by dispatch:
+`octrace render --dispatch-times` run several times, the medians tabulated.
+
+  tools/dispatch_table.py --octrace BIN --render "ARGS" [--rounds 5] [--out FILE.md]
+
+After one warm-up process, ROUNDS processes render ARGS with
+`--dispatch-times --json`. For each stage and tail level (the camera's
+tiles, the whole paths or the head, each tail level and its subgroup stage,
+the sum; each dispatch's time runs from the end of the one before, summed
+over its runs) the table gives the median of its milliseconds, its share of
+the median passes (`times_ms.render`), its runs and the paths a tail level
+took (the same in every round: the render is deterministic), and the rays
+the render traced; the last line, the passes themselves. With --out, also
+writes the table as markdown, with the date, the device and the command.
+"""
+import argparse
+import datetime
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+import tool_args
+
+
+def render(octrace, args, out):
+    cmd = [octrace, "render"] + args + ["--dispatch-times", "--json", "-q", "-o", out]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        tool_args.fail("dispatch_table.py", f"{' '.join(cmd)} failed with exit {p.returncode}: "
+                       f"{tool_args.last_line(p.stderr, 'no message')}")
+    return json.loads(p.stdout)
+
+
+def main():
+    ap = tool_args.Parser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--octrace", required=True, type=tool_args.executable, help="octrace binary")
+    ap.add_argument("--render", required=True, help="render options (one string)")
+    ap.add_argument("--rounds", type=tool_args.positive_int, default=5)
+    ap.add_argument("--out", type=tool_args.output_file, help="markdown file to write the table to")
+    a = ap.parse_args()
+    args = a.render.split()
+    with tempfile.TemporaryDirectory() as tmp:
+        image = os.path.join(tmp, "image.pfm")
+        render(a.octrace, args, image)  # warm-up
+        runs = []
+        for r in range(a.rounds):
+            runs.append(render(a.octrace, args, image))
+            print(f"round {r + 1}/{a.rounds}: {runs[-1]['times_ms']['render']:.3f} ms", file=sys.stderr)
+    passes = statistics.median(j["times_ms"]["render"] for j in runs)
+    last = runs[-1]
+    rows = []
+    for i, d in enumerate(last["dispatches"]):
+        # The same dispatches, in the same order, in every round.
+        ms = statistics.median(j["dispatches"][i]["ms"] for j in runs)
+        tail = d["stage"] in ("tail", "tail_subgroup")
+        name = f"{d['stage']} {d['level']}" if tail else d["stage"]
+        rows.append(f"| {name} | {ms:.3f} | {100 * ms / passes:.1f}% | {d['runs']} | {d['paths'] if tail else ''} |")
+    dev = last["device"]
+    date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    lines = [f"{date}, {dev['name']} ({dev['driver']}), octrace {last.get('octrace', '')}; "
+             f"`octrace render {a.render} --dispatch-times --json`, medians of {a.rounds} rounds after a warm-up; "
+             f"{last['rays']} rays", "",
+             "| dispatch | median ms | of the passes | runs | paths |",
+             "| --- | ---: | ---: | ---: | ---: |"] + rows + [
+             f"| the passes (times_ms.render) | {passes:.3f} | 100% | | |"]
+    text = "\n".join(lines) + "\n"
+    print(text)
+    if a.out:
+        with open(a.out, "w") as f:
+            f.write(text)
+
+
+if __name__ == "__main__":
+    main()
