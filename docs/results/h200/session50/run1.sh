@@ -1,0 +1,26 @@
+# Session 50 run1: where the passes' time goes, dispatch by dispatch
+# (render --dispatch-times through tools/dispatch_table.py) on the goals'
+# scenes; its cost against the same render without it; render_test's
+# camera-tile and dispatch-time cases. Expectations in expected.md (run1).
+source tools/gpu_run.sh
+export OCTRACE_TEST_DEVICE=gpu
+mkdir -p build-gpu/tests/tmp
+table() {
+  local name=$1; shift
+  timeout 120 python3 tools/dispatch_table.py --octrace "$B" --render "$*" --out "$OUT/dispatch_$name.md" > "$R/dispatch_$name.log" 2>&1
+  echo "dispatch $name rc=$?" >> "$T"
+}
+PEER="--scene tools/scenes/peer_field.json --size 1920x1080 --spp 64 --depth 50 --rr-depth 1 --device gpu"
+table engine $S --scene .assets/2CylinderEngine.glb --accel octree
+table balloon $S --scene .assets/balloon/scene.gltf --accel octree
+table engine_bvh $S --scene .assets/2CylinderEngine.glb --accel bvh
+table peer_bvh $PEER --accel bvh
+table peer_octree $PEER --accel octree
+table spheres488 $S --spheres 488 --radius 0.1 --accel octree
+V=(--variant base= --variant timed="-- --dispatch-times")
+ab engine_timed $S --scene .assets/2CylinderEngine.glb --accel octree
+ab peer_timed $PEER --accel bvh
+timeout 150 build-gpu/tests/render_test --gtest_filter='*CameraTiles*:*DispatchTimes*' > "$R/render_test.txt" 2>&1
+echo "render_test camera tiles, dispatch times: ok $(grep -c '^\[       OK \]' "$R/render_test.txt"), failed $(grep -c '^\[  FAILED  \] .*(' "$R/render_test.txt") $(gtest_result "$R/render_test.txt")" >> "$T"
+echo "done at $(date -u +%T)" >> "$T"
+gpu_finish
