@@ -1,7 +1,8 @@
 # Session 50 run1: where the passes' time goes, dispatch by dispatch
 # (render --dispatch-times through tools/dispatch_table.py) on the goals'
-# scenes; its cost against the same render without it; render_test's
-# camera-tile and dispatch-time cases. Expectations in expected.md (run1).
+# scenes; its cost against the same render without it; the probe sg1
+# against HEAD; render_test's camera-tile and dispatch-time cases.
+# Expectations in expected.md (run1).
 source tools/gpu_run.sh
 export OCTRACE_TEST_DEVICE=gpu
 mkdir -p build-gpu/tests/tmp
@@ -20,6 +21,17 @@ table spheres488 $S --spheres 488 --radius 0.1 --accel octree
 V=(--variant base= --variant timed="-- --dispatch-times")
 ab engine_timed $S --scene .assets/2CylinderEngine.glb --accel octree
 ab peer_timed $PEER --accel bvh
+# The probe sg1 (sg1.patch): the subgroup stage's workgroup one subgroup,
+# a path's, instead of 64 invocations (two paths on NVIDIA's warps of 32).
+G=build-gpu/octrace-sg1
+V=(--variant base= --variant sg1=BIN=$G)
+ab engine_sg1 $S --scene .assets/2CylinderEngine.glb --accel octree
+ab balloon_sg1 $S --scene .assets/balloon/scene.gltf --accel octree
+same_image "engine sg1" "$B" "$G" $S --scene .assets/2CylinderEngine.glb --accel octree
+same_image "balloon sg1" "$B" "$G" $S --scene .assets/balloon/scene.gltf --accel octree
+V=(--variant sg1=BIN=$G --variant sg1_16k="BIN=$G -- --tail-subgroup 16384 --tail-fill 16384" --variant sg1_67k="BIN=$G -- --tail-subgroup 67584 --tail-fill 67584")
+ab engine_sg1_threshold $S --scene .assets/2CylinderEngine.glb --accel octree
+B0=$B; B=$G; table engine_sg1 $S --scene .assets/2CylinderEngine.glb --accel octree; B=$B0
 timeout 150 build-gpu/tests/render_test --gtest_filter='*CameraTiles*:*DispatchTimes*' > "$R/render_test.txt" 2>&1
 echo "render_test camera tiles, dispatch times: ok $(grep -c '^\[       OK \]' "$R/render_test.txt"), failed $(grep -c '^\[  FAILED  \] .*(' "$R/render_test.txt") $(gtest_result "$R/render_test.txt")" >> "$T"
 echo "done at $(date -u +%T)" >> "$T"
