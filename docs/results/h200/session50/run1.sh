@@ -29,6 +29,11 @@ ab engine_sg1 $S --scene .assets/2CylinderEngine.glb --accel octree
 ab balloon_sg1 $S --scene .assets/balloon/scene.gltf --accel octree
 same_image "engine sg1" "$B" "$G" $S --scene .assets/2CylinderEngine.glb --accel octree
 same_image "balloon sg1" "$B" "$G" $S --scene .assets/balloon/scene.gltf --accel octree
+# sg1b: sg1 with the stage's workgroup array (lane_sample, unused there)
+# at half the entries, as the 2-per-invocation rule of log 114 would have it.
+V=(--variant base= --variant sg1=BIN=$G --variant sg1b=BIN=build-gpu/octrace-sg1b)
+ab engine_sg1b $S --scene .assets/2CylinderEngine.glb --accel octree
+ab balloon_sg1b $S --scene .assets/balloon/scene.gltf --accel octree
 V=(--variant sg1=BIN=$G --variant sg1_16k="BIN=$G -- --tail-subgroup 16384 --tail-fill 16384" --variant sg1_67k="BIN=$G -- --tail-subgroup 67584 --tail-fill 67584")
 ab engine_sg1_threshold $S --scene .assets/2CylinderEngine.glb --accel octree
 B0=$B; B=$G; table engine_sg1 $S --scene .assets/2CylinderEngine.glb --accel octree; B=$B0
