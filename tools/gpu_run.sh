@@ -32,6 +32,9 @@
 #     with its exit status) while
 #     the peer builds (.peers/karim, when carried; peer_build), one line
 #     each in $T;
+#   - hardcases_shards N LIMIT: the hard cases in N shards at once, each
+#     with a limit of LIMIT seconds (a cold shader cache makes the first
+#     shards slow: 180 s or more for eight), one line each in $T;
 #   - peer NAME [RENDER FLAGS]: tools/peer/compare.py side by side into
 #     $R/NAME, its two rows in $T;
 #   - peer_both: the peer built (unless gpu_suites built it) and side by
@@ -86,11 +89,13 @@ suite() {
   timeout "$2" "build-gpu/tests/$1" > "$R/$1.txt" 2>&1
   echo "$1 rc=$? $(gtest_result "$R/$1.txt")" >> "$T"
 }
-# gpu_suites' runner: COMMAND... with a 400 s limit into FILE, its exit
-# status (124: the limit cut it off) as FILE's last line.
-suite_logged() {
-  local file=$1; shift
-  timeout 400 "$@" > "$file" 2>&1
+# gpu_suites' runner: COMMAND... with a 400 s limit (suite_logged_for:
+# LIMIT seconds) into FILE, its exit status (124: the limit cut it off) as
+# FILE's last line.
+suite_logged() { suite_logged_for 400 "$@"; }
+suite_logged_for() {
+  local limit=$1 file=$2; shift 2
+  timeout "$limit" "$@" > "$file" 2>&1
   echo "[  rc=$? ]" >> "$file"
 }
 # The peer's build (.peers/karim) into $R/peer_build.log, its exit status in $T.
@@ -110,6 +115,19 @@ gpu_suites() {
   echo "accel_test: $(gtest_result "$R/accel_test.txt")" >> "$T"
   echo "render_test tail: $(gtest_result "$R/render_test.txt")" >> "$T"
   echo "suites done at $(date -u +%T)" >> "$T"
+}
+hardcases_shards() {
+  local n=$1 limit=$2 k f
+  export OCTRACE_TEST_DEVICE=gpu
+  mkdir -p build-gpu/tests/tmp
+  for ((k = 0; k < n; ++k)); do
+    GTEST_TOTAL_SHARDS=$n GTEST_SHARD_INDEX=$k suite_logged_for "$limit" "$R/hardcases_$k.txt" build-gpu/tests/hardcases_test &
+  done
+  wait
+  for ((k = 0; k < n; ++k)); do
+    f=$R/hardcases_$k.txt
+    echo "hardcases shard $k of $n: ok $(grep -c '^\[       OK \]' "$f"), failed $(grep -c '^\[  FAILED  \] .*(' "$f") $(gtest_result "$f")" >> "$T"
+  done
 }
 peer() {
   local name=$1; shift
