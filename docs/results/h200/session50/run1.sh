@@ -34,6 +34,14 @@ same_image "balloon sg1" "$B" "$G" $S --scene .assets/balloon/scene.gltf --accel
 V=(--variant base= --variant sg1=BIN=$G --variant sg1b=BIN=build-gpu/octrace-sg1b)
 ab engine_sg1b $S --scene .assets/2CylinderEngine.glb --accel octree
 ab balloon_sg1b $S --scene .assets/balloon/scene.gltf --accel octree
+# tail32 (tail32.patch, on sg1): the tail levels' workgroups a warp too.
+W=build-gpu/octrace-tail32
+V=(--variant base= --variant sg1=BIN=$G --variant tail32=BIN=$W)
+ab engine_tail32 $S --scene .assets/2CylinderEngine.glb --accel octree
+ab balloon_tail32 $S --scene .assets/balloon/scene.gltf --accel octree
+ab peer_tail32 $PEER --accel bvh
+same_image "engine tail32" "$B" "$W" $S --scene .assets/2CylinderEngine.glb --accel octree
+same_image "peer tail32" "$B" "$W" $PEER --accel bvh
 V=(--variant sg1=BIN=$G --variant sg1_16k="BIN=$G -- --tail-subgroup 16384 --tail-fill 16384" --variant sg1_67k="BIN=$G -- --tail-subgroup 67584 --tail-fill 67584")
 ab engine_sg1_threshold $S --scene .assets/2CylinderEngine.glb --accel octree
 B0=$B; B=$G; table engine_sg1 $S --scene .assets/2CylinderEngine.glb --accel octree; B=$B0
