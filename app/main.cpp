@@ -1041,12 +1041,16 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
                   "primitive tests\n",
                   busy(w.queries, w.query_slots), busy(w.nodes, w.node_slots), busy(w.primitives, w.primitive_slots));
     }
+    // The devices' passes in all (the dispatches are summed over them).
+    double passes_ms = 0;
+    for (const DeviceShare& d : shares) passes_ms += d.device_ms;
+    if (shares.empty()) passes_ms = t.render_device_ms;
     for (const DispatchTime& d : result.dispatches) {
-      const std::string level = d.stage == "tail" || d.stage == "tail_subgroup" ? " " + std::to_string(d.level) : "";
-      const std::string paths = level.empty() ? "" : ", " + std::to_string(d.paths) + " paths";
-      std::printf("dispatch  %-16s %9.3f ms in %llu runs (%.1f%% of the passes)%s\n", (d.stage + level).c_str(), d.ms,
-                  (unsigned long long)d.runs, t.render_device_ms > 0 ? 100.0 * d.ms / t.render_device_ms : 0.0,
-                  paths.c_str());
+      const std::string level = d.tail() ? " " + std::to_string(d.level) : "";
+      const std::string paths = d.tail() ? ", " + std::to_string(d.paths) + " paths" : "";
+      std::printf("dispatch  %-16s %9.3f ms in %llu run%s (%.1f%% of the passes)%s\n", (d.stage + level).c_str(),
+                  d.ms, (unsigned long long)d.runs, d.runs == 1 ? "" : "s",
+                  passes_ms > 0 ? 100.0 * d.ms / passes_ms : 0.0, paths.c_str());
     }
     if (result.nonfinite_samples)
       std::printf("warning   %llu NaN/Inf samples were rejected\n", (unsigned long long)result.nonfinite_samples);

@@ -9,10 +9,12 @@ After one warm-up process, ROUNDS processes render ARGS with
 tiles, the whole paths or the head, each tail level and its subgroup stage,
 the sum; each dispatch's time runs from the end of the one before, summed
 over its runs) the table gives the median of its milliseconds, its share of
-the median passes (`times_ms.render`), its runs and the paths a tail level
-took (the same in every round: the render is deterministic), and the rays
-the render traced; the last line, the passes themselves. With --out, also
-writes the table as markdown, with the date, the device and the command.
+the median passes (`times_ms.render`; with several devices, the sum of
+theirs), and the last round's runs and paths a tail level took (the
+batches, which follow the wall clock, may move them from round to round),
+and the rays the render traced; the last line, the passes themselves.
+With --out, also writes the table as markdown, with the date, the device
+and the command.
 """
 import argparse
 import datetime
@@ -50,12 +52,18 @@ def main():
         for r in range(a.rounds):
             runs.append(render(a.octrace, args, image))
             print(f"round {r + 1}/{a.rounds}: {runs[-1]['times_ms']['render']:.3f} ms", file=sys.stderr)
-    passes = statistics.median(j["times_ms"]["render"] for j in runs)
+    def passes_of(j):
+        devices = j.get("devices")
+        return sum(d["render_ms"] for d in devices) if devices else j["times_ms"]["render"]
+
+    def ms_of(j, stage, level):
+        return sum(d["ms"] for d in j["dispatches"] if d["stage"] == stage and d["level"] == level)
+
+    passes = statistics.median(passes_of(j) for j in runs)
     last = runs[-1]
     rows = []
-    for i, d in enumerate(last["dispatches"]):
-        # The same dispatches, in the same order, in every round.
-        ms = statistics.median(j["dispatches"][i]["ms"] for j in runs)
+    for d in last["dispatches"]:
+        ms = statistics.median(ms_of(j, d["stage"], d["level"]) for j in runs)
         tail = d["stage"] in ("tail", "tail_subgroup")
         name = f"{d['stage']} {d['level']}" if tail else d["stage"]
         rows.append(f"| {name} | {ms:.3f} | {100 * ms / passes:.1f}% | {d['runs']} | {d['paths'] if tail else ''} |")
@@ -66,7 +74,7 @@ def main():
              f"{last['rays']} rays", "",
              "| dispatch | median ms | of the passes | runs | paths |",
              "| --- | ---: | ---: | ---: | ---: |"] + rows + [
-             f"| the passes (times_ms.render) | {passes:.3f} | 100% | | |"]
+             f"| the passes | {passes:.3f} | 100% | | |"]
     text = "\n".join(lines) + "\n"
     print(text)
     if a.out:

@@ -209,10 +209,14 @@ struct PathTracer::State {
   Buffer dispatch_controls;
   mutable std::vector<DispatchMark> dispatch_marks;
   mutable uint32_t dispatch_samples = 0;  // dispatches of samples recorded in the batch
+  // Whether run_passes is recording a batch it times (a caller of
+  // record_passes of its own, the preview, times none).
+  mutable bool dispatch_recording = false;
   std::vector<DispatchTime> dispatch_sums;
-  // After a dispatch: its timestamp, with its stage and tail level.
+  // After a dispatch: its timestamp, with its stage and tail level (while
+  // the pool, which run_passes sized to the batch, has room).
   void mark_dispatch(VkCommandBuffer cmd, const char* stage, uint32_t level = 0) const {
-    if (!settings.dispatch_times) return;
+    if (!dispatch_recording || dispatch_marks.size() + 1 >= dispatch_timer.count) return;
     dispatch_marks.push_back({stage, level, dispatch_samples});
     timer_mark(dispatch_timer, cmd, uint32_t(dispatch_marks.size()));
   }
@@ -654,7 +658,7 @@ void PathTracer::State::record_staged_passes(VkCommandBuffer cmd, gpu::PassParam
       }
     }
     compute_barrier(cmd);
-    if (s.settings.dispatch_times && queue) {
+    if (s.dispatch_recording && queue) {
       // The paths each level took (dispatch_times), before the next
       // dispatch of samples clears them.
       const VkBufferCopy copy{0, s.dispatch_samples * gpu::MAX_TAIL_LEVELS * sizeof(gpu::TailControl),
@@ -760,8 +764,10 @@ double PathTracer::run_passes(const PassSettings& pass, uint32_t first_sample, u
     // At most: the camera's tiles, and for each dispatch of samples (one
     // sample each at the least) the head and the sum, and each tail level
     // with its subgroup stage.
-    const uint64_t most = 2 + uint64_t(count) * (2 + 2 * gpu::MAX_TAIL_LEVELS);
-    if (most > s.dispatch_timer.count) create_timer(s.dispatch_timer, s.ctx, uint32_t(std::min<uint64_t>(most, 1u << 20)));
+    // (mark_dispatch stops at the pool's end: past 2^20, 30,000 dispatches
+    // of samples, which no batch reaches, the rest would go untimed.)
+    const uint64_t most = std::min<uint64_t>(2 + uint64_t(count) * (2 + 2 * gpu::MAX_TAIL_LEVELS), 1u << 20);
+    if (most > s.dispatch_timer.count) create_timer(s.dispatch_timer, s.ctx, uint32_t(most));
     const uint64_t controls = uint64_t(count) * gpu::MAX_TAIL_LEVELS * sizeof(gpu::TailControl);
     if (s.tail_depth() > 0 && controls > s.dispatch_controls.size)
       create_buffer(s.dispatch_controls, s.ctx, controls, false, "tail levels' path counts");
@@ -773,7 +779,14 @@ double PathTracer::run_passes(const PassSettings& pass, uint32_t first_sample, u
     compute_barrier(cmd);
     timer_begin(s.timer, cmd);
     if (s.settings.dispatch_times) timer_begin(s.dispatch_timer, cmd);
-    record_passes(cmd, pass, first_sample, count);
+    s.dispatch_recording = s.settings.dispatch_times;
+    try {
+      record_passes(cmd, pass, first_sample, count);
+    } catch (...) {
+      s.dispatch_recording = false;
+      throw;
+    }
+    s.dispatch_recording = false;
     timer_end(s.timer, cmd);
   });
   if (s.settings.dispatch_times) {
@@ -783,22 +796,19 @@ double PathTracer::run_passes(const PassSettings& pass, uint32_t first_sample, u
       controls.resize(size_t(s.dispatch_samples) * gpu::MAX_TAIL_LEVELS);
       download_buffer(s.ctx, s.dispatch_controls, controls.data(), controls.size() * sizeof(gpu::TailControl));
     }
-    std::vector<DispatchTime> batch;
     for (size_t i = 0; i < ms.size(); ++i) {
       const State::DispatchMark& m = s.dispatch_marks[i];
       DispatchTime d{m.stage, m.level, 1, ms[i], 0};
       // A level's paths run in the tail stage, or in the subgroup stage
       // where they are fewer than its threshold (path_trace.comp).
-      const bool tail = d.stage == "tail", subgroup = d.stage == "tail_subgroup";
-      if (tail || subgroup) {
+      if (d.tail()) {
         const uint64_t taken =
             std::min(controls.at(size_t(m.samples) * gpu::MAX_TAIL_LEVELS + m.level).count, s.tail_capacity);
         const bool in_subgroups = taken < s.tail_subgroup();
-        d.paths = subgroup == in_subgroups ? taken : 0;
+        d.paths = (d.stage == "tail_subgroup") == in_subgroups ? taken : 0;
       }
-      add_dispatch_times(batch, {d});
+      add_dispatch_times(s.dispatch_sums, {d});
     }
-    add_dispatch_times(s.dispatch_sums, batch);
   }
   return timer_ms(s.timer);
 }

@@ -73,6 +73,7 @@ struct DispatchTime {
   uint64_t runs = 0;
   double ms = 0;
   uint64_t paths = 0;  // tail, tail_subgroup: the paths it traced (0 where the other stage took the level)
+  bool tail() const { return stage == "tail" || stage == "tail_subgroup"; }
 };
 // Adds `from`'s runs and times to those of the same stage and level in
 // `into`, in the order they first ran.

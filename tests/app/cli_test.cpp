@@ -763,6 +763,16 @@ TEST(Cli, TwoDevicesRenderTheSamplesOfOne) {
   EXPECT_EQ(stages(j), stages(k));
   // Staged (head, tail, sum) or the whole paths, their last dispatch.
   EXPECT_TRUE(stages(k).back() == "sum" || stages(k).back() == "whole") << stages(k).back();
+  // Each device's dispatches lie within its passes: their sum within the devices'.
+  const auto dispatch_ms = [](const nlohmann::json& d) {
+    double ms = 0;
+    for (const auto& e : d.at("dispatches")) ms += e.at("ms").get<double>();
+    return ms;
+  };
+  const double both_ms = j["devices"][0]["render_ms"].get<double>() + j["devices"][1]["render_ms"].get<double>();
+  EXPECT_GT(dispatch_ms(j), 0.0);
+  EXPECT_LE(dispatch_ms(j), both_ms * (1 + 1e-6) + 1e-6);
+  EXPECT_LE(dispatch_ms(k), k["times_ms"]["render"].get<double>() * (1 + 1e-6) + 1e-6);
   EXPECT_EQ(j["devices"][0]["samples"].get<uint32_t>() + j["devices"][1]["samples"].get<uint32_t>(), 12u);
   EXPECT_EQ(j["samples"].get<uint32_t>(), 12u);
   octrace::Image a = octrace::read_image(one), b = octrace::read_image(two);
