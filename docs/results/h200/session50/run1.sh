@@ -2,7 +2,7 @@
 # and the engine's passes dispatch by dispatch. As first written the run
 # also tabled the balloon, the engine with the BVH, the peer's scene and 488
 # spheres, timed the cost of --dispatch-times, sg1b, sg1's threshold and
-# render_test's cases: cut to this after eleven calls got no machine and
+# render_test's cases: cut to this as 21 calls for a machine got none and
 # spent all but four minutes of the session's device time (the history of
 # this file and of expected.md keeps each form). Expectations in
 # expected.md (run1).
