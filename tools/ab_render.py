@@ -121,11 +121,7 @@ def main():
         device = f"{device_of[label]} | " if several else ""
         lines.append(f"| {label} | {envs} | {' '.join(flags)} | {device}{med:.3f} | {min(t):.3f} | {max(t):.3f} | "
                      f"{rps} | {med / first:.3f}x |")
-    text = "\n".join(lines) + "\n"
-    print(text)
-    if a.out:
-        with open(a.out, "w") as f:
-            f.write(text)
+    tool_args.print_table(lines, a.out)
 
 
 if __name__ == "__main__":

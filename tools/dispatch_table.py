@@ -75,11 +75,7 @@ def main():
              "| dispatch | median ms | of the passes | runs | paths |",
              "| --- | ---: | ---: | ---: | ---: |"] + rows + [
              f"| the passes | {passes:.3f} | 100% | | |"]
-    text = "\n".join(lines) + "\n"
-    print(text)
-    if a.out:
-        with open(a.out, "w") as f:
-            f.write(text)
+    tool_args.print_table(lines, a.out)
 
 
 if __name__ == "__main__":

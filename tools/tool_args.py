@@ -10,6 +10,7 @@ is wrong, exit status 2, and no output file begun.
   parser.add_argument("--rounds", type=tool_args.positive_int, ...)
   parser.add_argument("--out", type=tool_args.output_file, ...)
   tool_args.fail("ab_render.py", "--variant 'x': ...")   a check of its own
+  tool_args.print_table(lines, a.out)                   a table to stdout and --out
   out = tool_args.run([octrace, "render", ...])         stdout, or the tool ends
   tool_args.last_line(p.stderr, "no message")           where a program said what is wrong
 """
@@ -84,6 +85,16 @@ def size(text):
     if not re.fullmatch(r"[1-9][0-9]{0,8}x[1-9][0-9]{0,8}", text):
         raise argparse.ArgumentTypeError(f"expected WIDTHxHEIGHT (e.g. 1200x800), got {text!r}")
     return text
+
+
+def print_table(lines, out=None):
+    """Prints a markdown table's lines (a header line first) and, with `out`,
+    writes the same text to that file."""
+    text = "\n".join(lines) + "\n"
+    print(text)
+    if out:
+        with open(out, "w") as f:
+            f.write(text)
 
 
 def last_line(text, default=""):
