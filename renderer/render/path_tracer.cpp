@@ -185,6 +185,19 @@ struct PathTracer::State {
   // writes them; a placeholder and no pipeline without.
   Buffer camera_tile_lists;
   ComputePipeline camera_tiles_pipeline;
+  // The camera and size the lists hold (record_passes makes them again only
+  // for another; create_camera_tiles forgets them with the buffer): what
+  // camera_tiles.comp reads of PassParams.
+  struct CameraTilesFor {
+    glm::vec3 origin, pixel00, du, dv;
+    float lens_radius;
+    uint32_t width, height;
+    bool operator==(const CameraTilesFor& o) const {
+      return origin == o.origin && pixel00 == o.pixel00 && du == o.du && dv == o.dv &&
+             lens_radius == o.lens_radius && width == o.width && height == o.height;
+    }
+  };
+  mutable std::optional<CameraTilesFor> camera_tiles_for;
   // With the tail queue: each sample's value per [sample of the dispatch]
   // [pixel], the queue and its TailControl (shared.h); 16-byte placeholders
   // without.
@@ -299,6 +312,7 @@ uint32_t tail_queue_entries(uint64_t paths, bool gpu, uint64_t bytes, uint64_t l
 // The camera's tiles' buffer for the image's size, or a placeholder.
 void PathTracer::State::create_camera_tiles() {
   State& s = *this;
+  s.camera_tiles_for.reset();
   create_buffer(s.camera_tile_lists, s.ctx, s.camera_tiles() ? s.camera_tile_bytes() : 0, false, "camera's tiles");
 }
 
@@ -690,8 +704,12 @@ void PathTracer::record_passes(VkCommandBuffer cmd, const PassSettings& pass, ui
   pc.rr_depth = pass.rr_depth ? pass.rr_depth : UINT32_MAX;
   const uint32_t groups_x = (width + gpu::WORKGROUP_SIZE - 1) / gpu::WORKGROUP_SIZE;
   // The camera's tiles for this camera, a subgroup a tile, after the
-  // passes before them (this batch's or the last) have read the last ones.
-  if (s.camera_tiles_pipeline.pipeline != VK_NULL_HANDLE) {
+  // passes before them (this batch's or the last) have read the last ones;
+  // kept from the batch before where its camera and size were these.
+  const State::CameraTilesFor tiles_for{pc.cam_origin, pc.pixel00, pc.pixel_du, pc.pixel_dv,
+                                        pc.lens_radius, pc.width, pc.height};
+  if (s.camera_tiles_pipeline.pipeline != VK_NULL_HANDLE && s.camera_tiles_for != tiles_for) {
+    s.camera_tiles_for = tiles_for;
     compute_barrier(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.camera_tiles_pipeline.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.camera_tiles_pipeline.layout, 0, 1,
@@ -774,21 +792,23 @@ double PathTracer::run_passes(const PassSettings& pass, uint32_t first_sample, u
     s.dispatch_marks.clear();
     s.dispatch_samples = 0;
   }
-  submit_and_wait(s.ctx, [&](VkCommandBuffer cmd) {
-    // Earlier submissions (reset, previous batches) wrote the accumulation.
-    compute_barrier(cmd);
-    timer_begin(s.timer, cmd);
-    if (s.settings.dispatch_times) timer_begin(s.dispatch_timer, cmd);
-    s.dispatch_recording = s.settings.dispatch_times;
-    try {
+  try {
+    submit_and_wait(s.ctx, [&](VkCommandBuffer cmd) {
+      // Earlier submissions (reset, previous batches) wrote the accumulation.
+      compute_barrier(cmd);
+      timer_begin(s.timer, cmd);
+      if (s.settings.dispatch_times) timer_begin(s.dispatch_timer, cmd);
+      s.dispatch_recording = s.settings.dispatch_times;
       record_passes(cmd, pass, first_sample, count);
-    } catch (...) {
       s.dispatch_recording = false;
-      throw;
-    }
+      timer_end(s.timer, cmd);
+    });
+  } catch (...) {
+    // A batch that did not run may have recorded the camera's tiles.
     s.dispatch_recording = false;
-    timer_end(s.timer, cmd);
-  });
+    s.camera_tiles_for.reset();
+    throw;
+  }
   if (s.settings.dispatch_times) {
     const std::vector<double> ms = timer_intervals_ms(s.dispatch_timer, uint32_t(s.dispatch_marks.size() + 1));
     std::vector<gpu::TailControl> controls;

@@ -203,8 +203,9 @@ struct RenderSettings {
   // the same, bit for bit.
   uint32_t tail_subgroup = kTailAuto;
   // Camera rays tested against their 8x8-pixel tile's list of the spheres
-  // they can meet, made on the device for each batch's camera before its
-  // passes (shaders/camera_tiles.comp), instead of walking the tree; a tile
+  // they can meet, made on the device before a batch's passes where its
+  // camera or size is not the last batch's (shaders/camera_tiles.comp),
+  // instead of walking the tree; a tile
   // that more than 32 spheres reach walks. For scenes of spheres alone,
   // with the octree or the BVH. On: wherever that
   // holds (SettingError elsewhere). Auto: where it holds and the scene has

@@ -768,6 +768,23 @@ TEST_F(RenderTest, CameraTilesChangeNoPixel) {
       EXPECT_EQ(on.walk.nodes, off.walk.nodes);
     }
   }
+  // A tracer keeps its lists from batch to batch while the camera stays,
+  // and makes them again when it moves: after a batch from one camera, a
+  // reset and batches from another, the other camera's image as a fresh
+  // tracer renders it.
+  s.walk_stats = false;
+  s.bounce_limit = 8;
+  s.spp = 3;
+  const Scene& field = scenes[0].second;
+  Scene moved = field;
+  orbit(moved.camera, 0.3f, 0.1f);
+  s.camera_tiles = CameraTiles::On;
+  PathTracer tracer(ctx, field, s);
+  tracer.run_passes(pass_settings(field, s), 0, 2);
+  tracer.reset();
+  tracer.run_passes(pass_settings(moved, s), 0, 2);
+  tracer.run_passes(pass_settings(moved, s), 2, 1);
+  expect_same_result(tracer.read_result(), render(ctx, moved, s));
 }
 
 // RenderSettings::camera_tiles' auto: on for spheres alone with a tree, up
@@ -850,10 +867,14 @@ TEST_F(RenderTest, DispatchTimesNameEveryDispatch) {
         tail ? staged : std::vector<std::pair<std::string, uint32_t>>{{"camera_tiles", 0}, {"whole", 0}};
     PathTracer tracer(ctx, scene, s);
     EXPECT_TRUE(tracer.dispatch_times().empty());
-    // Two batches: the tiles once each, the others once a dispatch of samples.
+    // Two batches of one camera and one of another: the tiles once for
+    // each camera (the second batch keeps the first's), the others once a
+    // dispatch of samples.
+    Scene moved = scene;
+    orbit(moved.camera, 0.2f, 0.0f);
     double passes_ms = 0;
-    for (uint32_t first : {0u, 4u}) {
-      const double ms = tracer.run_passes(pass_settings(scene, s), first, first ? 2 : 4);
+    for (uint32_t first : {0u, 4u, 6u}) {
+      const double ms = tracer.run_passes(pass_settings(first < 6 ? scene : moved, s), first, first ? 2 : 4);
       ASSERT_GE(ms, 0.0);
       passes_ms += ms;
     }
@@ -864,7 +885,7 @@ TEST_F(RenderTest, DispatchTimesNameEveryDispatch) {
       SCOPED_TRACE(want[i].first + " " + std::to_string(want[i].second));
       EXPECT_EQ(got[i].stage, want[i].first);
       EXPECT_EQ(got[i].level, want[i].second);
-      EXPECT_EQ(got[i].runs, want[i].first == "camera_tiles" ? 2u : 3u);
+      EXPECT_EQ(got[i].runs, want[i].first == "camera_tiles" ? 2u : 4u);
       EXPECT_GE(got[i].ms, 0.0);
       sum_ms += got[i].ms;
     }
@@ -883,8 +904,8 @@ TEST_F(RenderTest, DispatchTimesNameEveryDispatch) {
       before = paths;
     }
     // The subgroup stage takes a level of fewer paths than its threshold
-    // (100 here), the tail stage the others: over three runs, at most 3 x
-    // 99 paths in the one, none or at least 100 in the other.
+    // (100 here), the tail stage the others: at most 99 paths a run in the
+    // one, none or at least 100 in the other.
     for (const DispatchTime& d : got) {
       if (!d.tail()) EXPECT_EQ(d.paths, 0u) << d.stage;
       if (d.stage == "tail_subgroup") EXPECT_LE(d.paths, d.runs * 99) << "level " << d.level;
