@@ -585,7 +585,11 @@ void tail_pass() {
   const uint level = pass.tail_level;
   const uint slot = gl_WorkGroupID.x * (WORKGROUP_SIZE * WORKGROUP_SIZE) + gl_LocalInvocationIndex;
   const uint taken = min(tail_control[level].count, pass.tail_capacity);
-  // Fewer than TAIL_SUBGROUP: the subgroup stage takes the level.
+  // Fewer than TAIL_SUBGROUP: the subgroup stage takes the level. More:
+  // this stage does, and the subgroup stage's dispatch after it, which the
+  // heads or the level before sized for the first TAIL_SUBGROUP paths,
+  // launches no workgroup (the barrier between makes this write its size).
+  if (TAIL_SUBGROUP > 0u && slot == 0u && taken >= TAIL_SUBGROUP) tail_control[level].subgroup_groups_x = 0u;
   if (slot >= taken || taken < TAIL_SUBGROUP) return;
   GpuTailPath q = tail_queue[(level & 1u) * pass.tail_capacity + slot];
   PathState p = tail_load(q);
