@@ -657,7 +657,7 @@ struct TailControl {
   uint groups_z;  // 1
   // Workgroups of 64 the subgroup stage needs: one per 64 / subgroup size
   // slots among the first SPEC_TAIL_SUBGROUP taken (a level of more runs
-  // in the tail stage, and these return at once).
+  // in the tail stage, whose first invocation sets this to 0).
   uint subgroup_groups_x;
   uint subgroup_groups_y;  // 1
   uint subgroup_groups_z;  // 1
