@@ -126,7 +126,7 @@ hardcases_shards() {
   wait
   for ((k = 0; k < n; ++k)); do
     f=$R/hardcases_$k.txt
-    echo "hardcases shard $k of $n: ok $(grep -c '^\[       OK \]' "$f"), failed $(grep -c '^\[  FAILED  \] .*(' "$f") $(gtest_result "$f")" >> "$T"
+    echo "hardcases shard $k of $n: ok $(grep -c '^\[       OK \]' "$f"), failed $(grep -cE '^\[  FAILED  \] .* \([0-9]+ ms\)$' "$f") $(gtest_result "$f")" >> "$T"
   done
 }
 peer() {

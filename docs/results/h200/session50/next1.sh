@@ -21,7 +21,7 @@ ab balloon_147 $S --scene .assets/balloon/scene.gltf --accel octree
 same_image "peer 146" build-gpu/octrace-before "$B" $PEER --accel bvh
 same_image "engine 147" build-gpu/octrace-before "$B" $S --scene .assets/2CylinderEngine.glb --accel octree
 timeout 200 build-gpu/tests/render_test --gtest_filter='*CameraTiles*:*DispatchTimes*:*TailQueue*' > "$R/render_test.txt" 2>&1
-echo "render_test: ok $(grep -c '^\[       OK \]' "$R/render_test.txt"), failed $(grep -c '^\[  FAILED  \] .*(' "$R/render_test.txt") $(gtest_result "$R/render_test.txt")" >> "$T"
+echo "render_test: ok $(grep -c '^\[       OK \]' "$R/render_test.txt"), failed $(grep -cE '^\[  FAILED  \] .* \([0-9]+ ms\)$' "$R/render_test.txt") $(gtest_result "$R/render_test.txt")" >> "$T"
 hardcases_shards 8 240
 echo "done at $(date -u +%T)" >> "$T"
 gpu_finish
