@@ -192,10 +192,7 @@ struct PathTracer::State {
     glm::vec3 origin, pixel00, du, dv;
     float lens_radius;
     uint32_t width, height;
-    bool operator==(const CameraTilesFor& o) const {
-      return origin == o.origin && pixel00 == o.pixel00 && du == o.du && dv == o.dv &&
-             lens_radius == o.lens_radius && width == o.width && height == o.height;
-    }
+    bool operator==(const CameraTilesFor&) const = default;
   };
   mutable std::optional<CameraTilesFor> camera_tiles_for;
   // With the tail queue: each sample's value per [sample of the dispatch]
@@ -679,7 +676,7 @@ void PathTracer::State::record_staged_passes(VkCommandBuffer cmd, gpu::PassParam
                               levels * sizeof(gpu::TailControl)};
       vkCmdCopyBuffer(cmd, s.tail_control.buffer, s.dispatch_controls.buffer, 1, &copy);
     }
-    ++s.dispatch_samples;
+    if (s.dispatch_recording) ++s.dispatch_samples;
     bind(s.accumulate_pipeline);
     vkCmdDispatch(cmd, groups_x, (height + gpu::WORKGROUP_SIZE - 1) / gpu::WORKGROUP_SIZE, 1);
     s.mark_dispatch(cmd, "sum");
