@@ -21,7 +21,6 @@ import datetime
 import json
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
 
@@ -29,12 +28,7 @@ import tool_args
 
 
 def render(octrace, args, out):
-    cmd = [octrace, "render"] + args + ["--dispatch-times", "--json", "-q", "-o", out]
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    if p.returncode != 0:
-        tool_args.fail("dispatch_table.py", f"{' '.join(cmd)} failed with exit {p.returncode}: "
-                       f"{tool_args.last_line(p.stderr, 'no message')}")
-    return json.loads(p.stdout)
+    return json.loads(tool_args.run([octrace, "render"] + args + ["--dispatch-times", "--json", "-q", "-o", out]))
 
 
 def main():

@@ -103,15 +103,11 @@ peer_build() { (cd .peers/karim && ./build.sh > "$R/peer_build.log" 2>&1); echo 
 gpu_suites() {
   export OCTRACE_TEST_DEVICE=gpu
   mkdir -p build-gpu/tests/tmp
-  local k
-  for k in 0 1 2 3; do
-    GTEST_TOTAL_SHARDS=4 GTEST_SHARD_INDEX=$k suite_logged "$R/hardcases_$k.txt" build-gpu/tests/hardcases_test &
-  done
+  hardcases_shards 4 400 &
   suite_logged "$R/accel_test.txt" build-gpu/tests/accel_test &
   suite_logged "$R/render_test.txt" build-gpu/tests/render_test --gtest_filter='*TailQueue*' &
   [ -d .peers/karim ] && peer_build &
   wait
-  for k in 0 1 2 3; do echo "hardcases shard $k: $(gtest_result "$R/hardcases_$k.txt")" >> "$T"; done
   echo "accel_test: $(gtest_result "$R/accel_test.txt")" >> "$T"
   echo "render_test tail: $(gtest_result "$R/render_test.txt")" >> "$T"
   echo "suites done at $(date -u +%T)" >> "$T"
