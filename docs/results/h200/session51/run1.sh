@@ -1,0 +1,27 @@
+# For the next session's first GPU run (not run in session 50: no device
+# time was left). Pack: tools/gpu_pack.sh
+# before=docs/results/h200/session51/before_146_147.patch, HEAD without
+# logs 146 and 147 (the list pass before every batch, the empty subgroup
+# dispatches) as build-gpu/octrace-before. Carry .gl, .gpub and .assets
+# (not .peers: with it the tree passes the 64 MiB a call may carry).
+# Expectations (session 50, written before): the peer's scene with the BVH
+# about 0.996x of `before` (one list pass of two), the engine 0.99x-1.00x
+# (five empty dispatches of about 16 microseconds to about 5), the
+# balloon within 1%; the images identical; the hard cases
+# 340/340; render_test's camera-tile, dispatch-time and tail-queue cases
+# pass.
+source tools/gpu_run.sh
+export OCTRACE_TEST_DEVICE=gpu
+mkdir -p build-gpu/tests/tmp
+PEER="--scene tools/scenes/peer_field.json --size 1920x1080 --spp 64 --depth 50 --rr-depth 1 --device gpu"
+V=(--variant before=BIN=build-gpu/octrace-before --variant head=)
+ab peer_146 $PEER --accel bvh
+ab engine_147 $S --scene .assets/2CylinderEngine.glb --accel octree
+ab balloon_147 $S --scene .assets/balloon/scene.gltf --accel octree
+same_image "peer 146" build-gpu/octrace-before "$B" $PEER --accel bvh
+same_image "engine 147" build-gpu/octrace-before "$B" $S --scene .assets/2CylinderEngine.glb --accel octree
+timeout 200 build-gpu/tests/render_test --gtest_filter='*CameraTiles*:*DispatchTimes*:*TailQueue*' > "$R/render_test.txt" 2>&1
+echo "render_test: ok $(grep -c '^\[       OK \]' "$R/render_test.txt"), failed $(grep -cE '^\[  FAILED  \] .* \([0-9]+ ms\)$' "$R/render_test.txt") $(gtest_result "$R/render_test.txt")" >> "$T"
+hardcases_shards 8 240
+echo "done at $(date -u +%T)" >> "$T"
+gpu_finish
