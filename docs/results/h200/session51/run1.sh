@@ -1,15 +1,11 @@
-# For the next session's first GPU run (not run in session 50: no device
-# time was left). Pack: tools/gpu_pack.sh
-# before=docs/results/h200/session51/before_146_147.patch, HEAD without
-# logs 146 and 147 (the list pass before every batch, the empty subgroup
-# dispatches) as build-gpu/octrace-before. Carry .gl, .gpub and .assets
-# (not .peers: with it the tree passes the 64 MiB a call may carry).
-# Expectations (session 50, written before): the peer's scene with the BVH
-# about 0.996x of `before` (one list pass of two), the engine 0.99x-1.00x
-# (five empty dispatches of about 16 microseconds to about 5), the
-# balloon within 1%; the images identical; the hard cases
-# 340/340; render_test's camera-tile, dispatch-time and tail-queue cases
-# pass.
+# Session 51, run 1 (prepared in session 50 as next1.sh, which no device
+# time was left to run). Pack: tools/gpu_pack.sh
+# before=docs/results/h200/session51/before_146_147.patch (HEAD, 544d289,
+# without logs 146 and 147: the list pass before every batch, the empty
+# subgroup dispatches; made again on 544d289, where session 50's patch no
+# longer applied) as build-gpu/octrace-before. Carry .gl, .gpub and
+# .assets (not .peers: with it the tree passes the 64 MiB a call may
+# carry). Expectations: docs/results/h200/session51/expected.md.
 source tools/gpu_run.sh
 export OCTRACE_TEST_DEVICE=gpu
 mkdir -p build-gpu/tests/tmp
