@@ -1,4 +1,4 @@
-# Session 51, run 2: the probe tail_cells.patch (log 148): the tail queue
+# Session 51, run 2: the probe tail_cells.patch (log 149): the tail queue
 # in buckets by the ray's direction octant and its origin's cell in a
 # grid of C^3 over the top-level root box, C from OCTRACE_PROBE_TAIL_CELLS
 # (0: the dense queue of HEAD, through the probe's code). Pack: as run1
