@@ -524,6 +524,7 @@ const RenderSettings& PathTracer::settings() const { return state_->settings; }
 void PathTracer::reset() {
   State& s = *state_;
   s.dispatch_sums.clear();
+  s.camera_tiles_for.reset();
   submit_and_wait(s.ctx, [&](VkCommandBuffer cmd) {
     for (Buffer* b : {&s.accum_sum, &s.accum_comp, &s.accum_sq, &s.stats})
       vkCmdFillBuffer(cmd, b->buffer, 0, VK_WHOLE_SIZE, 0);

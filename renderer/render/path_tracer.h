@@ -243,7 +243,9 @@ class PathTracer {
   PathTracer(const PathTracer&) = delete;
   PathTracer& operator=(const PathTracer&) = delete;
 
-  // Clears the accumulation buffers and the statistics.
+  // Clears the accumulation buffers and the statistics, and forgets the
+  // camera's tiles' lists: the next batch runs as a fresh tracer's first,
+  // list pass included (`bench` times each render so; log 148).
   void reset();
   // A new, cleared accumulation state of another size; the scene and the
   // pipeline stay. Waits for the device to be idle first.

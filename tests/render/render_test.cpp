@@ -891,6 +891,18 @@ TEST_F(RenderTest, DispatchTimesNameEveryDispatch) {
     }
     EXPECT_GT(sum_ms, 0.0);
     EXPECT_LE(sum_ms, passes_ms * (1.0 + 1e-6) + 1e-6);
+    // A reset forgets the lists: a batch from the same camera after it
+    // makes them again, as a fresh tracer's first does (bench's renders).
+    {
+      PathTracer again(ctx, scene, s);
+      again.run_passes(pass_settings(scene, s), 0, 2);
+      again.reset();
+      again.run_passes(pass_settings(scene, s), 0, 2);
+      const std::vector<DispatchTime>& after = again.dispatch_times();
+      ASSERT_FALSE(after.empty());
+      EXPECT_EQ(after.front().stage, "camera_tiles");
+      EXPECT_EQ(after.front().runs, 1u);
+    }
     // The paths each tail level took, in whichever of its two stages ran
     // it: some at the first level, never more at a later one (a level
     // queues at most the paths it took), none outside the tail.
