@@ -35,6 +35,10 @@
 #   - hardcases_shards N LIMIT: the hard cases in N shards at once, each
 #     with a limit of LIMIT seconds (a cold shader cache makes the first
 #     shards slow: 180 s or more for eight), one line each in $T;
+#   - render_cases FILTER LIMIT: render_test's cases that FILTER
+#     (--gtest_filter) names, on the GPU, with a limit of LIMIT seconds
+#     (the tail-queue case alone took 163 s on a cold cache, session 51),
+#     its counts in $T and its output in $OUT/render_test.txt;
 #   - peer NAME [RENDER FLAGS]: tools/peer/compare.py side by side into
 #     $R/NAME, its two rows in $T;
 #   - peer_both: the peer built (unless gpu_suites built it) and side by
@@ -121,9 +125,20 @@ hardcases_shards() {
   done
   wait
   for ((k = 0; k < n; ++k)); do
-    f=$R/hardcases_$k.txt
-    echo "hardcases shard $k of $n: ok $(grep -c '^\[       OK \]' "$f"), failed $(grep -cE '^\[  FAILED  \] .* \([0-9]+ ms\)$' "$f") $(gtest_result "$f")" >> "$T"
+    echo "hardcases shard $k of $n: $(gtest_counts "$R/hardcases_$k.txt")" >> "$T"
   done
+}
+# gtest's cases that passed and failed in FILE (a case cut off by a time
+# limit is neither), then its PASSED/FAILED lines.
+gtest_counts() {
+  echo "ok $(grep -c '^\[       OK \]' "$1"), failed $(grep -cE '^\[  FAILED  \] .* \([0-9]+ ms\)$' "$1") $(gtest_result "$1")"
+}
+render_cases() {
+  export OCTRACE_TEST_DEVICE=gpu
+  mkdir -p build-gpu/tests/tmp
+  timeout "$2" build-gpu/tests/render_test --gtest_filter="$1" > "$R/render_test.txt" 2>&1
+  echo "render_test $1: $(gtest_counts "$R/render_test.txt")" >> "$T"
+  cp "$R/render_test.txt" "$OUT/"
 }
 peer() {
   local name=$1; shift

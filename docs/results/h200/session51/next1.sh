@@ -10,15 +10,12 @@
 # rows about 3% above session 51's run 5 (1.81 / 1.32 ms), the meshes as
 # run 5 (the engine 8.55 ms, 1.97e9; the balloon 2.64 ms).
 source tools/gpu_run.sh
-export OCTRACE_TEST_DEVICE=gpu
-mkdir -p build-gpu/tests/tmp
 for n in 8000 488; do
   timeout 100 python3 tools/dispatch_table.py --octrace "$B" --render "$S --spheres $n --radius 0.1 --accel octree" --rounds 5 --out "$R/dispatch_$n.md" > /dev/null 2>&1
   echo "dispatch $n rc=$?: $(grep -E '^\| (camera_tiles|head|the passes) ' "$R/dispatch_$n.md" | cut -d'|' -f2,3,4 | tr '\n' ' ')" >> "$T"
 done
 bench_goals
-timeout 200 build-gpu/tests/render_test --gtest_filter='*DispatchTimes*:*CameraTiles*' > "$R/render_test.txt" 2>&1
-echo "render_test: ok $(grep -c '^\[       OK \]' "$R/render_test.txt"), failed $(grep -cE '^\[  FAILED  \] .* \([0-9]+ ms\)$' "$R/render_test.txt") $(gtest_result "$R/render_test.txt")" >> "$T"
+render_cases '*DispatchTimes*:*CameraTiles*' 200
 hardcases_shards 8 240
 echo "done at $(date -u +%T)" >> "$T"
 gpu_finish
