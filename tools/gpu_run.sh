@@ -104,9 +104,10 @@ suite_logged_for() {
 }
 # The peer's build (.peers/karim) into $R/peer_build.log, its exit status in $T.
 peer_build() { (cd .peers/karim && ./build.sh > "$R/peer_build.log" 2>&1); echo "peer build rc=$?" >> "$T"; }
+# The GPU tests' environment: their device and the folder they write to.
+gpu_tests() { export OCTRACE_TEST_DEVICE=gpu; mkdir -p build-gpu/tests/tmp; }
 gpu_suites() {
-  export OCTRACE_TEST_DEVICE=gpu
-  mkdir -p build-gpu/tests/tmp
+  gpu_tests
   hardcases_shards 4 400 &
   suite_logged "$R/accel_test.txt" build-gpu/tests/accel_test &
   suite_logged "$R/render_test.txt" build-gpu/tests/render_test --gtest_filter='*TailQueue*' &
@@ -118,8 +119,7 @@ gpu_suites() {
 }
 hardcases_shards() {
   local n=$1 limit=$2 k f
-  export OCTRACE_TEST_DEVICE=gpu
-  mkdir -p build-gpu/tests/tmp
+  gpu_tests
   for ((k = 0; k < n; ++k)); do
     GTEST_TOTAL_SHARDS=$n GTEST_SHARD_INDEX=$k suite_logged_for "$limit" "$R/hardcases_$k.txt" build-gpu/tests/hardcases_test &
   done
@@ -134,8 +134,7 @@ gtest_counts() {
   echo "ok $(grep -c '^\[       OK \]' "$1"), failed $(grep -cE '^\[  FAILED  \] .* \([0-9]+ ms\)$' "$1") $(gtest_result "$1")"
 }
 render_cases() {
-  export OCTRACE_TEST_DEVICE=gpu
-  mkdir -p build-gpu/tests/tmp
+  gpu_tests
   timeout "$2" build-gpu/tests/render_test --gtest_filter="$1" > "$R/render_test.txt" 2>&1
   echo "render_test $1: $(gtest_counts "$R/render_test.txt")" >> "$T"
   cp "$R/render_test.txt" "$OUT/"
