@@ -1011,7 +1011,13 @@ void PathTracer::finish_result(RenderResult& r, Clock::time_point start) {
   r.tail_step = s.tail_step();
   r.tail_fill = s.tail_fill();
   r.tail_subgroup = s.tail_subgroup();
+  // The path-tracing pipeline's (the whole paths, or the head), then the
+  // tail stage's and the subgroup stage's where the render has them.
   r.pipeline_statistics = s.pipeline.statistics;
+  for (const auto& [stage, p] : {std::pair<const char*, const ComputePipeline*>{"tail stage", &s.tail_pipeline},
+                                 {"subgroup stage", &s.tail_subgroup_pipeline}})
+    if (p->pipeline != VK_NULL_HANDLE)
+      for (const auto& [name, value] : p->statistics) r.pipeline_statistics.emplace_back(std::string(stage) + ": " + name, value);
 }
 
 bool default_camera_tiles(const DeviceInfo& device, Accel accel, uint64_t spheres) {

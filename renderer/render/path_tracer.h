@@ -91,7 +91,9 @@ struct RenderResult {
   RenderTimings timings;
   OctreeStats octree;             // of the octree or the BVH; zeros for Accel::Brute
   SceneFeatures features;         // what the pipeline was specialised to
-  // The driver's statistics of the path-tracing pipeline (ComputePipeline::statistics).
+  // The driver's statistics of the path-tracing pipeline (ComputePipeline::statistics),
+  // then those of the tail stage's and the subgroup stage's, each name after "tail stage: "
+  // and "subgroup stage: ".
   std::vector<std::pair<std::string, std::string>> pipeline_statistics;
   // Buffers the scene's big arrays were split into (0: one per array;
   // shaders/shared/scene_buffers.glsl) and the largest part's bytes.

@@ -911,7 +911,9 @@ TEST_F(RenderTest, DispatchTimesNameEveryDispatch) {
       uint64_t paths = 0;
       for (const DispatchTime& d : got)
         if (d.level == level && d.tail()) paths += d.paths;
-      if (level == 0) EXPECT_GT(paths, 0u);
+      if (level == 0) {
+        EXPECT_GT(paths, 0u);
+      }
       EXPECT_LE(paths, before) << "level " << level;
       before = paths;
     }
@@ -919,9 +921,15 @@ TEST_F(RenderTest, DispatchTimesNameEveryDispatch) {
     // (100 here), the tail stage the others: at most 99 paths a run in the
     // one, none or at least 100 in the other.
     for (const DispatchTime& d : got) {
-      if (!d.tail()) EXPECT_EQ(d.paths, 0u) << d.stage;
-      if (d.stage == "tail_subgroup") EXPECT_LE(d.paths, d.runs * 99) << "level " << d.level;
-      if (d.stage == "tail") EXPECT_TRUE(d.paths == 0 || d.paths >= 100) << "level " << d.level << ": " << d.paths;
+      if (!d.tail()) {
+        EXPECT_EQ(d.paths, 0u) << d.stage;
+      }
+      if (d.stage == "tail_subgroup") {
+        EXPECT_LE(d.paths, d.runs * 99) << "level " << d.level;
+      }
+      if (d.stage == "tail") {
+        EXPECT_TRUE(d.paths == 0 || d.paths >= 100) << "level " << d.level << ": " << d.paths;
+      }
     }
     tracer.reset();
     EXPECT_TRUE(tracer.dispatch_times().empty());
