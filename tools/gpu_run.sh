@@ -23,8 +23,9 @@
 #   - same_image LABEL BIN1 BIN2 FLAGS...: renders FLAGS with both
 #     binaries and says in $T whether the two PFM files are identical;
 #   - pipeline_stats LABEL BIN FLAGS...: BIN's statistics of the
-#     path-tracing pipeline that `render FLAGS` compiles (registers,
-#     workgroup memory: --pipeline-stats), one line in $T;
+#     pipelines that `render FLAGS` compiles (--pipeline-stats: the
+#     path-tracing pipeline's, then the tail's stages'), those whose names
+#     say registers, memory or spills, one line in $T;
 #   - suite NAME LIMIT: build-gpu/tests/NAME with a time limit of LIMIT
 #     seconds, into $R/NAME.txt, its rc and gtest's PASSED/FAILED lines in $T;
 #   - gpu_suites: the GPU suites at once (the hard cases in four shards,
@@ -83,7 +84,7 @@ same_image() {
 pipeline_stats() {
   local label=$1 bin=$2; shift 2
   echo "$label: $("$bin" render "$@" --pipeline-stats --json -q -o "$R/stats.pfm" 2>/dev/null |
-    python3 -c 'import json,sys; print(json.dumps(json.load(sys.stdin).get("pipeline_statistics")))' | head -c 400)" >> "$T"
+    python3 -c 'import json,re,sys; s=json.load(sys.stdin).get("pipeline_statistics") or {}; print(json.dumps({k: v for k, v in s.items() if re.search("regist|memory|spill", k, re.I)}))' | head -c 1200)" >> "$T"
   rm -f "$R/stats.pfm"
 }
 # gtest's PASSED/FAILED lines of a test's output FILE, on one line.
