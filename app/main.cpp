@@ -244,6 +244,7 @@ struct RenderOptions {
   std::string tail_step = "auto";
   std::string tail_fill = "auto";
   std::string tail_subgroup = "auto";
+  std::string tail_fetch = "auto";
   std::string bvh_sphere_order = "auto";
   std::string instancing = "auto";
   std::string hidden_parts = "auto";
@@ -380,6 +381,12 @@ struct RenderOptions {
                        "--walk-stats; a count needs the octree, no --walk-stats and subgroups of 8 to 64 lanes); "
                        "same image")
         ->capture_default_str();
+    cmd.add_option("--tail-fetch", tail_fetch,
+                   "Tail queue: the tail stage's invocations take their level's paths from a counter, a bounce at "
+                   "a time, so that one whose path ended takes the next at once: auto | on | off (auto: on a GPU "
+                   "for scenes with triangles; on is refused on a CPU device, whose llvmpipe ends a loop after "
+                   "65,535 iterations over the whole invocation); same image, other speed")
+        ->capture_default_str();
     cmd.add_option("--device", device, "auto | cpu | gpu | INDEX (see `octrace devices`)")->capture_default_str();
     cmd.add_flag("--validation", validation, "Enable the Khronos validation layer (also OCTRACE_VALIDATION=1)");
     cmd.add_flag("--pipeline-stats", pipeline_stats,
@@ -435,6 +442,7 @@ struct RenderOptions {
     s.tail_step = parse_tail_count(tail_step, "tail_step", "a bounce count");
     s.tail_fill = parse_tail_count(tail_fill, "tail_fill", "a path count", 1000000000);
     s.tail_subgroup = parse_tail_count(tail_subgroup, "tail_subgroup", "a path count", 1000000000);
+    s.tail_fetch = parse_auto_on_off<TailFetch>(tail_fetch, "tail_fetch");
     parse_size(size, s);
     validate_settings(s);
     return s;
@@ -473,6 +481,7 @@ std::string message_for_cli(const SettingError& e) {
       {"tail_step", "--tail-step"},
       {"tail_fill", "--tail-fill"},
       {"tail_subgroup", "--tail-subgroup"},
+      {"tail_fetch", "--tail-fetch"},
       {"device", "--device"},
       {"rtiow.radius", "--radius"},
       {"rtiow.spheres", "--spheres"},
@@ -881,6 +890,7 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
               {"tail_step", result.tail_step},
               {"tail_fill", result.tail_fill},
               {"tail_subgroup", result.tail_subgroup},
+              {"tail_fetch", result.tail_fetch ? "on" : "off"},
               {"features", feature_names(result.features)},
               {"times_ms", {{"scene", scene_ms},
                             {"device_init", device_ms},

@@ -70,7 +70,7 @@ void main() {
   tail_control.subgroup_groups_x = 45;
   tail_control.subgroup_groups_y = 46;
   tail_control.subgroup_groups_z = 47;
-  tail_control.unused = 48;
+  tail_control.fetched = 48;
 
   resolve.width = 1;
   resolve.height = 2;

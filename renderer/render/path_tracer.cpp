@@ -174,6 +174,13 @@ struct PathTracer::State {
     return across * ((uint64_t(settings.height) + gpu::CAMERA_TILE_PIXELS - 1) / gpu::CAMERA_TILE_PIXELS);
   }
   uint64_t camera_tile_bytes() const { return camera_tile_count() * (1 + gpu::CAMERA_TILE_REFS) * sizeof(uint32_t); }
+  // RenderSettings::tail_fetch resolved (create_pipeline refuses On on a
+  // CPU device): whether the tail stage, where there is one, takes its
+  // paths from the level's counter.
+  bool tail_fetch() const {
+    if (tail_depth() == 0 || settings.tail_fetch == TailFetch::Off || ctx.info.software) return false;
+    return settings.tail_fetch == TailFetch::On || scene_features.triangles;
+  }
   // RenderSettings::camera_tiles resolved (create_pipeline refuses On
   // where they cannot be).
   bool camera_tiles() const {
@@ -345,6 +352,11 @@ void PathTracer::State::create_pipeline() {
                                             std::to_string(kTailSubgroupMinLanes) + " to " +
                                             std::to_string(kWorkgroupInvocations) + " (a lane for each of a node's " +
                                             "children, within a workgroup); use auto or off");
+  if (settings.tail_fetch == TailFetch::On && s.ctx.info.software)
+    throw SettingError("tail_fetch", ": the device " + s.ctx.info.name +
+                                         " is a CPU device, where llvmpipe ends a loop after 65,535 iterations " +
+                                         "counted over the whole invocation and would lose the paths of one that " +
+                                         "takes many; use auto or off");
   if (settings.camera_tiles == CameraTiles::On && !s.camera_tiles_unfit().empty())
     throw SettingError("camera_tiles", ": " + s.camera_tiles_unfit() + "; use auto or off");
   auto start = Clock::now();
@@ -441,7 +453,8 @@ void PathTracer::State::create_stage(ComputePipeline& p, uint32_t stage, const u
                            {gpu::SPEC_PART_LOG2, g.part_log2},
                            {gpu::SPEC_STAGE, stage},
                            {gpu::SPEC_TAIL_SUBGROUP, s.tail_subgroup()},
-                           {gpu::SPEC_CAMERA_TILES, s.camera_tiles()}},
+                           {gpu::SPEC_CAMERA_TILES, s.camera_tiles()},
+                           {gpu::SPEC_TAIL_FETCH, s.tail_fetch()}},
                           // Brute force reaches llvmpipe's loop limit first; the
                           // optimizer would change where it cuts (vk/specialize.h).
                           settings.accel != Accel::Brute);
@@ -1011,6 +1024,7 @@ void PathTracer::finish_result(RenderResult& r, Clock::time_point start) {
   r.tail_step = s.tail_step();
   r.tail_fill = s.tail_fill();
   r.tail_subgroup = s.tail_subgroup();
+  r.tail_fetch = s.tail_fetch();
   // The path-tracing pipeline's (the whole paths, or the head), then the
   // tail stage's and the subgroup stage's where the render has them.
   r.pipeline_statistics = s.pipeline.statistics;

@@ -106,6 +106,7 @@ struct RenderResult {
   uint32_t tail_step = 0;    // bounces per tail level in force (RenderSettings::tail_step; 0: one level)
   uint32_t tail_fill = 0;    // RenderSettings::tail_fill in force (0: every level queues its survivors)
   uint32_t tail_subgroup = 0;  // RenderSettings::tail_subgroup in force (0: no subgroup stage)
+  bool tail_fetch = false;     // RenderSettings::tail_fetch in force (false without a tail stage)
   uint32_t samples = 0;      // samples per pixel the state holds (settings.spp unless interrupted)
   bool interrupted = false;  // render(): RenderControl::stop ended it early
 };

@@ -73,6 +73,8 @@ enum class OctantCulling { Auto, On, Off };
 enum class BvhWalk { Auto, OneLoop, WhileWhile };
 // Whether camera rays take their hits from the camera's tiles (RenderSettings::camera_tiles).
 enum class CameraTiles { Auto, On, Off };
+// Whether the tail stage takes its level's paths from a counter (RenderSettings::tail_fetch).
+enum class TailFetch { Auto, On, Off };
 
 struct RenderSettings {
   Accel accel = Accel::Octree;
@@ -202,6 +204,17 @@ struct RenderSettings {
   // Off with walk_stats, whose counts are of one walk a path. The image is
   // the same, bit for bit.
   uint32_t tail_subgroup = kTailAuto;
+  // With a tail queue: the tail stage's invocations take their level's
+  // paths from a counter, a bounce at a time, so that one whose path ended
+  // (or reached the level's last bounce) takes the next at once instead of
+  // idling until its warp's longest path is done (shaders/path_trace.comp
+  // tail_fetch_paths; optimisation log 152). On: wherever there is a tail
+  // stage, but not on a CPU device (SettingError: llvmpipe ends a loop
+  // after 65,535 iterations counted over the whole invocation, and loses
+  // the paths of one that takes many). Auto: on a GPU for scenes with
+  // triangles (spheres alone were 2.3% slower on the peer's scene). The
+  // image is the same, bit for bit.
+  TailFetch tail_fetch = TailFetch::Auto;
   // Camera rays tested against their 8x8-pixel tile's list of the spheres
   // they can meet, made on the device before a batch's passes where its
   // camera or size is not the last batch's (shaders/camera_tiles.comp),

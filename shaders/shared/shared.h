@@ -277,6 +277,10 @@ OCT_CONST(uint, SPEC_TAIL_SUBGROUP, 37u);
 // Whether the whole paths and the head take a camera ray's hit from its
 // tile's list (RenderSettings::camera_tiles) instead of the walk.
 OCT_CONST(uint, SPEC_CAMERA_TILES, 38u);
+// Whether the tail stage takes its level's paths from a counter a bounce
+// at a time (RenderSettings::tail_fetch; TailControl.fetched) instead of
+// one path an invocation (path_trace.comp tail_pass).
+OCT_CONST(uint, SPEC_TAIL_FETCH, 39u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 255u);
 
@@ -661,7 +665,7 @@ struct TailControl {
   uint subgroup_groups_x;
   uint subgroup_groups_y;  // 1
   uint subgroup_groups_z;  // 1
-  uint unused;
+  uint fetched;  // with SPEC_TAIL_FETCH: the level's paths the tail stage's invocations have taken
 };
 
 // 16 bytes, the push constants of the resolve pass.

@@ -132,6 +132,8 @@ const BadInput BAD_INPUTS[] = {
     {"tail_subgroup_unknown", "--tail-subgroup all", "--tail-subgroup: expected auto, off or a path count from 1 to 1000000000, got \"all\""},
     {"tail_subgroup_bvh", "--accel bvh --tail-subgroup 1000", "--tail-subgroup: the subgroup stage splits the octree's leaves; with --accel bvh use auto or off"},
     {"tail_subgroup_walk_stats", "--walk-stats --tail-subgroup 1000", "--tail-subgroup: the walk counts take one walk a path; with --walk-stats use auto or off"},
+    {"tail_fetch_unknown", "--tail-fetch maybe", "--tail-fetch: expected auto, on or off, got \"maybe\""},
+    {"tail_fetch_cpu", "--device cpu --tail-fetch on", "--tail-fetch: the device llvmpipe"},
     {"first_sample_overflow", "--first-sample 4294967295 --spp 2", "--first-sample"},
     {"sample_lanes_three", "--sample-lanes 3", "--sample-lanes: must be 0 (auto), 1, 2, 4 or 8, got 3"},
     {"sample_lanes_sixteen", "--sample-lanes 16", "--sample-lanes: must be 0 (auto), 1, 2, 4 or 8, got 16"},

@@ -103,7 +103,7 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
   EXPECT_EQ(tc.subgroup_groups_x, 45u);
   EXPECT_EQ(tc.subgroup_groups_y, 46u);
   EXPECT_EQ(tc.subgroup_groups_z, 47u);
-  EXPECT_EQ(tc.unused, 48u);
+  EXPECT_EQ(tc.fetched, 48u);
   gpu::GpuTailPath tails[2];
   download_buffer(ctx, tail_buf, tails, sizeof tails);
 

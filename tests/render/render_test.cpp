@@ -298,6 +298,66 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
   }
 }
 
+// The tail stage's paths from a counter (RenderSettings::tail_fetch,
+// shaders/path_trace.comp tail_fetch_paths): an invocation takes the next
+// path when its own ends, so the same paths run in other invocations and
+// the image is the same, bit for bit, through levels, a fill, the
+// subgroup stage, a queue smaller than the paths and fp16. Auto: on a GPU
+// with triangles, off for spheres alone and without a tail queue; on a CPU
+// device (llvmpipe cuts a loop after 65,535 iterations of an invocation)
+// off, and On refused.
+TEST_F(RenderTest, TailFetchDoesNotChangeTheResult) {
+  const VulkanContext& ctx = test::shared_context();
+  Scene scene = make_rtiow_scene({40, 0.2f, 3});
+  test::place(scene, test::icosphere(2, 1, true), glm::translate(glm::mat4(1.0f), glm::vec3(2, 1, 2)));
+  RenderSettings s;
+  s.width = 37;
+  s.height = 23;
+  s.spp = 6;
+  s.tail_depth = 1;
+  s.tail_step = 1;
+  s.tail_fill = 0;
+  s.tail_fetch = TailFetch::On;
+  if (ctx.info.software) {
+    EXPECT_THROW(render(ctx, scene, s), SettingError);
+    s.tail_fetch = TailFetch::Auto;
+    EXPECT_FALSE(render(ctx, scene, s).tail_fetch);
+    GTEST_SKIP() << "no tail fetch on a CPU device";
+  }
+  constexpr uint32_t kAuto = RenderSettings::kTailAuto;
+  for (Precision precision : {Precision::FP32, Precision::FP16}) {
+    for (auto [depth, entries, step, fill, subgroup] :
+         {std::tuple{1u, 0u, 1u, 0u, 0u}, {2u, 0u, 1u, 300u, kAuto}, {1u, 64u, 1u, 0u, 0u}, {2u, 0u, 0u, 0u, 0u},
+          {1u, 0u, 1u, 300u, 100u}}) {
+      s.precision = precision;
+      s.tail_depth = depth;
+      s.tail_queue_entries = entries;
+      s.tail_step = step;
+      s.tail_fill = fill;
+      s.tail_subgroup = subgroup;
+      SCOPED_TRACE(std::string(precision_name(precision)) + ", tail depth " + std::to_string(depth) + ", queue " +
+                   std::to_string(entries) + ", step " + std::to_string(step) + ", fill " + std::to_string(fill) +
+                   ", subgroup " + std::to_string(subgroup));
+      s.tail_fetch = TailFetch::Off;
+      const RenderResult want = render(ctx, scene, s);
+      EXPECT_FALSE(want.tail_fetch);
+      s.tail_fetch = TailFetch::On;
+      const RenderResult got = render(ctx, scene, s);
+      EXPECT_TRUE(got.tail_fetch);
+      expect_same_result(got, want);
+      s.tail_fetch = TailFetch::Auto;
+      EXPECT_TRUE(render(ctx, scene, s).tail_fetch);  // triangles on a GPU
+    }
+  }
+  s = RenderSettings{};
+  s.width = 37;
+  s.height = 23;
+  s.spp = 2;
+  EXPECT_FALSE(render(ctx, make_rtiow_scene({40, 0.2f, 3}), s).tail_fetch);  // spheres alone
+  s.tail_depth = 0;
+  EXPECT_FALSE(render(ctx, scene, s).tail_fetch);  // no tail queue
+}
+
 // Batches of about a quarter second, in whole rounds of a pixel's lanes;
 // one round at least while it takes at most a second (a prompt stop).
 TEST(NextBatch, TakesWholeRoundsOfLanesAndKeepsAStopPrompt) {
