@@ -179,7 +179,7 @@ struct PathTracer::State {
   // paths from the level's counter.
   bool tail_fetch() const {
     if (tail_depth() == 0 || settings.tail_fetch == TailFetch::Off || ctx.info.software) return false;
-    return settings.tail_fetch == TailFetch::On || scene_features.triangles;
+    return settings.tail_fetch == TailFetch::On || scene_features.triangles || sphere_count >= kTailFetchSpheres;
   }
   // RenderSettings::camera_tiles resolved (create_pipeline refuses On
   // where they cannot be).

@@ -212,8 +212,10 @@ struct RenderSettings {
   // stage, but not on a CPU device (SettingError: llvmpipe ends a loop
   // after 65,535 iterations counted over the whole invocation, and loses
   // the paths of one that takes many). Auto: on a GPU for scenes with
-  // triangles (spheres alone were 2.3% slower on the peer's scene). The
-  // image is the same, bit for bit.
+  // triangles, and for spheres alone from kTailFetchSpheres spheres (on
+  // the H100 the peer's scene and 488 spheres were 0.8-2.7% slower with
+  // it, 8,000 and 1M spheres 1-6% faster). The image is the same, bit for
+  // bit.
   TailFetch tail_fetch = TailFetch::Auto;
   // Camera rays tested against their 8x8-pixel tile's list of the spheres
   // they can meet, made on the device before a batch's passes where its
@@ -239,6 +241,10 @@ constexpr uint32_t kMaxTailLevels = 16;
 // RenderSettings::tail_subgroup's auto: this many paths for each subgroup
 // the device holds resident at once (optimisation log 141).
 constexpr uint32_t kTailSubgroupPaths = 4;
+// RenderSettings::tail_fetch's auto for scenes of spheres alone: on from
+// this many spheres (optimisation log 152: measured to lose at 488, to gain
+// at 8,000 and 1M; nothing measured between).
+constexpr uint64_t kTailFetchSpheres = 4096;
 
 // Checks sizes and counts, and the octree's limits (check_octree_params);
 // throws SettingError naming the setting ("size 0x10: width and height

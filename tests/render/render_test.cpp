@@ -303,7 +303,8 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
 // path when its own ends, so the same paths run in other invocations and
 // the image is the same, bit for bit, through levels, a fill, the
 // subgroup stage, a queue smaller than the paths and fp16. Auto: on a GPU
-// with triangles, off for spheres alone and without a tail queue; on a CPU
+// with triangles or kTailFetchSpheres spheres, off for fewer spheres alone
+// and without a tail queue; on a CPU
 // device (llvmpipe cuts a loop after 65,535 iterations of an invocation)
 // off, and On refused.
 TEST_F(RenderTest, TailFetchDoesNotChangeTheResult) {
@@ -353,7 +354,14 @@ TEST_F(RenderTest, TailFetchDoesNotChangeTheResult) {
   s.width = 37;
   s.height = 23;
   s.spp = 2;
-  EXPECT_FALSE(render(ctx, make_rtiow_scene({40, 0.2f, 3}), s).tail_fetch);  // spheres alone
+  EXPECT_FALSE(render(ctx, make_rtiow_scene({40, 0.2f, 3}), s).tail_fetch);  // few spheres alone
+  // Spheres alone from kTailFetchSpheres on: the auto takes it, the same bits.
+  const Scene field = make_rtiow_scene({uint32_t(kTailFetchSpheres) + 100u, 0.05f, 3});
+  const RenderResult field_auto = render(ctx, field, s);
+  EXPECT_TRUE(field_auto.tail_fetch);
+  s.tail_fetch = TailFetch::Off;
+  expect_same_result(field_auto, render(ctx, field, s));
+  s.tail_fetch = TailFetch::Auto;
   s.tail_depth = 0;
   EXPECT_FALSE(render(ctx, scene, s).tail_fetch);  // no tail queue
 }
