@@ -80,6 +80,13 @@ bool same_bits(const Image& a, const Image& b) {
          std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)) == 0;
 }
 
+// 40 spheres of the book's scene, and an icosphere among them where `mesh`.
+Scene spheres_and_icosphere(bool mesh = true) {
+  Scene scene = make_rtiow_scene({40, 0.2f, 3});
+  if (mesh) test::place(scene, test::icosphere(2, 1, true), glm::translate(glm::mat4(1.0f), glm::vec3(2, 1, 2)));
+  return scene;
+}
+
 // Every bit of a render's result as another's: mean, variance, sample and
 // ray counts, and the NaN/Inf samples rejected.
 void expect_same_result(const RenderResult& got, const RenderResult& want) {
@@ -125,8 +132,7 @@ TEST_F(RenderTest, ResultResolvedAsItArrivesIsTheAccumulationsResolved) {
 // PathTracer::record_passes). `render` too, whose first batch has every lane.
 TEST_F(RenderTest, BatchingAndSampleLanesDoNotChangeTheResult) {
   for (bool mesh : {true, false}) {
-    Scene scene = make_rtiow_scene({40, 0.2f, 3});
-    if (mesh) test::place(scene, test::icosphere(2, 1, true), glm::translate(glm::mat4(1.0f), glm::vec3(2, 1, 2)));
+    Scene scene = spheres_and_icosphere(mesh);
     RenderSettings s;
     s.width = 45;
     s.height = 29;
@@ -170,8 +176,7 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
   // RenderSettings::tail_subgroup's auto with the octree over triangles
   // (and the fill's), for the device the tests run on.
   const auto subgroup_auto = [] { return default_tail_subgroup(test::shared_context().info, true); };
-  Scene scene = make_rtiow_scene({40, 0.2f, 3});
-  test::place(scene, test::icosphere(2, 1, true), glm::translate(glm::mat4(1.0f), glm::vec3(2, 1, 2)));
+  Scene scene = spheres_and_icosphere();
   Material light;
   light.type = MaterialType::Emissive;
   light.radiance = glm::vec3(6.0f, 5.0f, 4.0f);
@@ -309,8 +314,7 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
 // off, and On refused.
 TEST_F(RenderTest, TailFetchDoesNotChangeTheResult) {
   const VulkanContext& ctx = test::shared_context();
-  Scene scene = make_rtiow_scene({40, 0.2f, 3});
-  test::place(scene, test::icosphere(2, 1, true), glm::translate(glm::mat4(1.0f), glm::vec3(2, 1, 2)));
+  const Scene scene = spheres_and_icosphere();
   RenderSettings s;
   s.width = 37;
   s.height = 23;
@@ -354,7 +358,7 @@ TEST_F(RenderTest, TailFetchDoesNotChangeTheResult) {
   s.width = 37;
   s.height = 23;
   s.spp = 2;
-  EXPECT_FALSE(render(ctx, make_rtiow_scene({40, 0.2f, 3}), s).tail_fetch);  // few spheres alone
+  EXPECT_FALSE(render(ctx, spheres_and_icosphere(false), s).tail_fetch);  // few spheres alone
   // Spheres alone from kTailFetchSpheres on: the auto takes it, the same bits.
   const Scene field = make_rtiow_scene({uint32_t(kTailFetchSpheres) + 100u, 0.05f, 3});
   const RenderResult field_auto = render(ctx, field, s);
