@@ -615,7 +615,10 @@ void tail_fetch_paths(uint level, uint taken, uint end, bool first) {
   uvec4 wanting = subgroupBallot(want);
   uint base = 0u;
   if (subgroupElect()) base = atomicAdd(tail_control[level].fetched, subgroupBallotBitCount(wanting));
-  uint slot = want ? subgroupBroadcastFirst(base) + subgroupBallotExclusiveBitCount(wanting) : taken;
+  // Broadcast from the elected invocation with every one active (the first
+  // of those that want a path need not be the first of the subgroup).
+  base = subgroupBroadcastFirst(base);
+  uint slot = want ? base + subgroupBallotExclusiveBitCount(wanting) : taken;
   bool more = slot < taken;
   GpuTailPath q;
   PathState p;
