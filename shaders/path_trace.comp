@@ -611,36 +611,21 @@ void tail_path_done(uint level, PathState p, GpuTailPath q, bool ended) {
 // over the whole invocation (optimisation log 16), which an invocation
 // that takes many paths reaches, and its paths are lost.
 void tail_fetch_paths(uint level, uint taken, uint end, bool first) {
-  bool want = first;
-  uvec4 wanting = subgroupBallot(want);
-  uint base = 0u;
-  if (subgroupElect()) base = atomicAdd(tail_control[level].fetched, subgroupBallotBitCount(wanting));
-  // Broadcast from the elected invocation with every one active (the first
-  // of those that want a path need not be the first of the subgroup).
-  base = subgroupBroadcastFirst(base);
-  uint slot = want ? base + subgroupBallotExclusiveBitCount(wanting) : taken;
-  bool more = slot < taken;
+  bool want = first, more = false;
   GpuTailPath q;
   PathState p;
-  if (more) {
-    q = tail_queue[(level & 1u) * pass.tail_capacity + slot];
-    p = tail_load(q);
-  }
-  while (subgroupBallotBitCount(subgroupBallot(more)) > 0u) {
-    // One bounce: trace_path stops at bounce p.bounce + 1, where a path
-    // that has not ended is still going (p.bounce then is its next).
-    bool ended = false;
-    if (more) ended = trace_path(p, q.pixel, pass.sample_index + q.sample_offset, p.bounce + 1u);
-    want = more && (ended || p.bounce >= end);
-    if (want) tail_path_done(level, p, q, ended);
-    wanting = subgroupBallot(want);
+  while (true) {
+    // The round's paths for the invocations that want one: one atomic for
+    // the subgroup, broadcast with every invocation active (the first that
+    // wants a path need not be the subgroup's first lane).
+    const uvec4 wanting = subgroupBallot(want);
     const uint n = subgroupBallotBitCount(wanting);
     if (n > 0u) {
-      base = 0u;
+      uint base = 0u;
       if (subgroupElect()) base = atomicAdd(tail_control[level].fetched, n);
       base = subgroupBroadcastFirst(base);
       if (want) {
-        slot = base + subgroupBallotExclusiveBitCount(wanting);
+        const uint slot = base + subgroupBallotExclusiveBitCount(wanting);
         more = slot < taken;
         if (more) {
           q = tail_queue[(level & 1u) * pass.tail_capacity + slot];
@@ -648,6 +633,13 @@ void tail_fetch_paths(uint level, uint taken, uint end, bool first) {
         }
       }
     }
+    if (subgroupBallotBitCount(subgroupBallot(more)) == 0u) break;
+    // One bounce: trace_path stops at bounce p.bounce + 1, where a path
+    // that has not ended is still going (p.bounce then is its next).
+    bool ended = false;
+    if (more) ended = trace_path(p, q.pixel, pass.sample_index + q.sample_offset, p.bounce + 1u);
+    want = more && (ended || p.bounce >= end);
+    if (want) tail_path_done(level, p, q, ended);
   }
 }
 
