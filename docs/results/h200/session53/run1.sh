@@ -2,7 +2,7 @@
 # GPU: render_test's tail-fetch case, the 1M field's image under the
 # auto, a sweep of `--tail-fetch on` against off at 1,000 / 2,000 /
 # 4,000 spheres, `bench` of the goals, the hard cases) and the engine's
-# registers at HEAD. Pack: tools/gpu_pack.sh (HEAD, a5ce9b6). Carry .gl,
+# registers at HEAD. Pack: tools/gpu_pack.sh copies=docs/results/h200/session53/copies.patch (4f22431: the render code of f4286d4). Carry .gl,
 # .gpub, .assets. Expectations: expected.md, run 1.
 source tools/gpu_run.sh
 pipeline_stats engine "$B" $S --scene .assets/2CylinderEngine.glb --accel octree
