@@ -1,20 +1,27 @@
-# Session 53, run 1: session 52's next1.sh (the tail fetch at HEAD on the
-# GPU: render_test's tail-fetch case, the 1M field's image under the
-# auto, a sweep of `--tail-fetch on` against off at 1,000 / 2,000 /
-# 4,000 spheres, `bench` of the goals, the hard cases) and the engine's
-# registers at HEAD. Pack: tools/gpu_pack.sh copies=docs/results/h200/session53/copies.patch (4f22431: the render code of f4286d4). Carry .gl,
-# .gpub, .assets. Expectations: expected.md, run 1.
+# Session 53, run 1: the checks of HEAD's render code (f4286d4's: the tail
+# fetch with its auto over spheres from 4,096, its first fetch and the
+# loop's in one place) that were not run on the GPU: render_test's
+# tail-fetch case, the 1M field's image under the auto, the engine's
+# registers, the hard cases; and the probe copies.patch on the sparse
+# fields (after run 1 was split from run 2 when the device time left
+# made one call likelier than two). Pack: tools/gpu_pack.sh
+# copies=docs/results/h200/session53/copies.patch (4f22431: the render
+# code of f4286d4). Carry .gl, .gpub, .assets. Expectations:
+# expected.md, runs 1 and 2.
 source tools/gpu_run.sh
-pipeline_stats engine "$B" $S --scene .assets/2CylinderEngine.glb --accel octree
+C=build-gpu/octrace-copies
 render_cases '*TailFetch*' 120
 "$B" render $S --spheres 1000000 --radius 0.1 --accel octree --tail-fetch off -q -o "$R/off.pfm"; "$B" render $S --spheres 1000000 --radius 0.1 --accel octree -q -o "$R/auto.pfm"
 cmp -s "$R/off.pfm" "$R/auto.pfm" && echo "1M octree fetch auto vs off identical" >> "$T" || echo "1M octree fetch auto vs off DIFFERENT" >> "$T"
 rm -f "$R/off.pfm" "$R/auto.pfm"
-V=(--variant "off=-- --tail-fetch off" --variant "on=-- --tail-fetch on")
-for n in 1000 2000 4000; do for a in octree bvh; do
-  AB_TIMEOUT=100 ab spheres${n}_$a $S --spheres $n --radius 0.1 --accel $a
-done; done
-bench_goals
+pipeline_stats engine "$B" $S --scene .assets/2CylinderEngine.glb --accel octree
+same_image "8000 octree copies" "$B" $C $S --spheres 8000 --radius 0.1 --accel octree
+same_image "1M octree copies" "$B" $C $S --spheres 1000000 --radius 0.1 --accel octree
+for v in head:$B copies:$C; do pipeline_stats "${v%%:*}" "${v#*:}" $S --spheres 8000 --radius 0.1 --accel octree; done
+V=(--variant head= --variant "copies=BIN=$C")
+ab spheres8000_octree $S --spheres 8000 --radius 0.1 --accel octree
+ab spheres488_octree $S --spheres 488 --radius 0.1 --accel octree
+ab spheres1m_octree $S --spheres 1000000 --radius 0.1 --accel octree
 hardcases_shards 8 330
 echo "done at $(date -u +%T)" >> "$T"
 gpu_finish

@@ -1,20 +1,18 @@
-# Session 53, run 2: the probe copies.patch (the octree over spheres alone
-# holds a copy of each leaf slot's sphere after the scene's spheres, at
-# sphere_count + k, and the leaf test reads it beside refs[k] instead of
-# after it: two independent loads where there were two dependent ones).
-# Pack: tools/gpu_pack.sh copies=docs/results/h200/session53/copies.patch.
-# Carry .gl, .gpub, .assets. Expectations: expected.md, run 2.
+# Session 53, run 2: the rest of session 52's next1.sh (a sweep of
+# `--tail-fetch on` against off at 1,000 / 2,000 / 4,000 spheres, `bench`
+# of the goals) and the probe copies.patch on the peer's scene. Pack: as
+# run 1's. Carry .gl, .gpub, .assets. Expectations: expected.md, runs 1
+# and 2.
 source tools/gpu_run.sh
 PEER="--scene tools/scenes/peer_field.json --size 1920x1080 --spp 64 --depth 50 --rr-depth 1 --device gpu"
 C=build-gpu/octrace-copies
-same_image "8000 octree copies" "$B" $C $S --spheres 8000 --radius 0.1 --accel octree
-same_image "1M octree copies" "$B" $C $S --spheres 1000000 --radius 0.1 --accel octree
 same_image "peer octree copies" "$B" $C $PEER --accel octree
-for v in head:$B copies:$C; do pipeline_stats "${v%%:*}" "${v#*:}" $S --spheres 8000 --radius 0.1 --accel octree; done
 V=(--variant head= --variant "copies=BIN=$C")
-ab spheres488_octree $S --spheres 488 --radius 0.1 --accel octree
-ab spheres8000_octree $S --spheres 8000 --radius 0.1 --accel octree
-ab spheres1m_octree $S --spheres 1000000 --radius 0.1 --accel octree
 AB_TIMEOUT=150 ab peer_octree $PEER --accel octree
+V=(--variant "off=-- --tail-fetch off" --variant "on=-- --tail-fetch on")
+for n in 1000 2000 4000; do for a in octree bvh; do
+  AB_TIMEOUT=100 ab spheres${n}_$a $S --spheres $n --radius 0.1 --accel $a
+done; done
+bench_goals
 echo "done at $(date -u +%T)" >> "$T"
 gpu_finish
