@@ -2,7 +2,9 @@
 # `--tail-fetch on` against off at 1,000 / 2,000 / 4,000 spheres, `bench`
 # of the goals) and the probe copies.patch on the peer's scene. Pack: as
 # run 1's. Carry .gl, .gpub, .assets. Expectations: expected.md, runs 1
-# and 2.
+# and 2. Last, `--walk-stats` of 8,000 spheres with both structures: what
+# a query does on the H100, and how busy its warps' lanes are at each
+# step (the slots' counts).
 source tools/gpu_run.sh
 PEER="--scene tools/scenes/peer_field.json --size 1920x1080 --spp 64 --depth 50 --rr-depth 1 --device gpu"
 C=build-gpu/octrace-copies
@@ -14,5 +16,10 @@ for n in 1000 2000 4000; do for a in octree bvh; do
   AB_TIMEOUT=100 ab spheres${n}_$a $S --spheres $n --radius 0.1 --accel $a
 done; done
 bench_goals
+for a in octree bvh; do
+  "$B" render $S --spheres 8000 --radius 0.1 --accel $a --walk-stats --json -q -o "$R/w.pfm" > "$R/walk_8000_$a.json" 2>&1
+  echo "walk-stats 8000 $a: $(python3 -c 'import json,sys; w=json.load(open(sys.argv[1]))["walk_stats"]; q=w["queries"]; print({k: round(v / q, 3) for k, v in w.items()})' "$R/walk_8000_$a.json" 2>&1 | head -c 600)" >> "$T"
+done
+rm -f "$R/w.pfm"
 echo "done at $(date -u +%T)" >> "$T"
 gpu_finish
