@@ -18,7 +18,7 @@ done; done
 bench_goals
 for a in octree bvh; do
   "$B" render $S --spheres 8000 --radius 0.1 --accel $a --walk-stats --json -q -o "$R/w.pfm" > "$R/walk_8000_$a.json" 2>&1
-  echo "walk-stats 8000 $a: $(python3 -c 'import json,sys; w=json.load(open(sys.argv[1]))["walk_stats"]; q=w["queries"]; print({k: round(v / q, 3) for k, v in w.items()})' "$R/walk_8000_$a.json" 2>&1 | head -c 600)" >> "$T"
+  echo "walk-stats 8000 $a: $(python3 -c 'import json,sys; w=json.load(open(sys.argv[1]))["walk"]; q=w["queries"]; print({k: round(v / q, 3) for k, v in w.items()})' "$R/walk_8000_$a.json" 2>&1 | head -c 600)" >> "$T"
 done
 rm -f "$R/w.pfm"
 echo "done at $(date -u +%T)" >> "$T"
