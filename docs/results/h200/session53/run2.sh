@@ -11,6 +11,7 @@ C=build-gpu/octrace-copies
 same_image "peer octree copies" "$B" $C $PEER --accel octree
 V=(--variant head= --variant "copies=BIN=$C")
 AB_TIMEOUT=150 ab peer_octree $PEER --accel octree
+AB_TIMEOUT=150 ab spheres1m_surfaces_octree $S --spheres 1000000 --radius 0.1 --accel octree --octree-surfaces on
 V=(--variant "off=-- --tail-fetch off" --variant "on=-- --tail-fetch on")
 for n in 1000 2000 4000; do for a in octree bvh; do
   AB_TIMEOUT=100 ab spheres${n}_$a $S --spheres $n --radius 0.1 --accel $a
