@@ -1,7 +1,8 @@
 # Session 53, run 2: the rest of session 52's next1.sh (a sweep of
 # `--tail-fetch on` against off at 1,000 / 2,000 / 4,000 spheres, `bench`
-# of the goals) and the probe copies.patch on the peer's scene. Pack: as
-# run 1's. Carry .gl, .gpub, .assets. Expectations: expected.md, runs 1
+# of the goals) and the probe copies.patch on the peer's scene and on
+# the 1M field's tree with its surface cells (`--octree-surfaces on`, the
+# tree a render of 600 spp or more builds). Pack: as run 1's. Carry .gl, .gpub, .assets. Expectations: expected.md, runs 1
 # and 2. Last, `--walk-stats` of 8,000 spheres with both structures: what
 # a query does on the H100, and how busy its warps' lanes are at each
 # step (the slots' counts).
