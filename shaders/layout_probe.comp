@@ -99,8 +99,8 @@ void main() {
     materials[i].alpha = o + 123;
     materials[i].double_sided = u + 124;
     stats[i].nonfinite_samples = u + 13;
-    stats[i].pad0 = u + 14;
-    stats[i].pad1 = u + 15;
+    stats[i].cut_paths = u + 14;
+    stats[i].loop_bound = u + 15;
     stats[i].pad2 = u + 16;
     for (int k = 0; k < int(2u * WALK_COUNTERS); ++k) stats[i].walk[k] = u + 300 + k;
     materials_half[i].color_type = f16vec4(o + 17, o + 18, o + 19, o + 20);

@@ -529,6 +529,26 @@ PathState tail_load(GpuTailPath q) {
 }
 
 // A finished path's value for accumulate.comp: sample s of the dispatch, pixel `index`.
+// llvmpipe (Mesa's CPU Vulkan driver) ends every loop of a shader once
+// 65,535 iterations of all its loops together have run for an 8-lane
+// vector of invocations (gallivm's loop limiter: one count a vector, never
+// reset), so a long path over many walk steps (light trapped in a closed
+// scene at a high bounce limit) is cut short there, silently: fewer
+// segments, a wrong nearest hit. After that every loop runs its body once
+// and leaves, so a loop that must run twice and runs once says it
+// happened (in the form `while (k < bound) ++k`: a do-while's first test
+// is not at its back edge there, and it ran twice anyway); its bound is 2,
+// read from the stats buffer (the host writes it), so that no compiler can
+// unroll the loop. On CPU devices only
+// (SPEC_LOOP_LIMIT_CHECK); RenderStats.cut_paths counts the invocations.
+layout(constant_id = SPEC_LOOP_LIMIT_CHECK) const bool LOOP_LIMIT_CHECK = false;
+void check_loop_limit() {
+  if (!LOOP_LIMIT_CHECK) return;
+  uint k = 0u;
+  while (k < stats.loop_bound) ++k;
+  if (k < 2u) atomicAdd(stats.cut_paths, 1u);
+}
+
 void store_value(uint s, uint index, PathState p) {
   tail_values[s * (pass.width * pass.height) + index] = vec4(path_value(p), uintBitsToFloat(p.segments));
 }
@@ -701,4 +721,5 @@ void main() {
   else if (STAGE == STAGE_TAIL) tail_pass();
   else if (STAGE == STAGE_TAIL_SUBGROUP) tail_subgroup_pass();
   else whole_pass();
+  check_loop_limit();
 }

@@ -77,8 +77,8 @@ static_assert(offsetof(GpuTexture, wrap) == 12);
 
 static_assert(sizeof(RenderStats) == 88);
 static_assert(offsetof(RenderStats, walk) == 16 && sizeof(RenderStats::walk) == 8 * WALK_COUNTERS);
-static_assert(offsetof(RenderStats, pad0) == 4);
-static_assert(offsetof(RenderStats, pad1) == 8);
+static_assert(offsetof(RenderStats, cut_paths) == 4);
+static_assert(offsetof(RenderStats, loop_bound) == 8);
 static_assert(offsetof(RenderStats, pad2) == 12);
 
 static_assert(sizeof(GpuOctreeNode) == 32);

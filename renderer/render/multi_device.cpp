@@ -73,6 +73,7 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
   std::vector<Accumulation> parts(devices);
   RenderResult r;  // device 0's set-up timings, octree and features; the merged state
   std::vector<uint64_t> nonfinite(devices, 0);
+  std::vector<uint64_t> cut(devices, 0);
   std::vector<WalkStats> walks(devices);
   std::vector<std::vector<DispatchTime>> dispatches(devices);
   std::atomic<uint32_t> next{0};  // the next sample offset to hand out
@@ -133,6 +134,7 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
       ends[d] = Clock::now();
       parts[d] = tracer.read_accumulation();
       nonfinite[d] = tracer.nonfinite_samples();
+      cut[d] = tracer.cut_paths();
       walks[d] = tracer.walk_stats();
       dispatches[d] = tracer.dispatch_times();
       if (d == 0) {
@@ -165,6 +167,8 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
   r.timings.readback_ms = ms_since(merge_start);
   r.nonfinite_samples = 0;
   for (uint64_t k : nonfinite) r.nonfinite_samples += k;
+  r.cut_paths = 0;
+  for (uint64_t k : cut) r.cut_paths += k;
   for (const WalkStats& w : walks) r.walk += w;
   for (const std::vector<DispatchTime>& d : dispatches) add_dispatch_times(r.dispatches, d);
   const Clock::time_point last = *std::max_element(ends.begin(), ends.end());

@@ -454,7 +454,8 @@ void PathTracer::State::create_stage(ComputePipeline& p, uint32_t stage, const u
                            {gpu::SPEC_STAGE, stage},
                            {gpu::SPEC_TAIL_SUBGROUP, s.tail_subgroup()},
                            {gpu::SPEC_CAMERA_TILES, s.camera_tiles()},
-                           {gpu::SPEC_TAIL_FETCH, s.tail_fetch()}},
+                           {gpu::SPEC_TAIL_FETCH, s.tail_fetch()},
+                           {gpu::SPEC_LOOP_LIMIT_CHECK, s.ctx.info.software}},
                           // Brute force reaches llvmpipe's loop limit first; the
                           // optimizer would change where it cuts (vk/specialize.h).
                           settings.accel != Accel::Brute);
@@ -539,8 +540,14 @@ void PathTracer::reset() {
   s.dispatch_sums.clear();
   s.camera_tiles_for.reset();
   submit_and_wait(s.ctx, [&](VkCommandBuffer cmd) {
-    for (Buffer* b : {&s.accum_sum, &s.accum_comp, &s.accum_sq, &s.stats})
+    for (Buffer* b : {&s.accum_sum, &s.accum_comp, &s.accum_sq})
       vkCmdFillBuffer(cmd, b->buffer, 0, VK_WHOLE_SIZE, 0);
+    // The stats zero but for loop_bound, 2 (path_trace.comp
+    // check_loop_limit), in ranges that do not overlap.
+    const VkDeviceSize bound = offsetof(gpu::RenderStats, loop_bound);
+    vkCmdFillBuffer(cmd, s.stats.buffer, 0, bound, 0);
+    vkCmdFillBuffer(cmd, s.stats.buffer, bound, sizeof(uint32_t), 2);
+    vkCmdFillBuffer(cmd, s.stats.buffer, bound + sizeof(uint32_t), VK_WHOLE_SIZE, 0);
   });
 }
 
@@ -924,6 +931,13 @@ uint64_t PathTracer::nonfinite_samples() {
   return stats.nonfinite_samples;
 }
 
+uint64_t PathTracer::cut_paths() {
+  State& s = *state_;
+  gpu::RenderStats stats{};
+  download_buffer(s.ctx, s.stats, &stats, sizeof(stats));
+  return stats.cut_paths;
+}
+
 WalkStats& WalkStats::operator+=(const WalkStats& o) {
   counted = counted || o.counted;
   queries += o.queries;
@@ -1009,6 +1023,7 @@ RenderResult PathTracer::read_result(const Accumulation& acc) {
 void PathTracer::finish_result(RenderResult& r, Clock::time_point start) {
   State& s = *state_;
   r.nonfinite_samples = nonfinite_samples();
+  r.cut_paths = cut_paths();
   r.walk = walk_stats();
   r.dispatches = s.dispatch_sums;
   s.timings.readback_ms = ms_since(start);

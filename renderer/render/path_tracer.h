@@ -85,6 +85,11 @@ struct RenderResult {
   std::vector<float> count;  // per pixel: samples added (NaN/Inf ones are not)
   uint32_t min_samples = 0;       // smallest per-pixel sample count
   uint64_t nonfinite_samples = 0; // NaN/Inf samples rejected (0 for a clean render)
+  // CPU devices: invocations whose loops llvmpipe's limit of 65,535
+  // iterations ended early, so that their paths were cut short (0 for a
+  // correct render; always 0 on a GPU; shaders/path_trace.comp
+  // check_loop_limit).
+  uint64_t cut_paths = 0;
   uint64_t rays = 0;              // ray segments traced (camera rays and bounces)
   WalkStats walk;                 // with RenderSettings::walk_stats
   std::vector<DispatchTime> dispatches;  // with RenderSettings::dispatch_times (summed over devices)
@@ -293,6 +298,8 @@ class PathTracer {
   RenderResult read_result(const Accumulation& acc);
   // NaN/Inf samples rejected since the last reset.
   uint64_t nonfinite_samples();
+  // RenderResult::cut_paths so far (since the last reset).
+  uint64_t cut_paths();
   // What the walks counted since the last reset (zeros and counted = false
   // without RenderSettings::walk_stats).
   WalkStats walk_stats();

@@ -281,6 +281,11 @@ OCT_CONST(uint, SPEC_CAMERA_TILES, 38u);
 // at a time (RenderSettings::tail_fetch; TailControl.fetched) instead of
 // one path an invocation (path_trace.comp tail_pass).
 OCT_CONST(uint, SPEC_TAIL_FETCH, 39u);
+// Whether the path tracer's invocations check, at their end, that the
+// driver did not end their loops early (llvmpipe's limit; path_trace.comp
+// loop_limit_reached) and count those it did in RenderStats.cut_paths: on
+// CPU devices.
+OCT_CONST(uint, SPEC_LOOP_LIMIT_CHECK, 40u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
 OCT_CONST(uint, SKY_RUNTIME, 255u);
 
@@ -580,8 +585,8 @@ OCT_CONST(uint, WALK_COUNTERS, 9u);
 // 88 bytes. Counters the passes update with atomics.
 struct RenderStats {
   uint nonfinite_samples;  // samples that were NaN or Inf and were not added
-  uint pad0;
-  uint pad1;
+  uint cut_paths;          // SPEC_LOOP_LIMIT_CHECK: invocations whose loops the driver's limit ended
+  uint loop_bound;         // 2, set by the host (PathTracer::reset): check_loop_limit's loop bound
   uint pad2;
   uint walk[2u * WALK_COUNTERS];  // WALK_COUNTERS 64-bit counts, low word first (zeros without --walk-stats)
 };

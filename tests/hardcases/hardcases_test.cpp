@@ -94,6 +94,10 @@ class CaseRun {
     if (accel == accel_.accel) s.octree.bvh_width = accel_.bvh_width;
     s.precision = precision_.precision;
     RenderResult r = octrace::render(test::shared_context(), scene, s);
+    // No path cut short by a CPU driver's loop limit (path_trace.comp
+    // check_loop_limit): its image would be wrong whatever the criteria say.
+    EXPECT_EQ(r.cut_paths, 0u) << "case " << case_ << ", accel " << accel_.name << ", precision " << precision_.name
+                               << ": paths cut short by the device's loop limit";
     nonfinite_ += r.nonfinite_samples;
     for (float v : r.mean.rgb) nonfinite_ += !std::isfinite(v);
     for (float v : r.variance_of_mean.rgb) nonfinite_ += !std::isfinite(v);

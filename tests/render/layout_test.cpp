@@ -165,8 +165,8 @@ TEST_F(LayoutTest, HostAndShaderAgreeOnEveryField) {
     EXPECT_EQ(materials[i].alpha, o + 123) << "material " << i;
     EXPECT_EQ(materials[i].double_sided, u + 124) << "material " << i;
     EXPECT_EQ(stats[i].nonfinite_samples, u + 13) << "stats " << i;
-    EXPECT_EQ(stats[i].pad0, u + 14) << "stats " << i;
-    EXPECT_EQ(stats[i].pad1, u + 15) << "stats " << i;
+    EXPECT_EQ(stats[i].cut_paths, u + 14) << "stats " << i;
+    EXPECT_EQ(stats[i].loop_bound, u + 15) << "stats " << i;
     EXPECT_EQ(stats[i].pad2, u + 16) << "stats " << i;
     for (int k = 0; k < int(2 * gpu::WALK_COUNTERS); ++k) EXPECT_EQ(stats[i].walk[k], u + 300 + k) << "stats " << i << " walk " << k;
     for (int c = 0; c < 4; ++c) {

@@ -370,6 +370,60 @@ TEST_F(RenderTest, TailFetchDoesNotChangeTheResult) {
   EXPECT_FALSE(render(ctx, scene, s).tail_fetch);  // no tail queue
 }
 
+// Light trapped in a closed mirror sphere around 20,000 small albedo-1
+// spheres, at 300 bounces: paths of a hundred bounces and more, each
+// bounce a walk of many steps. llvmpipe ends every loop of an 8-lane
+// vector once 65,535 iterations of all its loops together have run, so
+// the whole paths (a CPU device's default: a path an invocation) are cut
+// short there, which RenderResult::cut_paths counts (path_trace.comp
+// check_loop_limit); the tail levels, which trace a few bounces a
+// dispatch, are not, and give the image a GPU gives with either. A GPU
+// has no such limit: nothing is cut, and both images are the same bit for
+// bit. Fails where the check misses a cut path, or counts one that was not.
+TEST_F(RenderTest, PathsCutShortByTheLoopLimitAreCounted) {
+  const VulkanContext& ctx = test::shared_context();
+  Scene scene;
+  scene.sky.type = SkyType::Uniform;
+  scene.sky.radiance = glm::vec3(0.0f);
+  scene.camera.lookfrom = {0, 0, 4.5f};
+  scene.camera.lookat = {0, 0, 0};
+  scene.camera.vfov = 60;
+  scene.camera.aperture = 0;
+  scene.camera.focus_dist = 4;
+  scene.materials = {{MaterialType::Metal, glm::vec3(1.0f), 0.6f}, {MaterialType::Lambertian, glm::vec3(1.0f)}, {}};
+  scene.materials[2].type = MaterialType::Emissive;
+  scene.materials[2].radiance = glm::vec3(4.0f);
+  scene.spheres = {{{0, 0, 0}, 5.0f, 0}, {{3, 3, 0}, 0.15f, 2}};
+  uint32_t state = 3;
+  const auto next = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) / float(1u << 24) * 6.8f - 3.4f;
+  };
+  while (scene.spheres.size() < 20002) {
+    const glm::vec3 c(next(), next(), next());
+    if (glm::dot(c, c) > 3.4f * 3.4f || (c.x * c.x + c.y * c.y < 0.3f && c.z > 0)) continue;
+    scene.spheres.push_back({c, 0.04f, 1});
+  }
+  RenderSettings s;
+  s.width = 80;
+  s.height = 60;
+  s.spp = 2;
+  s.bounce_limit = 300;
+  s.tail_depth = 0;  // whole paths, a path an invocation
+  const RenderResult whole = render(ctx, scene, s);
+  s.tail_depth = 2;
+  s.tail_step = 1;
+  const RenderResult levels = render(ctx, scene, s);
+  EXPECT_EQ(levels.cut_paths, 0u);
+  if (ctx.info.software) {
+    EXPECT_GT(whole.cut_paths, 0u) << "the whole paths reach llvmpipe's loop limit here";
+    EXPECT_LT(whole.rays, levels.rays);
+  } else {
+    EXPECT_EQ(whole.cut_paths, 0u);
+    expect_same_result(whole, levels);
+  }
+}
+
 // Batches of about a quarter second, in whole rounds of a pixel's lanes;
 // one round at least while it takes at most a second (a prompt stop).
 TEST(NextBatch, TakesWholeRoundsOfLanesAndKeepsAStopPrompt) {
