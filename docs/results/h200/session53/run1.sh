@@ -5,13 +5,13 @@
 # registers, the hard cases; and the probe copies.patch on the sparse
 # fields (after run 1 was split from run 2 when the device time left
 # made one call likelier than two). Pack: tools/gpu_pack.sh
-# copies=docs/results/h200/session53/copies.patch (4f22431: the render
-# code of f4286d4). In order of what matters most, should the call's
+# copies=docs/results/h200/session53/copies.patch at HEAD (repack: since
+# 4f22431's pack the loop-limit check was added, off on GPUs). In order of what matters most, should the call's
 # time limit cut it. Carry .gl, .gpub, .assets. Expectations:
 # expected.md, runs 1 and 2.
 source tools/gpu_run.sh
 C=build-gpu/octrace-copies
-render_cases '*TailFetch*' 120
+render_cases '*TailFetch*:*PathsCutShort*' 120
 same_image "8000 octree copies" "$B" $C $S --spheres 8000 --radius 0.1 --accel octree
 V=(--variant head= --variant "copies=BIN=$C")
 ab spheres8000_octree $S --spheres 8000 --radius 0.1 --accel octree
