@@ -382,14 +382,10 @@ TEST_F(RenderTest, TailFetchDoesNotChangeTheResult) {
 // bit. Fails where the check misses a cut path, or counts one that was not.
 TEST_F(RenderTest, PathsCutShortByTheLoopLimitAreCounted) {
   const VulkanContext& ctx = test::shared_context();
-  Scene scene;
-  scene.sky.type = SkyType::Uniform;
-  scene.sky.radiance = glm::vec3(0.0f);
-  scene.camera.lookfrom = {0, 0, 4.5f};
-  scene.camera.lookat = {0, 0, 0};
+  Scene scene = test::furnace_scene();
+  scene.sky.radiance = glm::vec3(0.0f);  // light from the emitter only
+  scene.camera.lookfrom = {0, 0, 4.5f};  // inside the mirror sphere
   scene.camera.vfov = 60;
-  scene.camera.aperture = 0;
-  scene.camera.focus_dist = 4;
   scene.materials = {{MaterialType::Metal, glm::vec3(1.0f), 0.6f}, {MaterialType::Lambertian, glm::vec3(1.0f)}, {}};
   scene.materials[2].type = MaterialType::Emissive;
   scene.materials[2].radiance = glm::vec3(4.0f);
