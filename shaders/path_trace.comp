@@ -528,7 +528,6 @@ PathState tail_load(GpuTailPath q) {
   return p;
 }
 
-// A finished path's value for accumulate.comp: sample s of the dispatch, pixel `index`.
 // llvmpipe (Mesa's CPU Vulkan driver) ends every loop of a shader once
 // 65,535 iterations of all its loops together have run for an 8-lane
 // vector of invocations (gallivm's loop limiter: one count a vector, never
@@ -549,6 +548,7 @@ void check_loop_limit() {
   if (k < 2u) atomicAdd(stats.cut_paths, 1u);
 }
 
+// A finished path's value for accumulate.comp: sample s of the dispatch, pixel `index`.
 void store_value(uint s, uint index, PathState p) {
   tail_values[s * (pass.width * pass.height) + index] = vec4(path_value(p), uintBitsToFloat(p.segments));
 }

@@ -924,19 +924,35 @@ void resolve_accumulation(const Accumulation& a, RenderResult& r) {
   resolve_m2(a.sq.data(), r);
 }
 
-uint64_t PathTracer::nonfinite_samples() {
-  State& s = *state_;
+// The stats buffer's counters (shared.h RenderStats), read back.
+static gpu::RenderStats download_stats(const VulkanContext& ctx, const Buffer& buffer) {
   gpu::RenderStats stats{};
-  download_buffer(s.ctx, s.stats, &stats, sizeof(stats));
-  return stats.nonfinite_samples;
+  download_buffer(ctx, buffer, &stats, sizeof(stats));
+  return stats;
 }
 
-uint64_t PathTracer::cut_paths() {
-  State& s = *state_;
-  gpu::RenderStats stats{};
-  download_buffer(s.ctx, s.stats, &stats, sizeof(stats));
-  return stats.cut_paths;
+// The walk counts of `stats` (zeros and counted = false where the walks
+// were not counted).
+static WalkStats walk_stats_of(const gpu::RenderStats& stats, bool counted) {
+  WalkStats w;
+  if (!counted) return w;
+  const auto count = [&](uint32_t k) { return uint64_t(stats.walk[2 * k]) | uint64_t(stats.walk[2 * k + 1]) << 32; };
+  w.counted = true;
+  w.queries = count(gpu::WALK_QUERIES);
+  w.nodes = count(gpu::WALK_NODES);
+  w.leaves = count(gpu::WALK_LEAVES);
+  w.boxes = count(gpu::WALK_BOXES);
+  w.primitives = count(gpu::WALK_PRIMITIVES);
+  w.instances = count(gpu::WALK_INSTANCES);
+  w.query_slots = count(gpu::WALK_QUERY_SLOTS);
+  w.node_slots = count(gpu::WALK_NODE_SLOTS);
+  w.primitive_slots = count(gpu::WALK_PRIMITIVE_SLOTS);
+  return w;
 }
+
+uint64_t PathTracer::nonfinite_samples() { return download_stats(state_->ctx, state_->stats).nonfinite_samples; }
+
+uint64_t PathTracer::cut_paths() { return download_stats(state_->ctx, state_->stats).cut_paths; }
 
 WalkStats& WalkStats::operator+=(const WalkStats& o) {
   counted = counted || o.counted;
@@ -954,22 +970,8 @@ WalkStats& WalkStats::operator+=(const WalkStats& o) {
 
 WalkStats PathTracer::walk_stats() {
   State& s = *state_;
-  WalkStats w;
-  if (!s.settings.walk_stats) return w;
-  gpu::RenderStats stats{};
-  download_buffer(s.ctx, s.stats, &stats, sizeof(stats));
-  const auto count = [&](uint32_t k) { return uint64_t(stats.walk[2 * k]) | uint64_t(stats.walk[2 * k + 1]) << 32; };
-  w.counted = true;
-  w.queries = count(gpu::WALK_QUERIES);
-  w.nodes = count(gpu::WALK_NODES);
-  w.leaves = count(gpu::WALK_LEAVES);
-  w.boxes = count(gpu::WALK_BOXES);
-  w.primitives = count(gpu::WALK_PRIMITIVES);
-  w.instances = count(gpu::WALK_INSTANCES);
-  w.query_slots = count(gpu::WALK_QUERY_SLOTS);
-  w.node_slots = count(gpu::WALK_NODE_SLOTS);
-  w.primitive_slots = count(gpu::WALK_PRIMITIVE_SLOTS);
-  return w;
+  if (!s.settings.walk_stats) return {};
+  return walk_stats_of(download_stats(s.ctx, s.stats), true);
 }
 
 // resolve_accumulation's values, each buffer resolved as it arrives in the
@@ -1022,9 +1024,11 @@ RenderResult PathTracer::read_result(const Accumulation& acc) {
 // (the read-back's from `start`), the tree and the pipeline's choices.
 void PathTracer::finish_result(RenderResult& r, Clock::time_point start) {
   State& s = *state_;
-  r.nonfinite_samples = nonfinite_samples();
-  r.cut_paths = cut_paths();
-  r.walk = walk_stats();
+  // One read of the stats buffer for its three kinds of counters.
+  const gpu::RenderStats stats = download_stats(s.ctx, s.stats);
+  r.nonfinite_samples = stats.nonfinite_samples;
+  r.cut_paths = stats.cut_paths;
+  r.walk = walk_stats_of(stats, s.settings.walk_stats);
   r.dispatches = s.dispatch_sums;
   s.timings.readback_ms = ms_since(start);
   r.timings = s.timings;

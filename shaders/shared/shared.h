@@ -283,7 +283,7 @@ OCT_CONST(uint, SPEC_CAMERA_TILES, 38u);
 OCT_CONST(uint, SPEC_TAIL_FETCH, 39u);
 // Whether the path tracer's invocations check, at their end, that the
 // driver did not end their loops early (llvmpipe's limit; path_trace.comp
-// loop_limit_reached) and count those it did in RenderStats.cut_paths: on
+// check_loop_limit) and count those it did in RenderStats.cut_paths: on
 // CPU devices.
 OCT_CONST(uint, SPEC_LOOP_LIMIT_CHECK, 40u);
 // SPEC_SKY value for the general pipeline: the sky type is read at run time.
