@@ -6,13 +6,10 @@
 # and 2. Last, `--walk-stats` of 8,000 spheres with both structures: what
 # a query does on the H100, and how busy its warps' lanes are at each
 # step (the slots' counts).
+# Session 54: the copies probe's items dropped (run 1: 1.008x slower at 8,000 and 1M).
 source tools/gpu_run.sh
 PEER="--scene tools/scenes/peer_field.json --size 1920x1080 --spp 64 --depth 50 --rr-depth 1 --device gpu"
 C=build-gpu/octrace-copies
-same_image "peer octree copies" "$B" $C $PEER --accel octree
-V=(--variant head= --variant "copies=BIN=$C")
-AB_TIMEOUT=150 ab peer_octree $PEER --accel octree
-AB_TIMEOUT=150 ab spheres1m_surfaces_octree $S --spheres 1000000 --radius 0.1 --accel octree --octree-surfaces on
 V=(--variant "off=-- --tail-fetch off" --variant "on=-- --tail-fetch on")
 for n in 1000 2000 4000; do for a in octree bvh; do
   AB_TIMEOUT=100 ab spheres${n}_$a $S --spheres $n --radius 0.1 --accel $a
