@@ -916,11 +916,12 @@ std::string share_line(const RankShare& s) {
   return line;
 }
 
-bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const CheckpointInfo& info,
+bool gather(Accumulation acc, uint64_t nonfinite, uint64_t cut_paths, const RankShare& share, const CheckpointInfo& info,
             Gathered& out) {
   Job& job = g_job;
   if (job.rank == 0) job.join_server();
-  json report = {{"share", share_json(share)}, {"info", checkpoint_info_json(info)}, {"nonfinite", nonfinite}};
+  json report = {{"share", share_json(share)}, {"info", checkpoint_info_json(info)}, {"nonfinite", nonfinite},
+                {"cut_paths", cut_paths}};
   std::vector<json> reports;
   const int decision = job.decide(0, "", report, &reports);
   job.phase = Phase::Final;
@@ -1060,6 +1061,7 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
     times.send_ms = std::max(times.send_ms, send_ms);
   }
   out.nonfinite_samples = 0;
+  out.cut_paths = 0;
   for (const json& j : reports) {
     out.shares.push_back(share_of(j.at("share")));
     // The turns are counted where they are decided.
@@ -1069,6 +1071,7 @@ bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const 
       r.turn_wait_ms = job.turn_wait_ms[size_t(r.rank)];
     }
     out.nonfinite_samples += j.at("nonfinite").get<uint64_t>();
+    out.cut_paths += j.at("cut_paths").get<uint64_t>();
   }
   out.device_turns = job.turns == DeviceTurns::On ? "on" : job.turns == DeviceTurns::Off ? "off" : "auto";
   out.samples = job.already + job.next;

@@ -99,6 +99,7 @@ struct Gathered {
   bool interrupted = false;          // a rank was signalled: fewer than spp
   int signal = 0;                    // which signal (SIGINT, SIGTERM)
   uint64_t nonfinite_samples = 0;
+  uint64_t cut_paths = 0;            // RenderResult::cut_paths, summed over the ranks
   ReduceTimes reduce;                // where the reduce's time went
   std::string device_turns;          // --device-turns in force: auto, on, off
 };
@@ -159,7 +160,7 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
 // place); the others false.
 // Throws JobFailed (rank 0 has printed the line) if a rank failed or renders
 // another scene or other settings than rank 0.
-bool gather(Accumulation acc, uint64_t nonfinite, const RankShare& share, const CheckpointInfo& info,
+bool gather(Accumulation acc, uint64_t nonfinite, uint64_t cut_paths, const RankShare& share, const CheckpointInfo& info,
             Gathered& out);
 
 // From the front end's error handler: this rank failed with `code` and

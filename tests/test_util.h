@@ -258,4 +258,30 @@ inline Scene furnace_scene() {
   return s;
 }
 
+// Light trapped in a closed mirror sphere (r 5, fuzz 0.6) around 20,000
+// white diffuse spheres (r 0.04) and one small emitter, the camera inside:
+// paths of 300 bounces walk the tree thousands of steps, past llvmpipe's
+// limit of 65,535 loop iterations an invocation (RenderResult::cut_paths).
+inline Scene light_trap_scene() {
+  Scene scene = furnace_scene();
+  scene.sky.radiance = glm::vec3(0.0f);  // light from the emitter only
+  scene.camera.lookfrom = {0, 0, 4.5f};  // inside the mirror sphere
+  scene.camera.vfov = 60;
+  scene.materials = {{MaterialType::Metal, glm::vec3(1.0f), 0.6f}, {MaterialType::Lambertian, glm::vec3(1.0f)}, {}};
+  scene.materials[2].type = MaterialType::Emissive;
+  scene.materials[2].radiance = glm::vec3(4.0f);
+  scene.spheres = {{{0, 0, 0}, 5.0f, 0}, {{3, 3, 0}, 0.15f, 2}};
+  uint32_t state = 3;
+  const auto next = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) / float(1u << 24) * 6.8f - 3.4f;
+  };
+  while (scene.spheres.size() < 20002) {
+    const glm::vec3 c(next(), next(), next());
+    if (glm::dot(c, c) > 3.4f * 3.4f || (c.x * c.x + c.y * c.y < 0.3f && c.z > 0)) continue;
+    scene.spheres.push_back({c, 0.04f, 1});
+  }
+  return scene;
+}
+
 }  // namespace octrace::test

@@ -1,7 +1,8 @@
 // Many processes, one render (docs/multi_gpu.md): `mpirun -np N octrace
 // render` equals a one-process render of the same samples; a rank that fails
 // fails the whole job in one line, with no output file; an interrupted job
-// leaves no partial file; --checkpoint writes merged states that resume. And the path without MPI: a job array of
+// leaves no partial file; --checkpoint writes merged states that resume;
+// paths cut short on every rank are counted at rank 0. And the path without MPI: a job array of
 // `render --first-sample K --state PART_K` runs merged by `octrace merge`.
 //
 // The MPI tests run two and three ranks on this machine's lavapipe with one
@@ -25,6 +26,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/image.h"
+#include "scene/scene.h"
 #include "test_util.h"
 
 namespace octrace {
@@ -333,6 +335,26 @@ TEST(Mpi, CheckpointsOfTheMergedStateResume) {
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_EQ(json_of(r.output).value("resumed_from", 0u), samples) << r.output;
   expect_same_render(resumed, one);
+}
+
+// Paths that llvmpipe's loop limit cut short (RenderResult::cut_paths;
+// render_test's PathsCutShortByTheLoopLimitAreCounted) are counted on every
+// rank and summed at rank 0, which warns as one process does: the light trap
+// with whole paths, its 2 samples one a rank, cuts as many invocations as
+// one process rendering both (a sample's pass is the same dispatch on
+// either). Fails where a rank's count is lost in the gather.
+TEST(Mpi, PathsCutShortOnEveryRankAreCountedAtRankZero) {
+  const std::string scene = tmp("light_trap.json");
+  save_scene_json(test::light_trap_scene(), scene);
+  const std::string args = "render --scene " + scene + " --size 80x60 --spp 2 --depth 300 --tail-depth off --json ";
+  const RunResult one = run_octrace(args + "--device 0 --out " + tmp("trap_one.pfm"));
+  ASSERT_EQ(one.code, 0) << one.output;
+  const uint64_t cut = json_of(one.output).at("cut_paths").get<uint64_t>();
+  ASSERT_GT(cut, 0u) << "the whole paths reach llvmpipe's loop limit here";
+  const RunResult two = mpirun(2, args + "--out " + tmp("trap_two.pfm"));
+  ASSERT_EQ(two.code, 0) << two.output;
+  EXPECT_EQ(json_of(two.output).at("cut_paths").get<uint64_t>(), cut) << two.output;
+  EXPECT_NE(two.output.find("warning: " + std::to_string(cut) + " invocations"), std::string::npos) << two.output;
 }
 
 #else

@@ -370,8 +370,8 @@ TEST_F(RenderTest, TailFetchDoesNotChangeTheResult) {
   EXPECT_FALSE(render(ctx, scene, s).tail_fetch);  // no tail queue
 }
 
-// Light trapped in a closed mirror sphere around 20,000 small albedo-1
-// spheres, at 300 bounces: paths of a hundred bounces and more, each
+// Light trapped in a mirror sphere (test::light_trap_scene) at 300
+// bounces: paths of a hundred bounces and more, each
 // bounce a walk of many steps. llvmpipe ends every loop of an 8-lane
 // vector once 65,535 iterations of all its loops together have run, so
 // the whole paths (a CPU device's default: a path an invocation) are cut
@@ -382,24 +382,7 @@ TEST_F(RenderTest, TailFetchDoesNotChangeTheResult) {
 // bit. Fails where the check misses a cut path, or counts one that was not.
 TEST_F(RenderTest, PathsCutShortByTheLoopLimitAreCounted) {
   const VulkanContext& ctx = test::shared_context();
-  Scene scene = test::furnace_scene();
-  scene.sky.radiance = glm::vec3(0.0f);  // light from the emitter only
-  scene.camera.lookfrom = {0, 0, 4.5f};  // inside the mirror sphere
-  scene.camera.vfov = 60;
-  scene.materials = {{MaterialType::Metal, glm::vec3(1.0f), 0.6f}, {MaterialType::Lambertian, glm::vec3(1.0f)}, {}};
-  scene.materials[2].type = MaterialType::Emissive;
-  scene.materials[2].radiance = glm::vec3(4.0f);
-  scene.spheres = {{{0, 0, 0}, 5.0f, 0}, {{3, 3, 0}, 0.15f, 2}};
-  uint32_t state = 3;
-  const auto next = [&state] {
-    state = state * 1664525u + 1013904223u;
-    return float(state >> 8) / float(1u << 24) * 6.8f - 3.4f;
-  };
-  while (scene.spheres.size() < 20002) {
-    const glm::vec3 c(next(), next(), next());
-    if (glm::dot(c, c) > 3.4f * 3.4f || (c.x * c.x + c.y * c.y < 0.3f && c.z > 0)) continue;
-    scene.spheres.push_back({c, 0.04f, 1});
-  }
+  const Scene scene = test::light_trap_scene();
   RenderSettings s;
   s.width = 80;
   s.height = 60;
