@@ -384,8 +384,9 @@ struct RenderOptions {
     cmd.add_option("--tail-fetch", tail_fetch,
                    "Tail queue: the tail stage's invocations take their level's paths from a counter, a bounce at "
                    "a time, so that one whose path ended takes the next at once: auto | on | off (auto: on a GPU "
-                   "for scenes with triangles or at least " + std::to_string(kTailFetchSpheres) +
-                       " spheres; on is refused on a CPU device, whose llvmpipe ends a loop after "
+                   "for scenes with triangles, or of at least " + std::to_string(kTailFetchSpheresOctree) +
+                       " spheres with the octree, " + std::to_string(kTailFetchSpheresBvh) +
+                       " with the BVH; on is refused on a CPU device, whose llvmpipe ends a loop after "
                    "65,535 iterations over the whole invocation); same image, other speed")
         ->capture_default_str();
     cmd.add_option("--device", device, "auto | cpu | gpu | INDEX (see `octrace devices`)")->capture_default_str();

@@ -179,7 +179,8 @@ struct PathTracer::State {
   // paths from the level's counter.
   bool tail_fetch() const {
     if (tail_depth() == 0 || settings.tail_fetch == TailFetch::Off || ctx.info.software) return false;
-    return settings.tail_fetch == TailFetch::On || scene_features.triangles || sphere_count >= kTailFetchSpheres;
+    return settings.tail_fetch == TailFetch::On || scene_features.triangles ||
+           sphere_count >= (settings.accel == Accel::Bvh ? kTailFetchSpheresBvh : kTailFetchSpheresOctree);
   }
   // RenderSettings::camera_tiles resolved (create_pipeline refuses On
   // where they cannot be).

@@ -308,7 +308,8 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
 // path when its own ends, so the same paths run in other invocations and
 // the image is the same, bit for bit, through levels, a fill, the
 // subgroup stage, a queue smaller than the paths and fp16. Auto: on a GPU
-// with triangles or kTailFetchSpheres spheres, off for fewer spheres alone
+// with triangles or kTailFetchSpheresOctree spheres (kTailFetchSpheresBvh
+// with the BVH), off for fewer spheres alone
 // and without a tail queue; on a CPU
 // device (llvmpipe cuts a loop after 65,535 iterations of an invocation)
 // off, and On refused.
@@ -359,13 +360,24 @@ TEST_F(RenderTest, TailFetchDoesNotChangeTheResult) {
   s.height = 23;
   s.spp = 2;
   EXPECT_FALSE(render(ctx, spheres_and_icosphere(false), s).tail_fetch);  // few spheres alone
-  // Spheres alone from kTailFetchSpheres on: the auto takes it, the same bits.
-  const Scene field = make_rtiow_scene({uint32_t(kTailFetchSpheres) + 100u, 0.05f, 3});
-  const RenderResult field_auto = render(ctx, field, s);
-  EXPECT_TRUE(field_auto.tail_fetch);
-  s.tail_fetch = TailFetch::Off;
-  expect_same_result(field_auto, render(ctx, field, s));
-  s.tail_fetch = TailFetch::Auto;
+  // Spheres alone from the structure's count on: the auto takes it, the
+  // same bits; the BVH not below its own.
+  for (Accel accel : {Accel::Octree, Accel::Bvh}) {
+    SCOPED_TRACE(accel_name(accel));
+    s.accel = accel;
+    const uint64_t from = accel == Accel::Bvh ? kTailFetchSpheresBvh : kTailFetchSpheresOctree;
+    const Scene field = make_rtiow_scene({uint32_t(from) + 100u, 0.05f, 3});
+    const RenderResult field_auto = render(ctx, field, s);
+    EXPECT_TRUE(field_auto.tail_fetch);
+    s.tail_fetch = TailFetch::Off;
+    expect_same_result(field_auto, render(ctx, field, s));
+    s.tail_fetch = TailFetch::Auto;
+    if (accel == Accel::Octree) {
+      s.accel = Accel::Bvh;
+      EXPECT_FALSE(render(ctx, field, s).tail_fetch);  // below the BVH's count
+    }
+  }
+  s.accel = Accel::Octree;
   s.tail_depth = 0;
   EXPECT_FALSE(render(ctx, scene, s).tail_fetch);  // no tail queue
 }
