@@ -215,7 +215,7 @@ struct RenderSettings {
   // triangles, and for spheres alone from kTailFetchSpheresOctree spheres
   // with the octree, kTailFetchSpheresBvh with the BVH (on the H100 the
   // peer's scene and 488 spheres were 0.8-2.7% slower with it, larger
-  // fields up to 6% faster, the BVH's from about 8,000). The image is the
+  // fields up to 6% faster, the BVH's from about 5,000). The image is the
   // same, bit for bit.
   TailFetch tail_fetch = TailFetch::Auto;
   // Camera rays tested against their 8x8-pixel tile's list of the spheres
@@ -245,10 +245,10 @@ constexpr uint32_t kTailSubgroupPaths = 4;
 // RenderSettings::tail_fetch's auto for scenes of spheres alone: on from
 // this many spheres, with the octree and with the BVH (optimisation logs
 // 152 and 155: on the H100 the octree's passes 1.008x at 488 spheres,
-// 0.992x at 1,000, 0.968x at 4,000; the BVH's 1.008x at 4,000, 0.990x at
-// 8,000, and a gain at 1M with both).
+// 0.992x at 1,000, 0.968x at 4,000; the BVH's 1.008x at 4,000, 0.988x at
+// 6,000, 0.990x at 8,000, and a gain at 1M with both).
 constexpr uint64_t kTailFetchSpheresOctree = 1000;
-constexpr uint64_t kTailFetchSpheresBvh = 8000;
+constexpr uint64_t kTailFetchSpheresBvh = 4096;
 
 // Checks sizes and counts, and the octree's limits (check_octree_params);
 // throws SettingError naming the setting ("size 0x10: width and height
