@@ -10,7 +10,7 @@ render_cases '*TailFetch*' 200
 NCU=$(command -v ncu || ls /usr/local/cuda*/bin/ncu 2>/dev/null | head -1)
 echo "ncu: ${NCU:-none}" >> "$T"
 if [ -n "$NCU" ]; then
-  timeout 150 "$NCU" --target-processes all --launch-skip 20 --launch-count 1 --section SpeedOfLight --section Occupancy \
+  timeout 90 "$NCU" --target-processes all --launch-skip 20 --launch-count 1 --section SpeedOfLight --section Occupancy \
     "$B" render $S --spheres 8000 --radius 0.1 --accel octree -q -o "$R/ncu.pfm" > "$OUT/ncu_8000_octree.txt" 2>&1
   echo "ncu rc=$? $(grep -c . "$OUT/ncu_8000_octree.txt") lines; $(grep -m3 -iE 'Duration|Compute \(SM\) Throughput|Memory Throughput|==ERROR|==WARNING' "$OUT/ncu_8000_octree.txt" | tr '\n' ' ' | head -c 400)" >> "$T"
 fi
