@@ -354,14 +354,16 @@ struct RenderOptions {
     cmd.add_option("--tail-depth", tail_depth,
                    "Tail queue: paths still going at this bounce finish in a dispatch of their own: auto | off | "
                    "BOUNCE (auto: " + std::to_string(kTailDepthDefault) +
-                       " on a GPU; on a CPU device no queue, one sample per invocation); same image")
+                       " on a GPU; on a CPU device " + std::to_string(kTailDepthDefault) + " above --depth " +
+                       std::to_string(kCpuWholePathBounces) +
+                       ", else no queue, one sample per invocation); same image")
         ->capture_default_str();
     cmd.add_option("--tail-step", tail_step,
                    "Tail levels: the first tail dispatch traces its paths this many bounces on, each next twice "
                    "as many, and each queues those still going, dense, for the next (at most " +
                        std::to_string(kMaxTailLevels) + " levels): auto | off | BOUNCES (auto: " +
                        std::to_string(kTailStepDefault) +
-                       ", with triangles only where a fill applies (--tail-fill); off: one tail finishes every "
+                       ", with triangles on a GPU only where a fill applies (--tail-fill); off: one tail finishes every "
                        "path); "
                        "same image")
         ->capture_default_str();

@@ -84,13 +84,17 @@ struct PathTracer::State {
     return ctx.info.software;
   }
   // RenderSettings::tail_depth for this device: the bounce at which the
-  // tail queue takes paths (0: no queue). Auto queues on GPUs only: on
-  // lavapipe the queue saved another 4% of the default scene's passes
-  // (optimisation log 49), but its pipeline is a third compile of the path
-  // tracer, 0.47 s more on a cold cache, and the test suite took twice as long.
+  // tail queue takes paths (0: no queue). Auto queues on GPUs, and on a
+  // CPU device only above kCpuWholePathBounces: there the queue's levels
+  // are another translation of the path tracer (0.5-0.8 s on a cold
+  // cache, the cold test suite 1.5x as long; optimisation logs 49 and
+  // 156), but longer paths in one invocation near llvmpipe's loop limit,
+  // which cuts them short (RenderResult::cut_paths), and a level traces a
+  // few bounces a dispatch.
   uint32_t tail_depth() const {
     if (settings.tail_depth != RenderSettings::kTailAuto) return settings.tail_depth;
-    return ctx.info.software ? 0u : kTailDepthDefault;
+    if (ctx.info.software && settings.bounce_limit <= kCpuWholePathBounces) return 0u;
+    return kTailDepthDefault;
   }
   static_assert(kMaxTailLevels == gpu::MAX_TAIL_LEVELS);
   // RenderSettings::tail_subgroup as set or its auto (default_tail_subgroup
@@ -115,10 +119,14 @@ struct PathTracer::State {
   // for scenes of spheres alone, and with triangles where a fill applies
   // (optimisation logs 63 and 64: on the H200 the levels took 40% off
   // 8,000 spheres; without a fill they made the balloon 45% slower, with
-  // the device's fill it is unchanged and the engine 11-15% faster).
+  // the device's fill it is unchanged and the engine 11-15% faster); on a
+  // CPU device levels always, where one tail stage would trace the rest
+  // of a path in one invocation, toward llvmpipe's loop limit (the
+  // balloon's passes the same either way at 200 bounces, log 157).
   uint32_t tail_step() const {
     if (tail_depth() == 0) return 0u;
     if (settings.tail_step != RenderSettings::kTailAuto) return settings.tail_step;
+    if (ctx.info.software) return kTailStepDefault;  // one tail stage would take the rest of a path
     return scene_features.triangles && fill_setting() == 0 ? 0u : kTailStepDefault;
   }
   // RenderSettings::tail_fill resolved (0: every level queues its survivors).

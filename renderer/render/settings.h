@@ -235,6 +235,13 @@ struct RenderSettings {
 // GPU (optimisation log 49: of 2, 3 and 4 on the H200, 2 was the fastest on
 // the sphere fields and the peer's scene, 3 and 4 on the engine).
 constexpr uint32_t kTailDepthDefault = 2;
+// RenderSettings::tail_depth's auto on a CPU device: whole paths (no
+// queue) up to this bounce limit, the tail levels above it. llvmpipe ends
+// every loop of an invocation after 65,535 iterations of all its loops
+// together; render_test's light trap (20,000 spheres in a mirror sphere)
+// cut paths short from about 200 bounces with whole paths, none at 150
+// (optimisation log 157).
+constexpr uint32_t kCpuWholePathBounces = 64;
 // RenderSettings::tail_step's auto, and the most tail levels a dispatch
 // runs (gpu::MAX_TAIL_LEVELS).
 constexpr uint32_t kTailStepDefault = 1;

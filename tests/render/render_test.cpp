@@ -237,8 +237,9 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
   // The tail levels' auto: with triangles (this scene) levels of a step
   // of 1 where a fill applies (with the octree the subgroup stage's
   // threshold, with the BVH the device's resident threads, or one set),
-  // one tail where none does; levels of a step of 1 for spheres alone; the
-  // same image either way.
+  // one tail where none does (on a GPU: a CPU device takes levels
+  // always); levels of a step of 1 for spheres alone; the same image
+  // either way.
   {
     RenderSettings s;
     s.width = 37;
@@ -247,7 +248,8 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
     s.tail_depth = 2;
     const RenderResult device_fill = render(test::shared_context(), scene, s);
     const uint64_t resident = test::shared_context().info.resident_threads;
-    EXPECT_EQ(device_fill.tail_step, resident > 0 ? kTailStepDefault : 0u);
+    const bool software = test::shared_context().info.software;
+    EXPECT_EQ(device_fill.tail_step, resident > 0 || software ? kTailStepDefault : 0u);
     EXPECT_EQ(device_fill.tail_fill, subgroup_auto());
     EXPECT_EQ(device_fill.tail_subgroup, subgroup_auto());
     s.accel = Accel::Bvh;
@@ -256,7 +258,7 @@ TEST_F(RenderTest, TailQueueDoesNotChangeTheResult) {
     EXPECT_EQ(bvh_fill.tail_subgroup, 0u);
     s.accel = Accel::Octree;
     s.tail_fill = 0;
-    EXPECT_EQ(render(test::shared_context(), scene, s).tail_step, 0u);
+    EXPECT_EQ(render(test::shared_context(), scene, s).tail_step, software ? kTailStepDefault : 0u);
     s.tail_fill = 500;
     const RenderResult set_fill = render(test::shared_context(), scene, s);
     EXPECT_EQ(set_fill.tail_step, kTailStepDefault);
@@ -389,9 +391,11 @@ TEST_F(RenderTest, TailFetchDoesNotChangeTheResult) {
 // the whole paths (a CPU device's default: a path an invocation) are cut
 // short there, which RenderResult::cut_paths counts (path_trace.comp
 // check_loop_limit); the tail levels, which trace a few bounces a
-// dispatch, are not, and give the image a GPU gives with either. A GPU
-// has no such limit: nothing is cut, and both images are the same bit for
-// bit. Fails where the check misses a cut path, or counts one that was not.
+// dispatch, are not, and give the image a GPU gives with either; they are
+// the auto on a CPU device above kCpuWholePathBounces bounces (whole paths
+// up to it). A GPU has no such limit: nothing is cut, and both images are
+// the same bit for bit. Fails where the check misses a cut path, or counts
+// one that was not, or where the CPU auto at 300 bounces cuts paths.
 TEST_F(RenderTest, PathsCutShortByTheLoopLimitAreCounted) {
   const VulkanContext& ctx = test::shared_context();
   const Scene scene = test::light_trap_scene();
@@ -402,9 +406,10 @@ TEST_F(RenderTest, PathsCutShortByTheLoopLimitAreCounted) {
   s.bounce_limit = 300;
   s.tail_depth = 0;  // whole paths, a path an invocation
   const RenderResult whole = render(ctx, scene, s);
-  s.tail_depth = 2;
-  s.tail_step = 1;
+  s.tail_depth = RenderSettings::kTailAuto;  // the tail levels on every device at 300 bounces
   const RenderResult levels = render(ctx, scene, s);
+  EXPECT_EQ(levels.tail_depth, kTailDepthDefault);
+  EXPECT_EQ(levels.tail_step, kTailStepDefault);
   EXPECT_EQ(levels.cut_paths, 0u);
   if (ctx.info.software) {
     EXPECT_GT(whole.cut_paths, 0u) << "the whole paths reach llvmpipe's loop limit here";
@@ -413,6 +418,11 @@ TEST_F(RenderTest, PathsCutShortByTheLoopLimitAreCounted) {
     EXPECT_EQ(whole.cut_paths, 0u);
     expect_same_result(whole, levels);
   }
+  // Up to kCpuWholePathBounces the CPU auto keeps whole paths.
+  s.width = s.height = 8;
+  s.spp = 1;
+  s.bounce_limit = kCpuWholePathBounces;
+  EXPECT_EQ(render(ctx, scene, s).tail_depth, ctx.info.software ? 0u : kTailDepthDefault);
 }
 
 // Batches of about a quarter second, in whole rounds of a pixel's lanes;
