@@ -916,8 +916,8 @@ std::string share_line(const RankShare& s) {
   return line;
 }
 
-bool gather(Accumulation acc, uint64_t nonfinite, uint64_t cut_paths, const RankShare& share, const CheckpointInfo& info,
-            Gathered& out) {
+bool gather(Accumulation acc, uint64_t nonfinite, uint64_t cut_paths, const RankShare& share,
+            const CheckpointInfo& info, Gathered& out) {
   Job& job = g_job;
   if (job.rank == 0) job.join_server();
   json report = {{"share", share_json(share)}, {"info", checkpoint_info_json(info)}, {"nonfinite", nonfinite},

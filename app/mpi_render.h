@@ -160,8 +160,8 @@ void render_share(PathTracer& tracer, const PassSettings& pass, uint32_t first_s
 // place); the others false.
 // Throws JobFailed (rank 0 has printed the line) if a rank failed or renders
 // another scene or other settings than rank 0.
-bool gather(Accumulation acc, uint64_t nonfinite, uint64_t cut_paths, const RankShare& share, const CheckpointInfo& info,
-            Gathered& out);
+bool gather(Accumulation acc, uint64_t nonfinite, uint64_t cut_paths, const RankShare& share,
+            const CheckpointInfo& info, Gathered& out);
 
 // From the front end's error handler: this rank failed with `code` and
 // `message`; takes part in what is left of the job's protocol and returns

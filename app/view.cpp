@@ -229,7 +229,13 @@ void Viewer::recreate_swapchain(int width, int height) {
   settings_.width = int(preview_.swapchain.extent.width);
   settings_.height = int(preview_.swapchain.extent.height);
   if (!tracer_) {
-    tracer_ = std::make_unique<PathTracer>(ctx_, scene_, settings_);
+    // The depth keys change the bounce limit pass by pass, but the tracer
+    // decides its tail queue once: a CPU device's auto (whole paths up to
+    // kCpuWholePathBounces, the tail levels above) is decided for the
+    // deepest paths the keys can ask for.
+    RenderSettings made = settings_;
+    made.bounce_limit = kMaxDepth;
+    tracer_ = std::make_unique<PathTracer>(ctx_, scene_, made);
   } else if (tracer_->settings().width != settings_.width || tracer_->settings().height != settings_.height) {
     tracer_->resize(settings_.width, settings_.height);
   } else if (preview_.width == uint32_t(settings_.width) && preview_.height == uint32_t(settings_.height)) {

@@ -161,9 +161,10 @@ struct RenderSettings {
   // up to this bounce, and the paths still going on there are finished in a
   // dispatch of their own, one per invocation, so that a few long paths do
   // not hold warps of short ones. The image is the same, bit for bit.
-  // kTailAuto: kTailDepthDefault on GPUs; on software devices the head
-  // and the sum without a queue (render/path_tracer.cpp); 0: off (the
-  // whole paths in one pass).
+  // kTailAuto: kTailDepthDefault on GPUs, and on software devices above
+  // kCpuWholePathBounces bounces; up to it the head and the sum without a
+  // queue there (render/path_tracer.cpp); 0: off (the whole paths in one
+  // pass).
   uint32_t tail_depth = kTailAuto;
   static constexpr uint32_t kTailAuto = UINT32_MAX;
   // Paths the tail queue holds per dispatch (0: auto, tail_queue_entries
@@ -177,8 +178,9 @@ struct RenderSettings {
   // next (at most kMaxTailLevels levels; the last finishes them), so that a
   // warp of the tail holds its paths for a few bounces, not until the
   // longest ends. 0: one tail finishes them all. kTailAuto: kTailStepDefault
-  // for scenes of spheres alone, and with triangles where a fill applies
-  // (tail_fill, below), else 0. The image is the same, bit for bit.
+  // on software devices and for scenes of spheres alone, and with
+  // triangles where a fill applies (tail_fill, below), else 0. The image
+  // is the same, bit for bit.
   uint32_t tail_step = kTailAuto;
   // With tail levels: a level that takes fewer paths than this finishes
   // them instead of queuing its survivors for the next, because packed
@@ -250,7 +252,8 @@ constexpr uint32_t kMaxTailLevels = 16;
 // the device holds resident at once (optimisation log 141).
 constexpr uint32_t kTailSubgroupPaths = 4;
 // RenderSettings::tail_fetch's auto for scenes of spheres alone: on from
-// this many spheres, with the octree and with the BVH (optimisation logs
+// this many spheres, with the BVH and otherwise (the octree; brute force,
+// not measured) (optimisation logs
 // 152 and 155: on the H100 the octree's passes 1.008x at 488 spheres,
 // 0.992x at 1,000, 0.968x at 4,000; the BVH's 1.008x at 4,000, 0.988x at
 // 6,000, 0.990x at 8,000, and a gain at 1M with both).

@@ -353,7 +353,9 @@ TEST(Mpi, PathsCutShortOnEveryRankAreCountedAtRankZero) {
   ASSERT_GT(cut, 0u) << "the whole paths reach llvmpipe's loop limit here";
   const RunResult two = mpirun(2, args + "--out " + tmp("trap_two.pfm"));
   ASSERT_EQ(two.code, 0) << two.output;
-  EXPECT_EQ(json_of(two.output).at("cut_paths").get<uint64_t>(), cut) << two.output;
+  const nlohmann::json j = json_of(two.output);
+  for (const nlohmann::json& rank : j.at("ranks")) EXPECT_EQ(rank.at("samples").get<uint32_t>(), 1u) << rank;
+  EXPECT_EQ(j.at("cut_paths").get<uint64_t>(), cut) << two.output;
   EXPECT_NE(two.output.find("warning: " + std::to_string(cut) + " invocations"), std::string::npos) << two.output;
 }
 
