@@ -811,8 +811,8 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
       // After the job's decision this rank's failure could no longer fail it.
       if (uint32_t n = validation_message_count())
         throw RuntimeError("the Vulkan validation layer reported " + std::to_string(n) + " message(s)");
-      if (!mpi::gather(tracer.read_accumulation(), tracer.nonfinite_samples(), tracer.cut_paths(), share, info,
-                       gathered))
+      const RenderCounts counts = tracer.counts();
+      if (!mpi::gather(tracer.read_accumulation(), counts.nonfinite_samples, counts.cut_paths, share, info, gathered))
         return 0;
       const Accumulation& merged = gathered.merged;
       result.timings = tracer.setup_timings();

@@ -72,9 +72,7 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
   shares.assign(devices, {});
   std::vector<Accumulation> parts(devices);
   RenderResult r;  // device 0's set-up timings, octree and features; the merged state
-  std::vector<uint64_t> nonfinite(devices, 0);
-  std::vector<uint64_t> cut(devices, 0);
-  std::vector<WalkStats> walks(devices);
+  std::vector<RenderCounts> counts(devices);
   std::vector<std::vector<DispatchTime>> dispatches(devices);
   std::atomic<uint32_t> next{0};  // the next sample offset to hand out
   std::atomic<uint32_t> done{0};
@@ -133,9 +131,7 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
       }
       ends[d] = Clock::now();
       parts[d] = tracer.read_accumulation();
-      nonfinite[d] = tracer.nonfinite_samples();
-      cut[d] = tracer.cut_paths();
-      walks[d] = tracer.walk_stats();
+      counts[d] = tracer.counts();
       dispatches[d] = tracer.dispatch_times();
       if (d == 0) {
         r.timings = tracer.setup_timings();
@@ -165,11 +161,11 @@ RenderResult render_on_devices(const std::vector<const VulkanContext*>& contexts
   auto merge_start = Clock::now();
   resolve_accumulation(merge_accumulations(parts), r);
   r.timings.readback_ms = ms_since(merge_start);
-  r.nonfinite_samples = 0;
-  for (uint64_t k : nonfinite) r.nonfinite_samples += k;
-  r.cut_paths = 0;
-  for (uint64_t k : cut) r.cut_paths += k;
-  for (const WalkStats& w : walks) r.walk += w;
+  RenderCounts total;
+  for (const RenderCounts& c : counts) total += c;
+  r.nonfinite_samples = total.nonfinite_samples;
+  r.cut_paths = total.cut_paths;
+  r.walk = total.walk;
   for (const std::vector<DispatchTime>& d : dispatches) add_dispatch_times(r.dispatches, d);
   const Clock::time_point last = *std::max_element(ends.begin(), ends.end());
   r.timings.render_wall_ms = std::chrono::duration<double, std::milli>(last - start).count();

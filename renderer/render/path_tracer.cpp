@@ -933,19 +933,16 @@ void resolve_accumulation(const Accumulation& a, RenderResult& r) {
   resolve_m2(a.sq.data(), r);
 }
 
-// The stats buffer's counters (shared.h RenderStats), read back.
-static gpu::RenderStats download_stats(const VulkanContext& ctx, const Buffer& buffer) {
+RenderCounts PathTracer::counts() {
+  State& s = *state_;
   gpu::RenderStats stats{};
-  download_buffer(ctx, buffer, &stats, sizeof(stats));
-  return stats;
-}
-
-// The walk counts of `stats` (zeros and counted = false where the walks
-// were not counted).
-static WalkStats walk_stats_of(const gpu::RenderStats& stats, bool counted) {
-  WalkStats w;
-  if (!counted) return w;
+  download_buffer(s.ctx, s.stats, &stats, sizeof(stats));
+  RenderCounts c;
+  c.nonfinite_samples = stats.nonfinite_samples;
+  c.cut_paths = stats.cut_paths;
+  if (!s.settings.walk_stats) return c;
   const auto count = [&](uint32_t k) { return uint64_t(stats.walk[2 * k]) | uint64_t(stats.walk[2 * k + 1]) << 32; };
+  WalkStats& w = c.walk;
   w.counted = true;
   w.queries = count(gpu::WALK_QUERIES);
   w.nodes = count(gpu::WALK_NODES);
@@ -956,12 +953,8 @@ static WalkStats walk_stats_of(const gpu::RenderStats& stats, bool counted) {
   w.query_slots = count(gpu::WALK_QUERY_SLOTS);
   w.node_slots = count(gpu::WALK_NODE_SLOTS);
   w.primitive_slots = count(gpu::WALK_PRIMITIVE_SLOTS);
-  return w;
+  return c;
 }
-
-uint64_t PathTracer::nonfinite_samples() { return download_stats(state_->ctx, state_->stats).nonfinite_samples; }
-
-uint64_t PathTracer::cut_paths() { return download_stats(state_->ctx, state_->stats).cut_paths; }
 
 WalkStats& WalkStats::operator+=(const WalkStats& o) {
   counted = counted || o.counted;
@@ -977,10 +970,11 @@ WalkStats& WalkStats::operator+=(const WalkStats& o) {
   return *this;
 }
 
-WalkStats PathTracer::walk_stats() {
-  State& s = *state_;
-  if (!s.settings.walk_stats) return {};
-  return walk_stats_of(download_stats(s.ctx, s.stats), true);
+RenderCounts& RenderCounts::operator+=(const RenderCounts& o) {
+  nonfinite_samples += o.nonfinite_samples;
+  cut_paths += o.cut_paths;
+  walk += o.walk;
+  return *this;
 }
 
 // resolve_accumulation's values, each buffer resolved as it arrives in the
@@ -1033,11 +1027,10 @@ RenderResult PathTracer::read_result(const Accumulation& acc) {
 // (the read-back's from `start`), the tree and the pipeline's choices.
 void PathTracer::finish_result(RenderResult& r, Clock::time_point start) {
   State& s = *state_;
-  // One read of the stats buffer for its three kinds of counters.
-  const gpu::RenderStats stats = download_stats(s.ctx, s.stats);
-  r.nonfinite_samples = stats.nonfinite_samples;
-  r.cut_paths = stats.cut_paths;
-  r.walk = walk_stats_of(stats, s.settings.walk_stats);
+  const RenderCounts c = counts();
+  r.nonfinite_samples = c.nonfinite_samples;
+  r.cut_paths = c.cut_paths;
+  r.walk = c.walk;
   r.dispatches = s.dispatch_sums;
   s.timings.readback_ms = ms_since(start);
   r.timings = s.timings;

@@ -64,6 +64,16 @@ struct WalkStats {
   WalkStats& operator+=(const WalkStats& o);
 };
 
+// What the passes counted in the stats buffer since the last reset
+// (shared.h RenderStats), read back at once: RenderResult's fields of the
+// same names.
+struct RenderCounts {
+  uint64_t nonfinite_samples = 0;
+  uint64_t cut_paths = 0;
+  WalkStats walk;  // zeros and counted = false without RenderSettings::walk_stats
+  RenderCounts& operator+=(const RenderCounts& o);
+};
+
 // One kind of dispatch of the passes (RenderSettings::dispatch_times): its
 // stage, its tail level, how often it ran, its device time in all, from
 // the end of the dispatch before it, and the paths a tail level took.
@@ -296,13 +306,8 @@ class PathTracer {
   RenderResult read_result();
   // The same from an accumulation already read back (read_accumulation).
   RenderResult read_result(const Accumulation& acc);
-  // NaN/Inf samples rejected since the last reset.
-  uint64_t nonfinite_samples();
-  // RenderResult::cut_paths so far (since the last reset).
-  uint64_t cut_paths();
-  // What the walks counted since the last reset (zeros and counted = false
-  // without RenderSettings::walk_stats).
-  WalkStats walk_stats();
+  // The stats buffer's counts since the last reset, in one read.
+  RenderCounts counts();
   // The dispatches' device times since the last reset (empty without
   // RenderSettings::dispatch_times).
   const std::vector<DispatchTime>& dispatch_times() const;
