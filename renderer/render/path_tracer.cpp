@@ -455,7 +455,7 @@ void PathTracer::State::create_stage(ComputePipeline& p, uint32_t stage, const u
                            {gpu::SPEC_SINGLE_SIDED, f.single_sided},
                            {gpu::SPEC_TRANSMISSION, f.transmission},
                            {gpu::SPEC_ABSORPTION, f.absorption},
-                           {gpu::SPEC_NEE, settings.nee && (f.sphere_lights || f.punctual || f.sky_light || f.triangle_lights)},
+                           {gpu::SPEC_NEE, settings.nee && f.nee_lights()},
                            {gpu::SPEC_PUNCTUAL, f.punctual},
                            {gpu::SPEC_SKY_LIGHT, f.sky_light},
                            {gpu::SPEC_TRIANGLE_LIGHTS, f.triangle_lights},
@@ -1097,12 +1097,18 @@ uint32_t default_tail_subgroup(const DeviceInfo& device, bool triangles) {
 std::string software_loop_limit_warning(const DeviceInfo& device, const Scene& scene, const RenderSettings& settings) {
   constexpr uint64_t kLoopLimit = 65535;
   if (!device.software || settings.accel != Accel::Brute) return {};
-  const uint64_t per_bounce = std::max<uint64_t>(scene.spheres.size(), instanced_triangle_count(scene));
+  // Brute force's query loops over the spheres, the instances and each
+  // instance's triangles (accel/closest_hit.glsl); a bounce asks one, and
+  // with next-event estimation a shadow ray's too.
+  const uint64_t primitives = scene.spheres.size() + scene.instances.size() + instanced_triangle_count(scene);
+  const bool shadow_rays = settings.nee && scene_features(scene).nee_lights();
+  const uint64_t per_bounce = std::max<uint64_t>(primitives * (shadow_rays ? 2 : 1), 1);
   if (per_bounce * settings.bounce_limit <= kLoopLimit) return {};
   return device.name + " ends a shader loop after 65535 iterations per invocation: brute force over " +
-         std::to_string(per_bounce) + " primitives cuts paths longer than " +
-         std::to_string(kLoopLimit / per_bounce) + " bounces short (the image is wrong where paths are long; the "
-         "octree is not affected)";
+         std::to_string(primitives) + " primitives" + (shadow_rays ? ", twice a bounce with a shadow ray," : "") +
+         " can cut paths longer than " + std::to_string(kLoopLimit / per_bounce) +
+         " bounces short (the image is wrong where it does; `render` reports how many it cut; the octree "
+         "and the BVH test a few primitives a bounce)";
 }
 
 std::string punctual_without_nee_warning(const Scene& scene, const RenderSettings& settings) {

@@ -346,9 +346,15 @@ class PathTracer {
 
 // llvmpipe (Mesa 22.3) ends a shader loop after 65535 iterations, counted
 // over the whole invocation. Brute force runs its loop over every primitive
-// at every bounce: with N primitives, paths longer than 65535 / N bounces
-// are cut short and the image is wrong where they are. Returns a one-line
-// warning for such a render on a software device, or an empty string.
+// (spheres, instances and their triangles) at every bounce, and again for
+// the bounce's shadow ray where next-event estimation has a light to
+// sample: with N primitives, paths longer than 65535 / N bounces (65535 /
+// 2N with shadow rays) can be cut short, and the image is wrong where they
+// are (the render counts them: RenderResult::cut_paths). Returns a one-line
+// warning for such a render on a software device, or an empty string. It
+// counts a whole path's bounces: the tail levels a CPU device takes above
+// kCpuWholePathBounces trace fewer a dispatch, but a path the tail queue
+// has no room for finishes in the head.
 std::string software_loop_limit_warning(const DeviceInfo& device, const Scene& scene, const RenderSettings& settings);
 
 // Punctual lights are reached by next-event estimation only: a one-line

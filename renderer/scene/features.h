@@ -43,6 +43,10 @@ struct SceneFeatures {
   bool sky_light = false;
   bool triangle_lights = false;   // some placed mesh triangle emits (triangle_emission not black)
 
+  // Some light that next-event estimation samples: with NEE on, a path
+  // casts a shadow ray toward one at its bounces.
+  bool nee_lights() const { return sphere_lights || punctual || sky_light || triangle_lights; }
+
   bool operator==(const SceneFeatures&) const = default;
 };
 

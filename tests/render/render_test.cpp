@@ -425,6 +425,65 @@ TEST_F(RenderTest, PathsCutShortByTheLoopLimitAreCounted) {
   EXPECT_EQ(render(ctx, scene, s).tail_depth, ctx.info.software ? 0u : kTailDepthDefault);
 }
 
+// The brute-force warning on a CPU device (software_loop_limit_warning):
+// its bound counts every primitive a bounce's query loops over (spheres,
+// instances, their triangles) and, where next-event estimation has a light
+// to sample, the shadow ray's loop too. Measured on lavapipe (session 55,
+// docs/reliability.md): 1,002 spheres with a sphere light cut paths at 60
+// bounces, under the bound without the shadow rays (65), none with NEE off
+// to 64. Fails where the bound leaves either out, or where it warns within
+// the bound, on a GPU or for a tree.
+TEST(SoftwareLoopLimitWarning, CountsEveryPrimitiveOfABounceAndTheShadowRay) {
+  DeviceInfo cpu;
+  cpu.name = "llvmpipe";
+  cpu.software = true;
+  Scene scene = test::furnace_scene();
+  scene.materials = {{MaterialType::Lambertian, glm::vec3(0.5f)}};
+  for (int i = 0; i < 1000; ++i) scene.spheres.push_back({{float(i), 0, 0}, 0.1f, 0});
+  RenderSettings s;
+  s.accel = Accel::Brute;
+  s.bounce_limit = 65;  // 65 x 1,000 queries' iterations <= 65,535
+  EXPECT_EQ(software_loop_limit_warning(cpu, scene, s), "");
+  s.bounce_limit = 66;
+  EXPECT_NE(software_loop_limit_warning(cpu, scene, s).find("1000 primitives can cut paths longer than 65 bounces"),
+            std::string::npos)
+      << software_loop_limit_warning(cpu, scene, s);
+
+  // A sphere light: each bounce's shadow ray loops over the 1,001 spheres again.
+  Material light;
+  light.type = MaterialType::Emissive;
+  light.radiance = glm::vec3(4.0f);
+  scene.materials.push_back(light);
+  scene.spheres.push_back({{0, 5, 0}, 0.5f, 1});
+  s.bounce_limit = 32;  // 32 x 2,002 <= 65,535
+  EXPECT_EQ(software_loop_limit_warning(cpu, scene, s), "");
+  s.bounce_limit = 33;
+  EXPECT_NE(software_loop_limit_warning(cpu, scene, s).find("longer than 32 bounces"), std::string::npos)
+      << software_loop_limit_warning(cpu, scene, s);
+  s.nee = false;  // no shadow rays
+  EXPECT_EQ(software_loop_limit_warning(cpu, scene, s), "");
+  s.nee = true;
+
+  // Two instances of a two-triangle mesh: 1,001 spheres + 2 instances + 4 triangles.
+  Mesh quad;
+  quad.name = "quad";
+  quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  quad.materials = {0, 0};
+  scene.meshes.push_back(quad);
+  scene.instances = {{0, glm::mat4(1.0f)}, {0, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 2))}};
+  EXPECT_NE(software_loop_limit_warning(cpu, scene, s).find("1007 primitives"), std::string::npos)
+      << software_loop_limit_warning(cpu, scene, s);
+
+  // A tree, or a GPU: no warning.
+  s.accel = Accel::Octree;
+  EXPECT_EQ(software_loop_limit_warning(cpu, scene, s), "");
+  s.accel = Accel::Brute;
+  DeviceInfo gpu = cpu;
+  gpu.software = false;
+  EXPECT_EQ(software_loop_limit_warning(gpu, scene, s), "");
+}
+
 // Batches of about a quarter second, in whole rounds of a pixel's lanes;
 // one round at least while it takes at most a second (a prompt stop).
 TEST(NextBatch, TakesWholeRoundsOfLanesAndKeepsAStopPrompt) {
