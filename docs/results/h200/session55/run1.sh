@@ -7,7 +7,7 @@
 # 18, H200) and the leaf size over spheres (log 115 chose 24 in session
 # 34). Pack: tools/gpu_pack.sh held=docs/results/h200/session55/held.patch
 # pairs=docs/results/h200/session55/pairs.patch at HEAD (pairs added at
-# 02:20 UTC, after the machines stopped coming: the top level's node step
+# 02:08 UTC, after the machines stopped coming: the top level's node step
 # two children a trip, log 81's form for the meshes). Carry .gl, .gpub, .assets. Expectations: expected.md, run 1.
 # The engine's A/B dropped before the run (01:47 UTC): three starts failed
 # and the device time left must hold runs 1 and 2.
