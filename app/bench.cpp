@@ -121,8 +121,11 @@ double timed_render(PathTracer& tracer, const Scene& scene, const RenderSettings
 }
 
 // One configuration of a bench: its tracer (set up with `accel` and
-// `precision`; a warning where a software device's loop limit cuts paths)
-// and the device times of `repeat` renders of s.spp passes, after warm_up.
+// `precision`; a warning where a software device's loop limit can cut
+// paths) and the device times of `repeat` renders of s.spp passes, after
+// warm_up; `what` names the row in the warning that its last render cut
+// paths short (RenderCounts::cut_paths: its time is of shorter paths than
+// the bounce limit asks for).
 struct TimedRuns {
   std::unique_ptr<PathTracer> tracer;
   std::vector<double> times;
@@ -130,7 +133,7 @@ struct TimedRuns {
 };
 
 TimedRuns timed_runs(const VulkanContext& ctx, const Scene& scene, RenderSettings s, Accel accel,
-                     Precision precision, uint32_t repeat, double warmup_s) {
+                     Precision precision, uint32_t repeat, double warmup_s, const std::string& what) {
   s.accel = accel;
   s.precision = precision;
   if (std::string w = software_loop_limit_warning(ctx.info, scene, s); !w.empty()) print_warning(w);
@@ -143,6 +146,11 @@ TimedRuns timed_runs(const VulkanContext& ctx, const Scene& scene, RenderSetting
   t.median_ms = median(t.times);
   t.min_ms = *std::min_element(t.times.begin(), t.times.end());
   t.max_ms = *std::max_element(t.times.begin(), t.times.end());
+  if (const uint64_t cut = t.tracer->counts().cut_paths; cut > 0)
+    print_warning(what + ", " + accel_name(accel) + " " + precision_name(precision) + ": " + std::to_string(cut) +
+                  " invocations of its last render reached llvmpipe's limit of 65,535 loop iterations, which cut "
+                  "their paths short: its time is of shorter paths than --depth " + std::to_string(s.bounce_limit) +
+                  " asks for");
   return t;
 }
 
@@ -256,7 +264,7 @@ int run_scene_bench(const VulkanContext& ctx, const BenchOptions& o, const Rende
     const auto& [name, scene] = o.scenes[index];
     for (Precision precision : o.precisions) {
       for (Accel accel : o.accels) {
-        TimedRuns t = timed_runs(ctx, scene, settings, accel, precision, o.repeat, o.warmup_s);
+        TimedRuns t = timed_runs(ctx, scene, settings, accel, precision, o.repeat, o.warmup_s, name);
         SceneRow row{name, scene.spheres.size(), instanced_triangle_count(scene), accel, precision};
         row.scene_index = index;
         row.median_ms = t.median_ms;
@@ -369,7 +377,8 @@ int run_bench(const BenchOptions& o) {
               continue;
             }
           }
-          const TimedRuns t = timed_runs(ctx, scene, settings, accel, precision, o.repeat, o.warmup_s);
+          const TimedRuns t = timed_runs(ctx, scene, settings, accel, precision, o.repeat, o.warmup_s,
+                                         std::to_string(n) + " spheres r=" + fmt("%g", radius));
           row.median_ms = t.median_ms;
           row.min_ms = t.min_ms;
           row.max_ms = t.max_ms;

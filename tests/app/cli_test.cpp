@@ -390,6 +390,28 @@ TEST(Cli, BenchTimesSceneFiles) {
     EXPECT_NE(r.output.find(row), std::string::npos) << row << " missing in " << r.output;
 }
 
+// A bench row whose last render had paths cut short by llvmpipe's loop
+// limit says so: its time is of shorter paths than --depth asks for.
+// render_test's light trap with 1,000 small spheres: brute force (1,002
+// spheres a query, twice a bounce with the emitter's shadow rays) cut
+// about 50 invocations at 64 bounces, 40x30 (session 55); the octree
+// none. Fails where bench drops RenderCounts::cut_paths, or warns for a
+// row that cut nothing.
+TEST(Cli, BenchSaysWhereTheLoopLimitCutARowsPaths) {
+  octrace::Scene trap = octrace::test::light_trap_scene();
+  trap.spheres.resize(1002);  // the mirror, the emitter and 1,000 small spheres
+  const std::string json = write_file("bench_trap.json", octrace::scene_to_json(trap));
+  RunResult r = run_octrace("bench --device cpu --scene " + json +
+                            " --accel octree,brute --size 40x30 --spp 1 --depth 64 --repeat 1 --warmup 0 --quiet");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("bench_trap.json, brute fp32: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("invocations of its last render reached llvmpipe's limit of 65,535 loop iterations, which "
+                          "cut their paths short: its time is of shorter paths than --depth 64 asks for"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("bench_trap.json, octree"), std::string::npos) << r.output;
+}
+
 // The cells of a CSV file's lines, header first (a quoted cell may hold
 // commas: the device's name; no quotes inside quotes).
 std::vector<std::vector<std::string>> csv_cells(const std::string& path) {
