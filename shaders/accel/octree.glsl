@@ -35,13 +35,6 @@ layout(constant_id = SPEC_BVH_MESH_WIDE) const bool BVH_MESH_WIDE = false;
 layout(constant_id = SPEC_BVH_TOP_WHILE) const bool BVH_TOP_WHILE = false;
 
 const float WIDEN = 1.0 + 2.0 * (3.0 * 5.96046448e-8) / (1.0 - 3.0 * 5.96046448e-8);
-// A factor below 1 / WIDEN (1 - 2^-21 against 1 - 3.6e-7) with room for
-// its product's rounding (half an ulp, 2^-24 relative): x * NARROW <= x /
-// WIDEN for x >= 0, so a distance narrowed with it is never larger than
-// one divided by WIDEN. The octant culling narrows with it instead of
-// dividing (a division a node and one a split axis, which a CPU device
-// compiles as divisions; optimisation log 160).
-const float NARROW = 1.0 - 8.0 * 5.96046448e-8;
 
 // The top-level walk's form: a subtraction and a multiplication per plane.
 struct SlabRay {
@@ -138,8 +131,7 @@ const uint STACK_SIZE = 141u;
 // build's middle is +inf there: every child is on the lower side) is
 // skipped: its children lie anywhere along it. t_a's sign is exact (a
 // rounded difference keeps its sign); its size and the entry are
-// widened as in hit_box (narrowed by NARROW, at least as much as dividing
-// by WIDEN). A ray in the plane (t_a = 0) keeps both sides.
+// widened as in hit_box. A ray in the plane (t_a = 0) keeps both sides.
 // On by default (OCTANT_CULLING; `--octant-culling off`: the same image).
 //
 // Visit order j = octant XOR sign_mask: the child mask permuted into that
@@ -151,7 +143,7 @@ uint octree_children_order(GpuOctreeNode node, float entry, vec3 origin, vec3 in
   if (OCTANT_CULLING) {
     vec3 mid = node.lo + 0.5 * (node.hi - node.lo);
     vec3 t_mid = (mid - origin) * inv_dir;
-    float t_in = entry * NARROW;  // <= entry / WIDEN
+    float t_in = entry / WIDEN;
     float t_out = t_hit * WIDEN;
     for (uint a = 0u; a < 3u; ++a) {
       uint lower = a == 0u ? 0x55u : (a == 1u ? 0x33u : 0x0fu);  // octants below the middle on a
@@ -159,7 +151,7 @@ uint octree_children_order(GpuOctreeNode node, float entry, vec3 origin, vec3 in
       float ta = t_mid[a];
       bool down = ((sign_mask >> a) & 1u) != 0u;
       bool before = t_in <= ta * WIDEN || ta == 0.0;  // some of [t_in, t_out] is before t_a
-      bool after = t_out >= ta * NARROW || ta == 0.0;  // some of it is after t_a (ta * NARROW <= ta / WIDEN for ta >= 0; below 0 both are below t_out)
+      bool after = t_out >= ta / WIDEN || ta == 0.0;  // some of it is after t_a
       bool below = down ? after : before;
       bool above = down ? before : after;
       mask &= (below ? lower : 0u) | (above ? ~lower & 0xffu : 0u);
