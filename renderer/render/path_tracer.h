@@ -353,8 +353,9 @@ class PathTracer {
 // are (the render counts them: RenderResult::cut_paths). Returns a one-line
 // warning for such a render on a software device, or an empty string. It
 // counts a whole path's bounces: the tail levels a CPU device takes above
-// kCpuWholePathBounces trace fewer a dispatch, but a path the tail queue
-// has no room for finishes in the head.
+// kCpuWholePathBounces trace fewer a dispatch, but their last level traces
+// the rest of a path, and a path the tail queue has no room for finishes in
+// the head.
 std::string software_loop_limit_warning(const DeviceInfo& device, const Scene& scene, const RenderSettings& settings);
 
 // Punctual lights are reached by next-event estimation only: a one-line
