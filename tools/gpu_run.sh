@@ -44,6 +44,8 @@
 #     $R/NAME, its two rows in $T;
 #   - peer_both: the peer built (unless gpu_suites built it) and side by
 #     side with `--accel bvh` and the octree (peer_bvh, peer_octree);
+#   - walk_stats LABEL FLAGS...: `render FLAGS --walk-stats`'s counts a
+#     query (render --json's walk over its queries), one line in $T;
 #   - bench_goals: `bench` of the goals' rows (488 / 8,000 / 1M spheres
 #     with both structures, the balloon and the engine, 10M with the BVH)
 #     into $OUT/spheres.log, meshes.log and spheres10m.log, their figures
@@ -161,5 +163,11 @@ bench_goals() {
   bench_logged spheres 150 " ms" --accel octree,bvh --spheres 488,8000,1000000 --radius 0.1
   bench_logged meshes 90 "rays/s$" --accel octree,bvh --scene .assets/balloon/scene.gltf,.assets/2CylinderEngine.glb
   bench_logged spheres10m 150 " ms" --accel bvh --spheres 10000000 --radius 0.1
+}
+walk_stats() {
+  local label=$1; shift
+  "$B" render "$@" --walk-stats --json -q -o "$R/walk.pfm" > "$R/walk_$label.json" 2>&1
+  echo "walk-stats $label: $(python3 -c 'import json,sys; w=json.load(open(sys.argv[1]))["walk"]; q=w["queries"]; print({k: round(v / q, 3) for k, v in w.items()})' "$R/walk_$label.json" 2>&1 | head -c 600)" >> "$T"
+  rm -f "$R/walk.pfm"
 }
 gpu_finish() { tar czf "$OUT/results.tgz" -C /tmp res; cat "$T"; }

@@ -25,10 +25,6 @@ V=(--variant head= --variant "leaf2=BIN=$L" --variant "node2=BIN=$N" --variant "
 for n in 8000 488; do for a in octree bvh; do
   AB_TIMEOUT=120 ab marginal_${n}_$a $S --spheres $n --radius 0.1 --accel $a
 done; done
-for a in octree bvh; do
-  "$B" render $S --spheres 8000 --radius 0.1 --accel $a --walk-stats --json -q -o "$R/w.pfm" > "$R/walk_8000_$a.json" 2>&1
-  echo "walk-stats 8000 $a: $(python3 -c 'import json,sys; w=json.load(open(sys.argv[1]))["walk"]; q=w["queries"]; print({k: round(v / q, 3) for k, v in w.items()})' "$R/walk_8000_$a.json" 2>&1 | head -c 600)" >> "$T"
-done
-rm -f "$R/w.pfm"
+for a in octree bvh; do walk_stats 8000_$a $S --spheres 8000 --radius 0.1 --accel $a; done
 echo "done at $(date -u +%T)" >> "$T"
 gpu_finish
