@@ -71,6 +71,7 @@ class Viewer {
  private:
   void recreate_swapchain(int width, int height);
   void apply_configuration();
+  void warn_loop_limit();
   void frame();
   void after_frame(uint32_t passes);
   void update_title();
@@ -103,6 +104,11 @@ class Viewer {
   uint32_t spp_ = 0;           // passes accumulated since the last restart
   double pass_ms_ = 0;         // device time per pass, last frame; 0 before the first
   bool reconfigure_ = false;   // precision, accel or effects changed
+  // The loop-limit warning last printed (software_loop_limit_warning for
+  // the accel and depth in force), so that a key press that keeps it does
+  // not print it again.
+  std::string loop_limit_warning_;
+  bool loop_limit_checked_ = false;
   bool swapchain_dirty_ = true;
   bool restart_ = false;       // camera or bounce limit changed, or R
   bool save_requested_ = false;
@@ -200,7 +206,9 @@ void Viewer::run() {
       recreate_swapchain(width, height);
       continue;
     }
+    const bool changed = reconfigure_ || restart_ || !loop_limit_checked_;
     if (reconfigure_) apply_configuration();
+    if (changed) warn_loop_limit();
     if (restart_) {
       tracer_->reset();
       spp_ = 0;
@@ -245,6 +253,18 @@ void Viewer::recreate_swapchain(int width, int height) {
   spp_ = 0;
   pass_ms_ = 0;
   target_reached_ = false;
+}
+
+// On a CPU device, brute force at the accel and depth in force can reach
+// llvmpipe's loop limit, which cuts paths short (render/path_tracer.h,
+// software_loop_limit_warning): said once when the B or depth keys (or the
+// flags) bring a render there, and again only when the warning changes.
+void Viewer::warn_loop_limit() {
+  loop_limit_checked_ = true;
+  std::string w = software_loop_limit_warning(ctx_.info, scene_, settings_);
+  if (w == loop_limit_warning_) return;
+  loop_limit_warning_ = w;
+  if (!w.empty()) std::fprintf(stderr, "octrace view: warning: %s\n", w.c_str());
 }
 
 // P, B and E: another pipeline (or acceleration structure) over the same

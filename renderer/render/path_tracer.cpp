@@ -1107,7 +1107,7 @@ std::string software_loop_limit_warning(const DeviceInfo& device, const Scene& s
   return device.name + " ends a shader loop after 65535 iterations per invocation: brute force over " +
          std::to_string(primitives) + " primitives" + (shadow_rays ? ", twice a bounce with a shadow ray," : "") +
          " can cut paths longer than " + std::to_string(kLoopLimit / per_bounce) +
-         " bounces short (the image is wrong where it does; octrace reports how many it cut; the octree "
+         " bounces short (the image is wrong where it does; `render` and `bench` report how many they cut; the octree "
          "and the BVH test a few primitives a bounce)";
 }
 

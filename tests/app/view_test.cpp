@@ -122,6 +122,27 @@ INSTANTIATE_TEST_SUITE_P(
         ViewCase{"rtiow_fp16", "--spheres 40 --size 64x48 --depth 10 --precision fp16", 8}),
     [](const auto& info) { return std::string(info.param.label); });
 
+// Brute force on a CPU device past llvmpipe's loop limit (2,000 spheres at
+// 50 bounces: 100,000 iterations a path) is said once, as `render` and
+// `bench` say it (render/path_tracer.h software_loop_limit_warning); the
+// window showed such images in silence. Fails where view drops the
+// warning or prints it every frame (2 spp: two frames at least).
+TEST(ViewTest, BruteForcePastTheLoopLimitIsSaidOnce) {
+  Xvfb xvfb;
+  ASSERT_FALSE(xvfb.display().empty()) << "cannot start Xvfb (Debian: xvfb)";
+  const std::string shot = tmp("brute_limit.png");
+  RunResult view = run("DISPLAY=" + xvfb.display(), "view --device cpu --spheres 2000 --radius 0.1 --size 16x8 "
+                                                    "--accel brute --max-spp 2 --screenshot " + shot +
+                                                    " --exit-after-spp");
+  ASSERT_EQ(view.code, 0) << view.output;
+  const std::string said = "octrace view: warning: ";
+  const size_t at = view.output.find(said);
+  ASSERT_NE(at, std::string::npos) << view.output;
+  EXPECT_NE(view.output.find("brute force over", at), std::string::npos) << view.output;
+  EXPECT_NE(view.output.find("can cut paths longer than", at), std::string::npos) << view.output;
+  EXPECT_EQ(view.output.find(said, at + 1), std::string::npos) << "said twice: " << view.output;
+}
+
 TEST(ViewTest, WithoutDisplayOneLineNonZeroExit) {
   std::string shot = tmp("no_display.png");
   fs::remove(shot);
