@@ -147,10 +147,9 @@ TimedRuns timed_runs(const VulkanContext& ctx, const Scene& scene, RenderSetting
   t.min_ms = *std::min_element(t.times.begin(), t.times.end());
   t.max_ms = *std::max_element(t.times.begin(), t.times.end());
   if (const uint64_t cut = t.tracer->counts().cut_paths; cut > 0)
-    print_warning(what + ", " + accel_name(accel) + " " + precision_name(precision) + ": " + std::to_string(cut) +
-                  " invocations of its last render reached llvmpipe's limit of 65,535 loop iterations, which cut "
-                  "their paths short: its time is of shorter paths than --depth " + std::to_string(s.bounce_limit) +
-                  " asks for");
+    print_warning(what + ", " + accel_name(accel) + " " + precision_name(precision) + ", its last render: " +
+                  cut_paths_note(cut) + ": its time is of shorter paths than --depth " +
+                  std::to_string(s.bounce_limit) + " asks for");
   return t;
 }
 

@@ -854,11 +854,9 @@ int cmd_render(SceneOptions scene_opts, const RenderOptions& render_opts, std::v
   // image that is wrong where they were: said even with -q, as brute
   // force's caveat is.
   if (result.cut_paths)
-    std::fprintf(stderr,
-                 "octrace: warning: %llu invocations of the CPU device's path tracer reached llvmpipe's limit of "
-                 "65,535 loop iterations, which cut their paths short (the image is wrong there); render with "
-                 "--tail-depth 2 --tail-step 1 (fewer bounces a dispatch), a lower --depth, or on a GPU\n",
-                 (unsigned long long)result.cut_paths);
+    print_warning(cut_paths_note(result.cut_paths) +
+                  " (the image is wrong there); render with --tail-depth 2 --tail-step 1 (fewer bounces a "
+                  "dispatch), a lower --depth, or on a GPU");
   start = Clock::now();
   write_outputs(result.mean, outputs, scene_opts.dump_scene.empty() ? nullptr : &scene, scene_opts.dump_scene);
   double write_ms = ms_since(start);

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #define GLFW_INCLUDE_VULKAN
@@ -104,11 +105,12 @@ class Viewer {
   uint32_t spp_ = 0;           // passes accumulated since the last restart
   double pass_ms_ = 0;         // device time per pass, last frame; 0 before the first
   bool reconfigure_ = false;   // precision, accel or effects changed
-  // The loop-limit warning last printed (software_loop_limit_warning for
-  // the accel and depth in force), so that a key press that keeps it does
-  // not print it again.
+  // The loop-limit warning last printed and the accel and depth it was
+  // worked out for (software_loop_limit_warning: on a CPU device it depends
+  // on those alone of what the keys change), so that it is worked out
+  // again only when they change, and printed only when it changes.
   std::string loop_limit_warning_;
-  bool loop_limit_checked_ = false;
+  std::optional<std::pair<Accel, uint32_t>> loop_limit_for_;
   bool swapchain_dirty_ = true;
   bool restart_ = false;       // camera or bounce limit changed, or R
   bool save_requested_ = false;
@@ -206,9 +208,8 @@ void Viewer::run() {
       recreate_swapchain(width, height);
       continue;
     }
-    const bool changed = reconfigure_ || restart_ || !loop_limit_checked_;
     if (reconfigure_) apply_configuration();
-    if (changed) warn_loop_limit();
+    warn_loop_limit();
     if (restart_) {
       tracer_->reset();
       spp_ = 0;
@@ -260,7 +261,9 @@ void Viewer::recreate_swapchain(int width, int height) {
 // software_loop_limit_warning): said once when the B or depth keys (or the
 // flags) bring a render there, and again only when the warning changes.
 void Viewer::warn_loop_limit() {
-  loop_limit_checked_ = true;
+  const std::pair<Accel, uint32_t> now{settings_.accel, settings_.bounce_limit};
+  if (loop_limit_for_ == now) return;
+  loop_limit_for_ = now;
   std::string w = software_loop_limit_warning(ctx_.info, scene_, settings_);
   if (w == loop_limit_warning_) return;
   loop_limit_warning_ = w;

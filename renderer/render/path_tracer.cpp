@@ -1111,6 +1111,12 @@ std::string software_loop_limit_warning(const DeviceInfo& device, const Scene& s
          "and the BVH test a few primitives a bounce)";
 }
 
+std::string cut_paths_note(uint64_t cut_paths) {
+  return std::to_string(cut_paths) +
+         " invocations of the CPU device's path tracer reached llvmpipe's limit of 65,535 loop iterations, which cut "
+         "their paths short";
+}
+
 std::string punctual_without_nee_warning(const Scene& scene, const RenderSettings& settings) {
   if (settings.nee || !scene_features(scene).punctual) return {};
   return "next-event estimation is off: the scene's " + std::to_string(scene.lights.size()) +

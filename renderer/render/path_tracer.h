@@ -358,6 +358,12 @@ class PathTracer {
 // the head.
 std::string software_loop_limit_warning(const DeviceInfo& device, const Scene& scene, const RenderSettings& settings);
 
+// RenderResult::cut_paths in words, for the warnings after a render that
+// cut paths (`render`, `bench`): "N invocations of the CPU device's path
+// tracer reached llvmpipe's limit of 65,535 loop iterations, which cut
+// their paths short".
+std::string cut_paths_note(uint64_t cut_paths);
+
 // Punctual lights are reached by next-event estimation only: a one-line
 // warning for a scene that has some when it is off, or an empty string.
 std::string punctual_without_nee_warning(const Scene& scene, const RenderSettings& settings);

@@ -404,9 +404,10 @@ TEST(Cli, BenchSaysWhereTheLoopLimitCutARowsPaths) {
   RunResult r = run_octrace("bench --device cpu --scene " + json +
                             " --accel octree,brute --size 40x30 --spp 1 --depth 64 --repeat 1 --warmup 0 --quiet");
   ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find("bench_trap.json, brute fp32: "), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("invocations of its last render reached llvmpipe's limit of 65,535 loop iterations, which "
-                          "cut their paths short: its time is of shorter paths than --depth 64 asks for"),
+  EXPECT_NE(r.output.find("bench_trap.json, brute fp32, its last render: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("invocations of the CPU device's path tracer reached llvmpipe's limit of 65,535 loop "
+                          "iterations, which cut their paths short: its time is of shorter paths than --depth 64 "
+                          "asks for"),
             std::string::npos)
       << r.output;
   EXPECT_EQ(r.output.find("bench_trap.json, octree"), std::string::npos) << r.output;
